@@ -1,0 +1,1 @@
+"""The Castor grammar, installed as the package ``castor.grammar``."""
