@@ -1,0 +1,222 @@
+"""The ``castor`` command: a UNIX filter from scene text to polygons (CLI.md).
+
+Exit status: 0 success (warnings allowed), 1 the input had errors (frames
+without errors were still written), 2 a usage error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import sys
+import threading
+
+from . import __version__
+from .diagnostics import CastorError, Reporter, TooManyErrors
+
+USAGE_ERROR = 2
+_STACK_BYTES = 512 * 1024 * 1024
+_RECURSION_LIMIT = 200_000
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        sys.stderr.write(f"castor: error: {message}\n")
+        sys.exit(USAGE_ERROR)
+
+
+def _arguments(argv):
+    from .writers import FORMATS
+
+    p = _Parser(prog="castor", description="Interpret Castor CSG scenes and write their polygons.",
+                epilog="Exit status: 0 success, 1 errors in the input, 2 usage error.")
+    p.add_argument("files", nargs="*", metavar="FILE", help="scene files, read in order as one "
+                   "input (none or - for standard input)")
+    p.add_argument("-o", "--output", metavar="PATH", help="write to PATH (format from its "
+                   "extension; a %%d pattern gives one file per frame)")
+    p.add_argument("-f", "--format", choices=list(FORMATS), help="output format (default cps, "
+                   "or from the extension of -o)")
+    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
+                   help="define a preprocessor macro")
+    p.add_argument("-U", dest="undefines", action="append", default=[], metavar="NAME",
+                   help="undefine a preprocessor macro")
+    p.add_argument("-I", dest="include_dirs", action="append", default=[], metavar="DIR",
+                   help="add a directory to the #include search path")
+    p.add_argument("--no-cpp", action="store_true", help="skip the built-in preprocessor and "
+                   "execute statements as they arrive")
+    p.add_argument("-s", "--set", dest="sets", action="append", default=[], metavar="NAME=EXPR",
+                   help="give parameter NAME this value; the scene's assignments to it are ignored")
+    p.add_argument("-t", "--tolerance", type=float, metavar="T",
+                   help="facet tolerance in scene units (default 0.01)")
+    p.add_argument("--check", action="store_true", help="read and evaluate everything, write nothing")
+    p.add_argument("--stats", action="store_true", help="one line of figures per frame on stderr")
+    p.add_argument("--max-polygons", type=int, default=20_000_000, metavar="N",
+                   help="refuse a frame of more than N polygons (default 20000000)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
+    p.add_argument("--version", action="version", version=f"castor {__version__}")
+    args = p.parse_args(argv)
+    if args.tolerance is not None and not (args.tolerance > 0 and args.tolerance < float("inf")):
+        p.error(f"--tolerance must be a positive number, not {args.tolerance}")
+    if args.max_polygons < 1:
+        p.error("--max-polygons must be at least 1")
+    if args.format is None:
+        from .writers import format_for_suffix
+
+        args.format = (format_for_suffix(args.output) if args.output else None) or "cps"
+    return p, args
+
+
+def _overrides(parser, sets: list[str]) -> dict[str, float]:
+    """Evaluate each --set NAME=EXPR with the grammar's expressions."""
+    from .diagnostics import Reporter as _Reporter
+    from .parse import Parser
+    from .reader import Chunk
+    from .scene import ParamDef, Tables
+    from .expressions import evaluate
+    import math
+
+    values: dict[str, float] = {}
+    for item in sets:
+        name, sep, expr = item.partition("=")
+        name = name.strip()
+        if not sep or not re.fullmatch(r"[A-Z][A-Za-z0-9_]*", name):
+            parser.error(f"--set takes NAME=EXPR with a parameter NAME (an uppercase first "
+                         f"letter), not '{item}'")
+        tables = Tables(parameters={"PI": math.pi, "TOLERANCE": 0.01, **values})
+        chunk = Chunk(f"{name} = {expr};", (("<command line>", 1),), 0)
+        results = list(Parser(tables).parse(chunk))
+        problems = [r for r in results if isinstance(r, CastorError)]
+        try:
+            if problems:
+                raise problems[0]
+            statement = results[0]
+            assert isinstance(statement, ParamDef)
+            values[name] = evaluate(statement.expr, tables.parameters)
+        except CastorError as exc:
+            parser.error(f"--set {item}: {exc.message}")
+    return values
+
+
+def _read_inputs(files: list[str]) -> list[tuple[str, str]]:
+    sources = []
+    for name in files or ["-"]:
+        if name == "-":
+            sources.append(("<stdin>", sys.stdin.read()))
+            continue
+        try:
+            with open(name, encoding="utf-8", errors="replace") as handle:
+                sources.append((name, handle.read()))
+        except OSError as exc:
+            sys.stderr.write(f"castor: cannot read '{name}': {exc.strerror}\n")
+            sys.exit(USAGE_ERROR)
+    return sources
+
+
+def _streamed_lines(files: list[str], reader):
+    """Lines of the inputs as they arrive (for --no-cpp)."""
+    for name in files or ["-"]:
+        if name == "-":
+            reader.start_file("<stdin>")
+            while True:
+                line = sys.stdin.readline()
+                if not line:
+                    break
+                yield line
+        else:
+            reader.start_file(name)
+            with open(name, encoding="utf-8", errors="replace") as handle:
+                yield from handle
+
+
+def _run(args, settings, reporter) -> int:
+    from .interpreter import Interpreter
+    from .output import Output
+    from .reader import Reader
+
+    for name in args.files:
+        if name != "-" and not os.access(name, os.R_OK):
+            reason = "no such file" if not os.path.exists(name) else "permission denied"
+            sys.stderr.write(f"castor: cannot read '{name}': {reason}\n")
+            return USAGE_ERROR
+    output = None if args.check else Output(args.output, args.format)
+
+    interpreter = Interpreter(settings, reporter, output.frame if output else None)
+    if output is not None:
+        output.start()
+    try:
+        if args.no_cpp:
+            reader = Reader(reporter, directives_allowed=False)
+            interpreter.run(reader.chunks(_streamed_lines(args.files, reader)))
+        else:
+            from .preprocess import preprocess
+
+            text = preprocess(_read_inputs(args.files), args.defines, args.undefines,
+                              args.include_dirs, reporter)
+            reader = Reader(reporter, directives_allowed=True)
+            interpreter.run(reader.chunks(text.splitlines()))
+    except TooManyErrors:
+        pass
+    if output is not None and not output.finish(reporter.errors > 0):
+        reporter.note(f"castor: {args.output} not written: there were errors and no frame")
+    return 1 if reporter.errors else 0
+
+
+def main(argv=None) -> int:
+    parser, args = _arguments(sys.argv[1:] if argv is None else argv)
+    reporter = Reporter(quiet=args.quiet)
+    from .interpreter import Settings
+
+    settings = Settings(overrides=_overrides(parser, args.sets), tolerance=args.tolerance,
+                        max_polygons=args.max_polygons, check_only=args.check, stats=args.stats)
+    result: list = []
+
+    def work():
+        try:
+            result.append(_run(args, settings, reporter))
+        except BaseException as exc:  # handed to the main thread below
+            result.append(exc)
+
+    # Deeply nested scenes recurse deeply: run on a thread with a large stack.
+    sys.setrecursionlimit(_RECURSION_LIMIT)
+    threading.stack_size(_STACK_BYTES)
+    thread = threading.Thread(target=work, name="castor", daemon=True)
+    thread.start()
+    try:
+        while thread.is_alive():
+            thread.join(0.2)
+    except KeyboardInterrupt:
+        sys.stderr.write("castor: interrupted\n")
+        os._exit(130)
+    outcome = result[0] if result else 1
+    if isinstance(outcome, BrokenPipeError):
+        _quiet_stdout()
+        return 1
+    if isinstance(outcome, SystemExit):
+        return outcome.code if isinstance(outcome.code, int) else 1
+    if isinstance(outcome, MemoryError):
+        sys.stderr.write("castor: error: out of memory; simplify the scene, raise the tolerance "
+                         "or lower --max-polygons\n")
+        return 1
+    if isinstance(outcome, BaseException):
+        raise outcome
+    try:
+        sys.stdout.flush()
+    except BrokenPipeError:
+        _quiet_stdout()
+        return 1
+    return outcome
+
+
+def _quiet_stdout() -> None:
+    """After the reader of our pipe has gone: no more writes, no message at exit."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except OSError:
+        pass
+
+
+if __name__ == "__main__":
+    sys.exit(main())

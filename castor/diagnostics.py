@@ -1,0 +1,114 @@
+"""Positions, errors and the reporter that prints them as compilers do.
+
+Every stage raises a ``CastorError`` subclass carrying the ``Location`` of the
+fault; only the ``Reporter`` writes to standard error, in the form
+``FILE:LINE:COL: error: MESSAGE`` followed by the source line and a caret, so
+that vi's quickfix list and other editors jump to it.
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+
+MAX_ERRORS = 50
+
+
+@dataclass(frozen=True, slots=True)
+class Location:
+    """A place in an original source file (after mapping cpp line markers)."""
+
+    file: str
+    line: int
+    column: int
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.column}"
+
+
+class CastorError(Exception):
+    """An error in the user's input, reported at a location."""
+
+    kind = "error"
+
+    def __init__(self, message: str, location: Location | None = None):
+        super().__init__(message)
+        self.message = message
+        self.location = location
+
+
+class PreprocessError(CastorError):
+    """A fault found by the C preprocessor pass (missing include, bad directive)."""
+
+
+class CastorSyntaxError(CastorError):
+    """Text that does not follow the grammar."""
+
+
+class SceneError(CastorError):
+    """A statement that parses but means nothing: unknown names, argument counts."""
+
+
+class EvaluationError(CastorError):
+    """A fault found while evaluating at a '>' command: undefined parameter, domain error."""
+
+
+class GeometryError(CastorError):
+    """A primitive or transformation whose values give no valid solid."""
+
+
+class LimitError(CastorError):
+    """A scene that exceeds one of castor's limits (polygons, operands, depth)."""
+
+
+class TooManyErrors(Exception):
+    """Raised by the reporter once MAX_ERRORS errors have been printed."""
+
+
+class Reporter:
+    """Prints diagnostics and counts them; the one place that writes to stderr."""
+
+    def __init__(self, stream=None, quiet: bool = False, max_errors: int = MAX_ERRORS):
+        self.stream = stream if stream is not None else sys.stderr
+        self.quiet = quiet
+        self.max_errors = max_errors
+        self.errors = 0
+        self.warnings = 0
+        # (file, line) -> text of that line, registered by the reader so that
+        # the caret line shows what was parsed, even for standard input.
+        self.source_lines: dict[tuple[str, int], str] = {}
+
+    def error(self, err: CastorError) -> None:
+        self.errors += 1
+        self._emit("error", err.message, err.location)
+        if self.errors >= self.max_errors:
+            self._emit_plain(f"castor: too many errors ({self.errors}), stopping")
+            raise TooManyErrors()
+
+    def warning(self, message: str, location: Location | None = None) -> None:
+        self.warnings += 1
+        if not self.quiet:
+            self._emit("warning", message, location)
+
+    def note(self, message: str) -> None:
+        self._emit_plain(message)
+
+    def _emit(self, kind: str, message: str, location: Location | None) -> None:
+        if location is None:
+            self._emit_plain(f"castor: {kind}: {message}")
+            return
+        lines = [f"{location}: {kind}: {message}"]
+        text = self.source_lines.get((location.file, location.line))
+        if text is not None:
+            text = text.rstrip("\n").expandtabs(1)
+            if len(text) <= 300:
+                lines.append(f" {text}")
+                lines.append(" " + " " * max(location.column - 1, 0) + "^")
+        self._emit_plain("\n".join(lines))
+
+    def _emit_plain(self, text: str) -> None:
+        try:
+            self.stream.write(text + "\n")
+            self.stream.flush()
+        except (BrokenPipeError, ValueError):
+            pass

@@ -1,0 +1,239 @@
+"""Evaluate the scene graph at a '>' command and turn it into polygons.
+
+The facetizer walks the DAG with the parameter values in force, builds each
+primitive's mesh (facet counts from the tolerance and the scale above it),
+applies transformations, and hands booleans to the engine. Named nodes, the
+only ones a scene can share, are cached once per set of values of the
+parameters they read and per facet resolution, and reused by transformation.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import MutableMapping
+
+import numpy as np
+
+from . import engine, polygons, primitives
+from .diagnostics import EvaluationError, GeometryError, LimitError, Location
+from .expressions import evaluate, format_number
+from .frame import Frame, FrameObject
+from .scene import Boolean, Named, Node, Primitive, Repeat, Transformed
+from .transforms import step_matrix
+
+MAX_REPEAT = 1_000_000
+DEFAULT_TOLERANCE = 0.01
+_MISSING = object()
+# Cache entries are kept while the cached solids hold fewer triangles than this.
+_CACHE_TRIANGLES = 4_000_000
+
+
+def repeat_values(repeat: Repeat, env) -> list[float]:
+    """The values A, A+S, ... not past B (LANGUAGE.md §6)."""
+    start = evaluate(repeat.start, env)
+    stop = evaluate(repeat.stop, env)
+    step = evaluate(repeat.step, env) if repeat.step is not None else 1.0
+    if step == 0:
+        location = repeat.step.location if repeat.step is not None else repeat.location
+        raise EvaluationError("the step of a repetition is zero; it would never end", location)
+    span = (stop - start) / step
+    if span < -1e-9:
+        return []
+    count = math.floor(span + 1e-9) + 1
+    if count > MAX_REPEAT:
+        raise LimitError(f"the repetition [{repeat.param} = {format_number(start)}, "
+                         f"{format_number(stop)}, {format_number(step)}] gives {count} values; "
+                         f"at most {MAX_REPEAT} are allowed", repeat.location)
+    return [start + i * step for i in range(count)]
+
+
+@dataclass
+class FrameStats:
+    primitives: int = 0
+    booleans: int = 0
+    polygons: int = 0
+    vertices: int = 0
+    euler: int = 0
+    seconds: float = 0.0
+
+
+class Facetizer:
+    def __init__(self, max_polygons: int = 20_000_000, check_only: bool = False):
+        self.max_polygons = max_polygons
+        # --check: evaluate every value and validate every primitive, build nothing
+        self.check_only = check_only
+        self.cache: dict[tuple, engine.Solid] = {}
+        self.cache_triangles = 0
+        self.mesh_cache: dict[tuple, primitives.Mesh] = {}
+        self.counter = engine.Counter()
+        self.primitive_count = 0
+        self.stats = FrameStats()
+
+    # --- a whole frame
+    def frame(self, objects, env: MutableMapping[str, float], number: int, where: str,
+              location: Location) -> Frame:
+        started = time.perf_counter()
+        self.counter.booleans = 0
+        self.primitive_count = 0
+        tolerance = env.get("TOLERANCE", DEFAULT_TOLERANCE)
+        if not (tolerance > 0 and math.isfinite(tolerance)):
+            raise EvaluationError(f"TOLERANCE must be a positive number, not "
+                                  f"{format_number(tolerance)}", location)
+        frame = Frame(number, where)
+        if self.check_only:
+            for node in objects:
+                self.solid(node, env, 1.0, tolerance, "")
+            return frame
+        total = 0
+        for node in objects:
+            solid = self.solid(node, env, 1.0, tolerance, "")
+            tri = engine.triangles(solid)
+            total += len(tri.triangles)
+            self._check_count(total, location)
+            merged = polygons.merge(tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
+            frame.objects.append(_frame_object(tri.vertices, merged, solid.origins))
+        stats = FrameStats(self.primitive_count, self.counter.booleans)
+        for obj in frame.objects:
+            stats.polygons += obj.polygon_count
+            stats.vertices += len(obj.vertices)
+            stats.euler += len(obj.vertices) - obj.edge_count() + obj.polygon_count
+        stats.seconds = time.perf_counter() - started
+        self.stats = stats
+        return frame
+
+    def _check_count(self, triangles: int, location: Location) -> None:
+        if triangles > self.max_polygons:
+            raise LimitError(f"the frame needs more than {self.max_polygons} polygons "
+                             f"(--max-polygons); simplify the scene or raise the limit", location)
+
+    # --- one node
+    def solid(self, node: Node, env, scale: float, tolerance: float, path: str) -> engine.Solid:
+        kind = type(node)
+        if kind is Named:
+            return self._named(node, env, scale, tolerance, path)
+        if kind is Transformed:
+            return self._transformed(node, env, scale, tolerance, path)
+        if kind is Boolean:
+            return self._boolean(node, env, scale, tolerance, path)
+        return self._primitive(node, env, scale, tolerance, path)
+
+    def _named(self, node: Named, env, scale, tolerance, path) -> engine.Solid:
+        here = engine.join_path(path, f"({node.name})")
+        local = _quantize(tolerance / scale)
+        key = (node, tuple(env.get(p, _MISSING) for p in sorted(node.params)), local)
+        cached = self.cache.get(key)
+        if cached is not None:
+            self.primitive_count += cached[1]
+            return engine.reinstanced(cached[0]).prefixed(f"({node.name})")
+        before = self.primitive_count
+        solid = self.solid(node.child, env, scale, tolerance, here)
+        count = solid.triangle_count()
+        if self.cache_triangles + count > _CACHE_TRIANGLES:
+            self.cache.clear()
+            self.cache_triangles = 0
+        self.cache[key] = (solid, self.primitive_count - before)
+        self.cache_triangles += count
+        return solid.prefixed(f"({node.name})")
+
+    def _transformed(self, node: Transformed, env, scale, tolerance, path) -> engine.Solid:
+        matrix = np.eye(4)
+        moved = False
+        for step in node.steps:
+            values = [evaluate(a, env) for a in step.args]
+            if step.kind == "f":
+                if not (values[0] > 0):
+                    raise GeometryError(f"the facet tolerance of '@f' must be positive, not "
+                                        f"{format_number(values[0])}", step.location)
+                tolerance = values[0]
+                continue
+            m, stretch = step_matrix(step.kind, values, step.location, path or "the object")
+            matrix = matrix @ m
+            scale *= stretch
+            moved = True
+        solid = self.solid(node.child, env, scale, tolerance, path)
+        if not moved or solid.empty:
+            return solid
+        return solid.transformed(matrix)
+
+    def _boolean(self, node: Boolean, env, scale, tolerance, path) -> engine.Solid:
+        op = node.op
+        operands: list[engine.Solid] = []
+        if node.repeat is None:
+            for k, child in enumerate(node.operands, 1):
+                step = f"{op}{k}"
+                operands.append(self.solid(child, env, scale, tolerance,
+                                           engine.join_path(path, step)).prefixed(step))
+        else:
+            name = node.repeat.param
+            saved = env.get(name, _MISSING)
+            try:
+                for k, value in enumerate(repeat_values(node.repeat, env), 1):
+                    env[name] = value
+                    step = f"{op}{k}"
+                    operands.append(self.solid(node.operands[0], env, scale, tolerance,
+                                               engine.join_path(path, step)).prefixed(step))
+            finally:
+                if saved is _MISSING:
+                    env.pop(name, None)
+                else:
+                    env[name] = saved
+        if self.check_only:
+            return engine.EMPTY
+        if sum(s.triangle_count() for s in operands) > 2 * self.max_polygons:
+            self._check_count(sum(s.triangle_count() for s in operands), node.location)
+        if op == "U":
+            result = engine.union(operands, self.counter)
+        elif op == "I":
+            result = engine.intersection(operands, self.counter)
+        else:
+            result = engine.difference(operands[0], operands[1], self.counter)
+        self._check_count(result.triangle_count(), node.location)
+        return result
+
+    def _primitive(self, node: Primitive, env, scale, tolerance, path) -> engine.Solid:
+        here = engine.join_path(path, f"!{node.kind}")
+        values = [evaluate(a, env) for a in node.args]
+        colour = tuple(values[:3])
+        for name, c, arg in zip(("red", "green", "blue"), colour, node.args):
+            if not 0.0 <= c <= 1.0:
+                hint = f"; if it is a 0..255 value, write {format_number(c)}/255" if 1 < c <= 255 else ""
+                raise GeometryError(f"colour component {name} = {format_number(c)} of {here} is "
+                                    f"outside 0..1{hint}", arg.location)
+        shape = tuple(values[3:])
+        if self.check_only:
+            primitives.validate(node.kind, shape, node.location, here)
+            self.primitive_count += 1
+            return engine.EMPTY
+        local = _quantize(tolerance / scale)
+        estimate = primitives.estimate_triangles(node.kind, shape, local)
+        self._check_count(estimate, node.location)
+        key = (node.kind, shape, local if node.kind in ("sp", "cy", "co", "to", "rv") else None)
+        mesh = self.mesh_cache.get(key)
+        if mesh is None:
+            mesh = primitives.build(node.kind, shape, local, node.location, here)
+            if len(self.mesh_cache) > 4096:
+                self.mesh_cache.clear()
+            self.mesh_cache[key] = mesh
+        self.primitive_count += 1
+        try:
+            return engine.solid_from_mesh(mesh, engine.Origin(f"!{node.kind}", colour))
+        except engine.EngineError as exc:
+            raise GeometryError(f"{here} gives no valid solid ({exc})", node.location) from None
+
+
+def _quantize(tolerance: float) -> float:
+    """Round a tolerance down to a power of 2^(1/4), so near-equal scales share a cache entry."""
+    if tolerance <= 0 or not math.isfinite(tolerance):
+        return tolerance
+    return 2.0 ** (math.floor(math.log2(tolerance) * 4) / 4)
+
+
+def _frame_object(vertices: np.ndarray, merged: polygons.Polygons, origin_table) -> FrameObject:
+    """Compact vertices and origins to those the polygons use."""
+    used, indices = np.unique(merged.indices, return_inverse=True)
+    ids, origin_of = np.unique(merged.origin_ids, return_inverse=True)
+    origins = [origin_table[int(i)] for i in ids]
+    return FrameObject(vertices[used], merged.offsets, indices.ravel().astype(np.int64),
+                       origin_of.ravel().astype(np.int64), origins)

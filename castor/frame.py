@@ -1,0 +1,53 @@
+"""What one '>' command produces: the polygons of each object, ready to write."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .engine import Origin
+
+
+@dataclass
+class FrameObject:
+    """One object of a '>' command: a closed surface of convex polygons."""
+
+    vertices: np.ndarray  # (V, 3) float64, every vertex used
+    offsets: np.ndarray  # (P + 1,) start of each polygon in indices
+    indices: np.ndarray  # vertex numbers, counter-clockwise seen from outside
+    origin_of: np.ndarray  # (P,) index into origins
+    origins: list[Origin]
+
+    @property
+    def polygon_count(self) -> int:
+        return len(self.offsets) - 1
+
+    def edge_count(self) -> int:
+        start = self.indices
+        following = np.arange(1, len(start) + 1)
+        following[self.offsets[1:] - 1] = self.offsets[:-1]
+        a, b = start, start[following]
+        return len(np.unique(np.minimum(a, b) * (len(self.vertices) + 1) + np.maximum(a, b)))
+
+    def triangles(self) -> tuple[np.ndarray, np.ndarray]:
+        """A fan triangulation of the polygons and the polygon of each triangle."""
+        sizes = np.diff(self.offsets)
+        per = sizes - 2
+        poly = np.repeat(np.arange(len(sizes)), per)
+        first = self.offsets[:-1][poly]
+        k = np.arange(len(poly)) - np.repeat(np.cumsum(per) - per, per)
+        tris = np.column_stack([self.indices[first], self.indices[first + k + 1],
+                                self.indices[first + k + 2]])
+        return tris, poly
+
+
+@dataclass
+class Frame:
+    number: int
+    where: str  # FILE:LINE of the '>' command
+    objects: list[FrameObject] = field(default_factory=list)
+
+    @property
+    def polygon_count(self) -> int:
+        return sum(o.polygon_count for o in self.objects)

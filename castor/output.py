@@ -1,0 +1,118 @@
+"""Where frames go: standard output, one file, or one file per frame.
+
+Every file is written beside its final name and renamed into place when
+complete, so a reader never sees half a file and a failed run never clobbers
+an old one.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import re
+import sys
+import tempfile
+
+from .diagnostics import CastorError, Location
+from .frame import Frame
+from .writers import FORMATS, writer
+
+_PATTERN = re.compile(r"%0?\d*d")
+
+
+class OutputError(CastorError):
+    """The output cannot take this frame (a second frame for a one-frame file)."""
+
+
+def has_pattern(path: str) -> bool:
+    return bool(_PATTERN.search(path))
+
+
+def _atomic_write(path: str, data: bytes) -> None:
+    directory = os.path.dirname(os.path.abspath(path))
+    fd, temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(data)
+        os.replace(temporary, path)
+    except BaseException:
+        try:
+            os.unlink(temporary)
+        except OSError:
+            pass
+        raise
+
+
+def _render(frame: Frame, name: str) -> bytes:
+    module = writer(name)
+    binary = FORMATS[name][3]
+    if binary:
+        buffer = io.BytesIO()
+        module.write(frame, buffer)
+        return buffer.getvalue()
+    text = io.StringIO()
+    if name == "cps":
+        from .writers.cps import HEADER
+
+        text.write(HEADER)
+        module.write(frame, text)
+    elif name == "stl-ascii":
+        module.write_ascii(frame, text)
+    else:
+        module.write(frame, text)
+    return text.getvalue().encode("utf-8")
+
+
+class Output:
+    """Sends each finished frame to its destination in the chosen format."""
+
+    def __init__(self, path: str | None, format_name: str):
+        self.path = path
+        self.format = format_name
+        self.frames = 0
+        self.stream_parts: list[str] = []  # the cps stream, for a single -o file
+
+    def start(self) -> None:
+        if self.path is None and self.format == "cps":
+            from .writers.cps import HEADER
+
+            sys.stdout.write(HEADER)
+            sys.stdout.flush()
+
+    def frame(self, frame: Frame, location: Location) -> None:
+        self.frames += 1
+        if self.format == "cps" and not (self.path and has_pattern(self.path)):
+            from .writers.cps import format_frame
+
+            text = format_frame(frame)
+            if self.path is None:
+                sys.stdout.write(text)
+                sys.stdout.flush()
+            else:
+                self.stream_parts.append(text)
+            return
+        if self.frames > 1 and not (self.path and has_pattern(self.path)):
+            where = self.path or "standard output"
+            stem, suffix = os.path.splitext(self.path or f"scene{FORMATS[self.format][1]}")
+            raise OutputError(
+                f"{self.format} output holds one frame, and this is frame {frame.number} for "
+                f"{where}; give a pattern such as -o {stem}-%03d{suffix} for one file per frame",
+                location)
+        data = _render(frame, self.format)
+        if self.path is None:
+            sys.stdout.buffer.write(data)
+            sys.stdout.buffer.flush()
+        else:
+            target = self.path % frame.number if has_pattern(self.path) else self.path
+            _atomic_write(target, data)
+
+    def finish(self, had_errors: bool) -> bool:
+        """Put a single cps file in place; False when it was left out."""
+        if self.path is None or self.format != "cps" or has_pattern(self.path):
+            return True
+        if had_errors and not self.stream_parts:
+            return False
+        from .writers.cps import HEADER
+
+        _atomic_write(self.path, (HEADER + "".join(self.stream_parts)).encode("utf-8"))
+        return True

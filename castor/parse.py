@@ -1,0 +1,449 @@
+"""Parse statements with the grammar of grammar/castor.lark and build the DAG.
+
+The LALR parser calls ``Builder`` as it reduces, so no parse tree is kept: each
+rule directly makes a scene-graph node. Object references are looked up in the
+object table at once, so a reference shares the named node. Faults a statement
+can have without being a syntax error (unknown primitive, wrong number of
+arguments, undefined object) are collected while building and reported
+together; lark's exceptions are translated into messages in the user's words.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import sys
+from functools import lru_cache
+from typing import Iterator
+
+from lark import Lark, Token
+from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+from lark.visitors import Transformer, v_args
+
+from .diagnostics import CastorError, CastorSyntaxError, EvaluationError, LimitError, SceneError
+from .expressions import FUNCTIONS, arity_message, evaluate, format_number
+from .reader import Chunk
+from .scene import (EMPTY, Binary, Boolean, Call, Facetize, Named, Number, ObjectDef, Param,
+                    ParamDef, Primitive, Repeat, Step, Tables, Transformed, Unary)
+
+# Deeper nesting than this (parentheses, booleans) is refused with an error.
+MAX_DEPTH = 20_000
+
+# primitive -> (minimum argument count, maximum or None, description of the form)
+PRIMITIVES: dict[str, tuple[int, int | None, str]] = {
+    "cu": (3, 3, "R, G, B"),
+    "sp": (3, 3, "R, G, B"),
+    "cy": (3, 3, "R, G, B"),
+    "co": (3, 3, "R, G, B"),
+    "to": (4, 4, "R, G, B, K"),
+    "pr": (4, 4, "R, G, B, N"),
+    "py": (4, 4, "R, G, B, N"),
+    "ex": (9, None, "R, G, B, x1, y1, x2, y2, x3, y3, ..."),
+    "rv": (9, None, "R, G, B, r1, z1, r2, z2, r3, z3, ..."),
+}
+
+# transformation -> allowed argument counts and description
+TRANSFORMS: dict[str, tuple[tuple[int, ...], str]] = {
+    "t": ((3,), "X, Y, Z"),
+    "rx": ((1,), "A"),
+    "ry": ((1,), "A"),
+    "rz": ((1,), "A"),
+    "r": ((4,), "X, Y, Z, A"),
+    "h": ((1, 3), "K or KX, KY, KZ"),
+    "m": ((12,), "a, b, c, d, e, f, g, h, i, j, k, l"),
+    "f": ((1,), "T"),
+}
+
+_WORDS = {
+    "PARAM": "a parameter name",
+    "LNAME": "a name",
+    "NUMBER": "a number",
+    "PRIMITIVE": "a primitive",
+    "TRANSFORM": "a transformation",
+    "BOOLEAN": "'$U', '$I' or '$D'",
+    "FACETIZE": "'>'",
+    "ADDOP": "'+' or '-'",
+    "MULOP": "'*', '/' or '%'",
+    "POW": "'^'",
+    "SEMICOLON": "';'",
+    "COMMA": "','",
+    "LPAR": "'('",
+    "RPAR": "')'",
+    "LSQB": "'['",
+    "RSQB": "']'",
+    "EQUAL": "'='",
+    "$END": "the end of the input",
+}
+_OPERATORS = {"ADDOP", "MULOP", "POW"}
+_OBJECT_START = {"PRIMITIVE", "TRANSFORM", "BOOLEAN", "LNAME"}
+_EXPR_START = {"NUMBER", "PARAM", "LPAR"}
+
+
+@lru_cache(maxsize=1)
+def grammar_text() -> str:
+    """The grammar shipped in the package (castor.grammar), or the source tree's."""
+    try:
+        from importlib.resources import files
+
+        return files("castor.grammar").joinpath("castor.lark").read_text(encoding="utf-8")
+    except (ModuleNotFoundError, FileNotFoundError):
+        from pathlib import Path
+
+        path = Path(__file__).resolve().parent.parent / "grammar" / "castor.lark"
+        return path.read_text(encoding="utf-8")
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}{'' if n == 1 else 's'}"
+
+
+def _suggest(name: str, choices) -> str:
+    close = difflib.get_close_matches(name, list(choices), n=1, cutoff=0.5)
+    return f"; did you mean '{close[0]}'?" if close else ""
+
+
+@v_args(inline=True)
+class Builder(Transformer):
+    """Makes scene-graph nodes as the parser reduces rules."""
+
+    def __init__(self, tables: Tables):
+        super().__init__()
+        self.tables = tables
+        self.chunk: Chunk | None = None
+        self.faults: list[CastorError] = []
+
+    def _at(self, token: Token):
+        return self.chunk.location(token.line, token.column)
+
+    def _depth(self, depth: int, location) -> int:
+        if depth > MAX_DEPTH:
+            raise LimitError(f"nesting deeper than {MAX_DEPTH} levels", location)
+        return depth
+
+    # --- statements
+    def param_def(self, name, expr):
+        return ParamDef(str(name), expr, self._at(name))
+
+    def object_def(self, name, node):
+        location = self._at(name)
+        return ObjectDef(str(name), Named(str(name), node, location, node.params,
+                                          self._depth(node.depth + 1, location)), location)
+
+    def facetize(self, mark, *rest):
+        repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
+        objects = rest[1:] if repeat else rest
+        return Facetize(tuple(objects), repeat, self._at(mark))
+
+    # --- objects
+    def object(self, *items):
+        atom = items[-1]
+        if len(items) == 1:
+            return atom
+        steps = items[:-1]
+        params = atom.params.union(*(a.params for s in steps for a in s.args))
+        return Transformed(tuple(steps), atom, steps[0].location, params, atom.depth + 1)
+
+    def transform(self, token, args):
+        args = args or ()
+        location = self._at(token)
+        kind = token[1:]
+        if kind not in TRANSFORMS:
+            self.faults.append(SceneError(
+                f"unknown transformation '{token}'{self._suggest_prefixed('@', kind, TRANSFORMS)}",
+                location))
+        else:
+            counts, form = TRANSFORMS[kind]
+            if len(args) not in counts:
+                wanted = " or ".join(str(c) for c in counts)
+                self.faults.append(SceneError(
+                    f"'{token}' takes {wanted} argument{'s' if counts[-1] > 1 else ''} ({form}), "
+                    f"but {len(args)} {'was' if len(args) == 1 else 'were'} given", location))
+        return Step(kind, args, location)
+
+    @staticmethod
+    def _suggest_prefixed(prefix: str, name: str, choices) -> str:
+        close = difflib.get_close_matches(name, list(choices), n=1, cutoff=0.5)
+        known = ", ".join(prefix + c for c in choices)
+        if close:
+            return f"; did you mean '{prefix}{close[0]}'? (known: {known})"
+        return f" (known: {known})"
+
+    def primitive(self, token, args):
+        args = args or ()
+        location = self._at(token)
+        kind = token[1:]
+        if kind not in PRIMITIVES:
+            self.faults.append(SceneError(
+                f"unknown primitive '{token}'{self._suggest_prefixed('!', kind, PRIMITIVES)}", location))
+        else:
+            low, high, form = PRIMITIVES[kind]
+            n = len(args)
+            if n < low or (high is not None and n > high):
+                wanted = str(low) if low == high else f"at least {low}"
+                self.faults.append(SceneError(
+                    f"'{token}' takes {wanted} arguments ({form}), but {n} "
+                    f"{'was' if n == 1 else 'were'} given", location))
+            elif high is None and (n - 3) % 2:
+                self.faults.append(SceneError(
+                    f"'{token}' takes the colour then pairs of coordinates ({form}), "
+                    f"but {n - 3} coordinates were given, an odd number", location))
+        params = EMPTY.union(*(a.params for a in args))
+        depth = max((a.depth for a in args), default=0) + 1
+        return Primitive(kind, args, location, params, depth)
+
+    def boolean(self, token, *rest):
+        location = self._at(token)
+        repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
+        operands = rest[1:] if repeat else rest
+        op = token[1:]
+        if op not in ("U", "I", "D"):
+            self.faults.append(SceneError(
+                f"unknown boolean operator '{token}' (known: $U union, $I intersection, $D difference)",
+                location))
+        elif op == "D" and repeat is not None:
+            self.faults.append(SceneError(
+                "'$D' cannot repeat; subtract a repeated union instead: $D(a, $U[I = ...](b))", location))
+        elif op == "D" and len(operands) != 2:
+            self.faults.append(SceneError(
+                f"'$D' takes exactly two operands (a - b), but {len(operands)} "
+                f"{'was' if len(operands) == 1 else 'were'} given; "
+                "to subtract several, write $D(a, $U(b, c))", location))
+        elif repeat is not None and len(operands) != 1:
+            self.faults.append(SceneError(
+                f"a repeated '{token}' takes one body, but {len(operands)} were given; "
+                f"write {token}[...]($U(a, b))", location))
+        params = EMPTY.union(*(o.params for o in operands))
+        if repeat is not None:
+            params = (params - {repeat.param}) | repeat.params
+        depth = self._depth(max(o.depth for o in operands) + 1, location)
+        return Boolean(op, tuple(operands), repeat, location, params, depth)
+
+    def reference(self, token):
+        name = str(token)
+        location = self._at(token)
+        node = self.tables.objects.get(name)
+        if node is None:
+            if name in self.tables.broken:
+                self.faults.append(SceneError(
+                    f"object '{name}' is not defined (its definition had errors)", location))
+            else:
+                hint = _suggest(name, self.tables.objects)
+                self.faults.append(SceneError(f"object '{name}' is not defined{hint}", location))
+            return Primitive("cu", (), location)  # placeholder; the statement is dropped
+        return node
+
+    def repeat(self, param, start, stop, step=None):
+        params = start.params | stop.params | (step.params if step is not None else EMPTY)
+        return Repeat(str(param), start, stop, step, self._at(param), params)
+
+    def args(self, *exprs):
+        return exprs
+
+    # --- expressions
+    def number(self, token):
+        value = float(token)
+        location = self._at(token)
+        if not math.isfinite(value):
+            self.faults.append(EvaluationError(f"number '{token}' is too large", location))
+            value = 0.0
+        return Number(value, location)
+
+    def parameter(self, token):
+        name = str(token)
+        return Param(name, self._at(token), frozenset((name,)))
+
+    def binary(self, left, op, right):
+        location = self._at(op)
+        node = Binary(str(op), left, right, location, left.params | right.params,
+                      self._depth(max(left.depth, right.depth) + 1, location))
+        return self._fold(node)
+
+    def unary(self, op, operand):
+        location = self._at(op)
+        node = Unary(str(op), operand, location, operand.params,
+                     self._depth(operand.depth + 1, location))
+        return self._fold(node)
+
+    def call(self, name, args):
+        args = args or ()
+        location = self._at(name)
+        function = str(name)
+        if function not in FUNCTIONS:
+            if function in self.tables.objects:
+                message = (f"'{function}' is an object, not a number; parameters start with "
+                           "an uppercase letter")
+            else:
+                message = f"unknown function '{function}'{_suggest(function, FUNCTIONS)}"
+            self.faults.append(SceneError(message, location))
+            return Number(0.0, location)
+        problem = arity_message(function, len(args))
+        if problem:
+            self.faults.append(SceneError(problem, location))
+            return Number(0.0, location)
+        params = EMPTY.union(*(a.params for a in args))
+        depth = self._depth(max((a.depth for a in args), default=0) + 1, location)
+        return self._fold(Call(function, tuple(args), location, params, depth))
+
+    def _fold(self, node):
+        """Evaluate an expression without parameters now (errors show at once)."""
+        if node.params:
+            return node
+        try:
+            return Number(evaluate(node, {}), node.location)
+        except EvaluationError as exc:
+            self.faults.append(exc)
+            return Number(0.0, node.location)
+
+
+class Parser:
+    """Parses statement chunks; yields statements and the errors found."""
+
+    def __init__(self, tables: Tables):
+        self.builder = Builder(tables)
+        self.lark = Lark(grammar_text(), parser="lalr", lexer="contextual", start="statement",
+                         transformer=self.builder, maybe_placeholders=True,
+                         propagate_positions=False)
+
+    def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | Facetize | CastorError"]:
+        """Parse one chunk; a missing ';' is reported and parsing resumes after it."""
+        while chunk is not None:
+            self.builder.chunk = chunk
+            self.builder.faults = []
+            try:
+                statement = self.lark.parse(chunk.text)
+            except LimitError as exc:
+                yield exc
+                return
+            except UnexpectedInput as exc:
+                error, chunk = _syntax_error(exc, chunk)
+                yield error
+                continue
+            except RecursionError:
+                yield LimitError("statement nested too deeply", chunk.location(1, 1))
+                return
+            if self.builder.faults:
+                # report each distinct fault once, in source order
+                yield from self.builder.faults
+                name = getattr(statement, "name", None)
+                if isinstance(statement, ObjectDef):
+                    self.builder.tables.broken.add(name)
+                    yield SkippedDefinition(name)
+            else:
+                yield statement
+            return
+
+
+class SkippedDefinition:
+    """Tells the interpreter that the definition of ``name`` was dropped."""
+
+    def __init__(self, name: str):
+        self.name = name
+
+
+def _describe_expected(expected: set[str]) -> str:
+    expected = set(expected) - {"COMMENT", "WS"}
+    words: list[str] = []
+    if expected & {"COMMA", "RPAR", "RSQB", "SEMICOLON"}:
+        expected -= _OPERATORS  # operators are always possible after a value: noise
+    if _OBJECT_START <= expected:
+        words.append("an object (a primitive such as !cu(...), a transformation, "
+                     "$U/$I/$D or an object name)")
+        expected -= _OBJECT_START
+    if _EXPR_START <= expected:
+        words.append("an expression")
+        expected -= _EXPR_START | {"ADDOP", "LNAME"}
+    if _OPERATORS <= expected:
+        words.append("an operator")
+        expected -= _OPERATORS
+    order = ["SEMICOLON", "COMMA", "RPAR", "RSQB", "LPAR", "LSQB", "EQUAL"]
+    for name in sorted(expected, key=lambda n: (order.index(n) if n in order else 99, n)):
+        words.append(_WORDS.get(name, name.lower()))
+    if not words:
+        return "something else"
+    if len(words) == 1:
+        return words[0]
+    return ", ".join(words[:-1]) + " or " + words[-1]
+
+
+def _describe_found(token: Token) -> str:
+    kind = token.type
+    if kind == "$END":
+        return "the end of the input"
+    if kind == "NUMBER":
+        return f"the number {token}"
+    if kind == "PARAM":
+        return f"the parameter name '{token}'"
+    if kind == "LNAME":
+        return f"the name '{token}'"
+    if kind in ("PRIMITIVE", "TRANSFORM", "BOOLEAN"):
+        return f"'{token}'"
+    return f"'{token}'"
+
+
+def _end_before(chunk: Chunk, pos: int):
+    """The location just after the last non-blank character before ``pos``."""
+    before = chunk.text[:pos].rstrip()
+    line = before.count("\n") + 1
+    column = len(before) - (before.rfind("\n") + 1) + 1
+    return chunk.location(line, column)
+
+
+def _rest_from(chunk: Chunk, line: int, column: int) -> Chunk:
+    lines = chunk.text.split("\n")
+    first = lines[line - 1][column - 1:]
+    offset = (column - 1) + (chunk.first_column if line == 1 else 0)
+    return Chunk("\n".join([first] + lines[line:]), chunk.origins[line - 1:], offset)
+
+
+def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, Chunk | None]:
+    """Translate lark's exception; also return the rest of the chunk to resume on."""
+    if isinstance(exc, UnexpectedCharacters):
+        char = chunk.text[exc.pos_in_stream]
+        location = chunk.location(exc.line, exc.column)
+        if char in "!@":
+            kind = "primitive" if char == "!" else "transformation"
+            message = (f"'{char}' must be followed directly by a {kind} name, "
+                       f"such as {'!cu' if char == '!' else '@t'}")
+        elif char == "$":
+            message = "'$' must be followed directly by U, I or D"
+        elif char == "#":
+            message = "a preprocessor directive must start its own line"
+        else:
+            message = f"unexpected character '{char}'"
+            if char == '"' or char == "'":
+                message += "; the language has no strings"
+        return CastorSyntaxError(message, location), None
+
+    if isinstance(exc, UnexpectedEOF):
+        expected = set(exc.expected)
+        token = Token("$END", "")
+        pos = len(chunk.text)
+    else:
+        assert isinstance(exc, UnexpectedToken)
+        expected = set(exc.expected)
+        token = exc.token
+        pos = token.start_pos if token.type != "$END" else len(chunk.text)
+
+    at_line_start = token.type != "$END" and chunk.text[:pos].rsplit("\n", 1)[-1].strip() == "" \
+        and "\n" in chunk.text[:pos]
+    if "SEMICOLON" in expected and (token.type == "$END" or at_line_start):
+        # The statement ended without its ';': point at where it should be.
+        location = _end_before(chunk, pos)
+        message = f"expected ';' at the end of the statement, found {_describe_found(token)}"
+        rest = _rest_from(chunk, token.line, token.column) if at_line_start else None
+        return CastorSyntaxError(message, location), rest
+
+    if token.type == "$END":
+        location = _end_before(chunk, pos)
+    else:
+        location = chunk.location(token.line, token.column)
+    context = ""
+    if {"COMMA", "RPAR"} <= expected:
+        context = " after an argument"
+    elif "RSQB" in expected and "COMMA" in expected:
+        context = " in the repetition"
+    message = f"expected {_describe_expected(expected)}{context}, found {_describe_found(token)}"
+    rest = None
+    if at_line_start:
+        rest = _rest_from(chunk, token.line, token.column)
+    return CastorSyntaxError(message, location), rest

@@ -1,0 +1,1 @@
+"""castor-view: draws polygon streams and mesh files."""
