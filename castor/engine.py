@@ -96,14 +96,17 @@ def reinstanced(solid: Solid) -> Solid:
     unique = np.unique(old_ids)
     first = manifold3d.Manifold.reserve_ids(len(unique))
     new_ids = first + np.searchsorted(unique, old_ids)
+    def array(values, dtype):
+        return np.array(values, dtype=dtype)  # an owned, writable copy: the engine wants one
+
     copy = manifold3d.Mesh64(
-        vert_properties=np.asarray(gl.vert_properties, dtype=np.float64)[:, :3].copy(),
-        tri_verts=np.asarray(gl.tri_verts, dtype=np.uint64),
-        run_index=np.asarray(gl.run_index, dtype=np.uint64),
-        run_original_id=new_ids.astype(np.uint32),
-        face_id=np.asarray(gl.face_id, dtype=np.uint64),
-        merge_from_vert=np.asarray(gl.merge_from_vert, dtype=np.uint64),
-        merge_to_vert=np.asarray(gl.merge_to_vert, dtype=np.uint64),
+        vert_properties=np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64),
+        tri_verts=array(gl.tri_verts, np.uint64),
+        run_index=array(gl.run_index, np.uint64),
+        run_original_id=array(new_ids, np.uint32),
+        face_id=array(gl.face_id, np.uint64),
+        merge_from_vert=array(gl.merge_from_vert, np.uint64),
+        merge_to_vert=array(gl.merge_to_vert, np.uint64),
     )
     manifold = manifold3d.Manifold(copy)
     mapping = dict(zip(unique.tolist(), range(first, first + len(unique))))

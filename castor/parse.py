@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import difflib
 import math
-import sys
 from functools import lru_cache
 from typing import Iterator
 
@@ -305,32 +304,33 @@ class Parser:
                          propagate_positions=False)
 
     def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | Facetize | CastorError"]:
-        """Parse one chunk; a missing ';' is reported and parsing resumes after it."""
-        while chunk is not None:
+        """Parse one chunk. A missing ';' is reported, the statement is taken as if it
+        were there, and parsing resumes with the next line."""
+        pending = [chunk]
+        while pending:
+            chunk = pending.pop(0)
             self.builder.chunk = chunk
             self.builder.faults = []
             try:
                 statement = self.lark.parse(chunk.text)
             except LimitError as exc:
                 yield exc
-                return
+                continue
             except UnexpectedInput as exc:
-                error, chunk = _syntax_error(exc, chunk)
+                error, retry = _syntax_error(exc, chunk)
                 yield error
+                pending[:0] = retry
                 continue
             except RecursionError:
                 yield LimitError("statement nested too deeply", chunk.location(1, 1))
-                return
+                continue
             if self.builder.faults:
-                # report each distinct fault once, in source order
                 yield from self.builder.faults
-                name = getattr(statement, "name", None)
                 if isinstance(statement, ObjectDef):
-                    self.builder.tables.broken.add(name)
-                    yield SkippedDefinition(name)
+                    self.builder.tables.broken.add(statement.name)
+                    yield SkippedDefinition(statement.name)
             else:
                 yield statement
-            return
 
 
 class SkippedDefinition:
@@ -395,7 +395,7 @@ def _rest_from(chunk: Chunk, line: int, column: int) -> Chunk:
     return Chunk("\n".join([first] + lines[line:]), chunk.origins[line - 1:], offset)
 
 
-def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, Chunk | None]:
+def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list[Chunk]]:
     """Translate lark's exception; also return the rest of the chunk to resume on."""
     if isinstance(exc, UnexpectedCharacters):
         char = chunk.text[exc.pos_in_stream]
@@ -412,7 +412,7 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, Chun
             message = f"unexpected character '{char}'"
             if char == '"' or char == "'":
                 message += "; the language has no strings"
-        return CastorSyntaxError(message, location), None
+        return CastorSyntaxError(message, location), []
 
     if isinstance(exc, UnexpectedEOF):
         expected = set(exc.expected)
@@ -426,12 +426,14 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, Chun
 
     at_line_start = token.type != "$END" and chunk.text[:pos].rsplit("\n", 1)[-1].strip() == "" \
         and "\n" in chunk.text[:pos]
+    rest = [_rest_from(chunk, token.line, token.column)] if at_line_start else []
     if "SEMICOLON" in expected and (token.type == "$END" or at_line_start):
-        # The statement ended without its ';': point at where it should be.
+        # The statement ended without its ';': point at where it should be, and
+        # take the statement as if it were there.
         location = _end_before(chunk, pos)
         message = f"expected ';' at the end of the statement, found {_describe_found(token)}"
-        rest = _rest_from(chunk, token.line, token.column) if at_line_start else None
-        return CastorSyntaxError(message, location), rest
+        head = Chunk(chunk.text[:pos].rstrip() + ";", chunk.origins, chunk.first_column)
+        return CastorSyntaxError(message, location), [head] + rest
 
     if token.type == "$END":
         location = _end_before(chunk, pos)
@@ -443,7 +445,4 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, Chun
     elif "RSQB" in expected and "COMMA" in expected:
         context = " in the repetition"
     message = f"expected {_describe_expected(expected)}{context}, found {_describe_found(token)}"
-    rest = None
-    if at_line_start:
-        rest = _rest_from(chunk, token.line, token.column)
     return CastorSyntaxError(message, location), rest
