@@ -395,6 +395,24 @@ def _rest_from(chunk: Chunk, line: int, column: int) -> Chunk:
     return Chunk("\n".join([first] + lines[line:]), chunk.origins[line - 1:], offset)
 
 
+def _acceptable(exc: UnexpectedToken) -> set[str]:
+    """The tokens the parser would really take here.
+
+    LALR merges states, so the table's list for the failing state can name
+    tokens that this context does not allow; asking the interactive parser
+    to try each one gives the true list.
+    """
+    parser = getattr(exc, "interactive_parser", None)
+    if parser is not None:
+        try:
+            accepted = set(parser.accepts())
+            if accepted:
+                return accepted
+        except (UnexpectedInput, CastorError, RecursionError):
+            pass
+    return set(exc.expected)
+
+
 def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list[Chunk]]:
     """Translate lark's exception; also return the rest of the chunk to resume on."""
     if isinstance(exc, UnexpectedCharacters):
@@ -420,7 +438,7 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list
         pos = len(chunk.text)
     else:
         assert isinstance(exc, UnexpectedToken)
-        expected = set(exc.expected)
+        expected = _acceptable(exc)
         token = exc.token
         pos = token.start_pos if token.type != "$END" else len(chunk.text)
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import tempfile
 from collections import Counter
 from dataclasses import dataclass, field
 
@@ -130,8 +131,10 @@ def check_solid(frame: Frame) -> None:
 
 def run(*args, stdin: str | None = None, cwd=None, check_status=None):
     """Run castor; returns (status, stdout, stderr)."""
+    # run outside the source tree, so that the installed package is what runs
     result = subprocess.run([sys.executable, "-m", "castor", *args], input=stdin,
-                            capture_output=True, text=True, cwd=cwd, timeout=600)
+                            capture_output=True, text=True, cwd=cwd or tempfile.gettempdir(),
+                            timeout=600)
     assert "Traceback" not in result.stderr, result.stderr
     if check_status is not None:
         assert result.returncode == check_status, result.stderr
