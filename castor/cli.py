@@ -200,7 +200,13 @@ def main(argv=None) -> int:
                          "or lower --max-polygons\n")
         return 1
     if isinstance(outcome, BaseException):
-        raise outcome
+        # A bug of castor's, not of the input: say so in one line (the whole
+        # traceback with CASTOR_DEBUG=1), and keep the frames already written.
+        if os.environ.get("CASTOR_DEBUG"):
+            raise outcome
+        sys.stderr.write(f"castor: internal error: {type(outcome).__name__}: {outcome} "
+                         "(please report it with the scene; CASTOR_DEBUG=1 shows where)\n")
+        return 1
     try:
         sys.stdout.flush()
     except BrokenPipeError:

@@ -127,9 +127,14 @@ class Interpreter:
         if self.settings.stats:
             s = self.facetizer.stats
             self.reporter.note(
-                f"castor: frame {number} {where}: {s.primitives} primitives, {s.booleans} boolean "
-                f"operations, {s.polygons} polygons, {s.vertices} vertices, Euler characteristic "
-                f"{s.euler}, {s.seconds:.3f} s")
+                f"castor: frame {number} {where}: {_count(s.primitives, 'primitive')}, "
+                f"{_count(s.booleans, 'boolean operation')}, {_count(s.polygons, 'polygon')}, "
+                f"{_count(s.vertices, 'vertex', 'vertices')}, Euler characteristic {s.euler}, "
+                f"{s.seconds:.3f} s")
+
+
+def _count(n: int, one: str, many: str | None = None) -> str:
+    return f"{n} {one if n == 1 else (many or one + 's')}"
 
 
 __all__ = ["Interpreter", "Settings", "TooManyErrors"]
