@@ -24,6 +24,8 @@ from .scene import Boolean, Named, Node, Primitive, Repeat, Transformed
 from .transforms import step_matrix
 
 MAX_REPEAT = 1_000_000
+# Beyond this, double precision leaves too few digits for exact booleans.
+MAX_COORDINATE = 1e12
 DEFAULT_TOLERANCE = 0.01
 _MISSING = object()
 # Cache entries are kept while the cached solids hold fewer triangles than this.
@@ -41,10 +43,11 @@ def repeat_values(repeat: Repeat, env) -> list[float]:
     span = (stop - start) / step
     if span < -1e-9:
         return []
-    count = math.floor(span + 1e-9) + 1
+    count = math.floor(span + 1e-9) + 1 if span < 1e18 else math.inf
     if count > MAX_REPEAT:
         raise LimitError(f"the repetition [{repeat.param} = {format_number(start)}, "
-                         f"{format_number(stop)}, {format_number(step)}] gives {count} values; "
+                         f"{format_number(stop)}, {format_number(step)}] gives "
+                         f"{count if count < math.inf else 'too many'} values; "
                          f"at most {MAX_REPEAT} are allowed", repeat.location)
     return [start + i * step for i in range(count)]
 
@@ -152,10 +155,19 @@ class Facetizer:
             matrix = matrix @ m
             scale *= stretch
             moved = True
+        if not np.all(np.abs(matrix) <= MAX_COORDINATE):
+            raise GeometryError(f"the transformations of {path or 'the object'} reach beyond "
+                                f"{MAX_COORDINATE:g}, the largest coordinate castor handles",
+                                node.location)
         solid = self.solid(node.child, env, scale, tolerance, path)
         if not moved or solid.empty:
             return solid
-        return solid.transformed(matrix)
+        solid = solid.transformed(matrix)
+        box = solid.box()
+        if not np.all(np.abs(box) <= MAX_COORDINATE):
+            raise GeometryError(f"{path or 'the object'} reaches beyond {MAX_COORDINATE:g}, "
+                                "the largest coordinate castor handles", node.location)
+        return solid
 
     def _boolean(self, node: Boolean, env, scale, tolerance, path) -> engine.Solid:
         op = node.op

@@ -10,7 +10,6 @@ together; lark's exceptions are translated into messages in the user's words.
 
 from __future__ import annotations
 
-import difflib
 import math
 from functools import lru_cache
 from typing import Iterator
@@ -97,6 +96,8 @@ def _plural(n: int, word: str) -> str:
 
 
 def _suggest(name: str, choices) -> str:
+    import difflib
+
     close = difflib.get_close_matches(name, list(choices), n=1, cutoff=0.5)
     return f"; did you mean '{close[0]}'?" if close else ""
 
@@ -161,6 +162,8 @@ class Builder(Transformer):
 
     @staticmethod
     def _suggest_prefixed(prefix: str, name: str, choices) -> str:
+        import difflib
+
         close = difflib.get_close_matches(name, list(choices), n=1, cutoff=0.5)
         known = ", ".join(prefix + c for c in choices)
         if close:
@@ -294,14 +297,32 @@ class Builder(Transformer):
             return Number(0.0, node.location)
 
 
+_shared: tuple[Lark, Builder] | None = None
+
+
+def _lark_and_builder(tables: Tables) -> tuple[Lark, Builder]:
+    """One LALR parser per process (building it is the slow part of start-up);
+    lark caches its tables in the temporary directory between runs."""
+    global _shared
+    if _shared is None:
+        builder = Builder(tables)
+        try:
+            lark = Lark(grammar_text(), parser="lalr", lexer="contextual", start="statement",
+                        transformer=builder, maybe_placeholders=True, cache=True)
+        except OSError:  # an unwritable temporary directory: build without the cache
+            lark = Lark(grammar_text(), parser="lalr", lexer="contextual", start="statement",
+                        transformer=builder, maybe_placeholders=True)
+        _shared = (lark, builder)
+    lark, builder = _shared
+    builder.tables = tables
+    return lark, builder
+
+
 class Parser:
     """Parses statement chunks; yields statements and the errors found."""
 
     def __init__(self, tables: Tables):
-        self.builder = Builder(tables)
-        self.lark = Lark(grammar_text(), parser="lalr", lexer="contextual", start="statement",
-                         transformer=self.builder, maybe_placeholders=True,
-                         propagate_positions=False)
+        self.lark, self.builder = _lark_and_builder(tables)
 
     def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | Facetize | CastorError"]:
         """Parse one chunk. A missing ';' is reported, the statement is taken as if it

@@ -33,11 +33,25 @@ class Mesh(NamedTuple):
     faces: np.ndarray  # (T,) int64
 
 
+# More segments than this for one circle is refused (by the polygon limit).
+_HUGE = 10**9
+
+
+def _half_angle(ratio: float) -> float:
+    """acos(1 - ratio), accurate for tiny ratios too (where 1 - ratio rounds to 1)."""
+    if ratio > 1e-8:
+        return math.acos(1.0 - ratio)
+    return math.sqrt(2.0 * ratio)
+
+
 def circle_segments(radius: float, tolerance: float) -> int:
     """Segments for a full circle of ``radius`` within ``tolerance``."""
     if radius <= 0 or tolerance >= radius:
         return MIN_SEGMENTS
-    return max(MIN_SEGMENTS, math.ceil(math.pi / math.acos(1.0 - tolerance / radius) - 1e-9))
+    angle = _half_angle(tolerance / radius)
+    if angle <= math.pi / _HUGE:
+        return _HUGE
+    return max(MIN_SEGMENTS, math.ceil(math.pi / angle - 1e-9))
 
 
 def sphere_segments(tolerance: float) -> tuple[int, int]:
@@ -45,7 +59,9 @@ def sphere_segments(tolerance: float) -> tuple[int, int]:
     if tolerance >= 1.0:
         step = math.pi / 4
     else:
-        step = math.sqrt(2.0) * math.acos(1.0 - tolerance)
+        step = math.sqrt(2.0) * _half_angle(tolerance)
+    if step <= 2 * math.pi / _HUGE:
+        return _HUGE, _HUGE
     around = max(MIN_SEGMENTS, math.ceil(2 * math.pi / step - 1e-9))
     rings = max(MIN_SEGMENTS // 2, math.ceil(math.pi / step - 1e-9))
     return around, rings

@@ -1,0 +1,131 @@
+"""No input, however broken, gives a traceback, a hang or a status other than 0 or 1.
+
+Runs castor in-process (fast enough for hundreds of cases) on generated
+garbage and on mutations of real scenes; a failing case found here is kept
+below as a regression test.
+"""
+
+import io
+import re
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, example, given, settings, strategies as st
+
+from castor.cli import _RECURSION_LIMIT, main
+
+# castor raises the recursion limit for deep scenes; raise it before hypothesis
+# looks, so that running castor in-process does not change it under its feet.
+sys.setrecursionlimit(_RECURSION_LIMIT)
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+SEED_SCENES = [
+    "a = !cu(1, 0, 0);\nX = 2 * PI;\n> @t(X, 0, 0) @rz(45) a;\n",
+    "roue = @h(0.3, 0.3, 0.1) !cy(0.1, 0.1, 0.1);\nv = $U(@h(4,1.6,1) !cu(1,0,0), @t(1,0,0) roue);\n> v;\n",
+    "T = 0;\n>[T = 0, 1, 0.5] $D(@h(2) !cu(1,1,1), @t(T, 0.5, -1) @h(0.5, 0.5, 4) !cy(0,0,1));\n",
+    "m = @t(0, I * 0.28, I * 0.17) @h(1.2, 0.3, 0.17) !cu(0.7,0.7,0.7);\n> $U[I = 0, 3](m);\n",
+    "> $I(!sp(1,1,1), @t(0.5,0,0) !sp(1,1,1)), !ex(1,1,1, 0,0, 2,0, 2,1, 0,1);\n",
+    "#define C 1, 1, 1\n/* comment */\n> !rv(C, 0,0, 1,0, 1,1, 0,2); // end\n",
+]
+ALPHABET = "abcxyzXYZTI!@$UDI()[],;=>+-*/%^ .0123456789e\n#\"'/_?cuspytrhmf"
+MESSAGE = re.compile(r"^(<stdin>|[^:\s]+):\d+:\d+: (error|warning): ", re.M)
+
+
+def run_inprocess(text: str, *args: str):
+    stdin, stdout, stderr = sys.stdin, sys.stdout, sys.stderr
+    sys.stdin, sys.stdout, sys.stderr = io.StringIO(text), io.StringIO(), io.StringIO()
+    try:
+        started = time.perf_counter()
+        status = main(["--max-polygons", "20000", *args])
+        elapsed = time.perf_counter() - started
+        return status, sys.stdout.getvalue(), sys.stderr.getvalue(), elapsed
+    except SystemExit as exc:  # usage errors exit through argparse
+        return exc.code, sys.stdout.getvalue(), sys.stderr.getvalue(), 0.0
+    finally:
+        sys.stdin, sys.stdout, sys.stderr = stdin, stdout, stderr
+
+
+def check(text: str, *args: str) -> None:
+    status, out, err, elapsed = run_inprocess(text, *args)
+    assert "Traceback" not in err and "internal error" not in err, (text, err)
+    assert status in (0, 1), (text, status, err)
+    if status == 1:
+        assert MESSAGE.search(err), (text, err)
+    assert elapsed < 20, (text, elapsed)
+    if out:
+        assert out.startswith("castor-polygons 1\n")
+        # frames are whole: every 'frame' has its 'endframe'
+        assert out.count("\nframe ") == out.count("\nendframe ")
+
+
+@st.composite
+def mutated(draw):
+    text = draw(st.sampled_from(SEED_SCENES))
+    for _ in range(draw(st.integers(1, 4))):
+        kind = draw(st.sampled_from(["delete", "insert", "swap", "truncate", "duplicate"]))
+        if not text:
+            break
+        i = draw(st.integers(0, len(text) - 1))
+        if kind == "delete":
+            j = draw(st.integers(i, min(len(text), i + 5)))
+            text = text[:i] + text[j:]
+        elif kind == "insert":
+            text = text[:i] + draw(st.text(ALPHABET, min_size=1, max_size=4)) + text[i:]
+        elif kind == "swap" and i + 1 < len(text):
+            text = text[:i] + text[i + 1] + text[i] + text[i + 2:]
+        elif kind == "truncate":
+            text = text[:i]
+        elif kind == "duplicate":
+            j = draw(st.integers(i, min(len(text), i + 20)))
+            text = text[:j] + text[i:j] + text[j:]
+    return text
+
+
+TOKENS = ["a", "b", "X", "T", "=", ";", ",", "(", ")", "[", "]", ">", "+", "-", "*", "/", "%",
+          "^", "!cu", "!sp", "!cy", "!ex", "!rv", "!to", "@t", "@h", "@rz", "@m", "@f", "$U",
+          "$I", "$D", "1", "0", "2.5", "1e308", "1e-308", "PI", "sin", "\n", "/*", "*/", "//"]
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=list(HealthCheck))
+@given(st.text(ALPHABET, max_size=80))
+@example("> !cu(1,1,1")
+@example("/*")
+@example("#include")
+@example('#include "')
+@example("#if\n")
+@example("#define A(x) A(x)\nA(1)")
+@example(">[T=0,1e300,1e-300] !cu(1,1,1);")
+@example("> @h(1e300) !sp(1,1,1);")
+@example("> @h(1e-300) !sp(1,1,1);")
+@example("> @m(1,0,0,0, 0,1,0,0, 0,0,0,0) !cu(1,1,1);")
+@example("> !ex(1,1,1, 0,0, 1,0, 0,0, 1,1);")
+@example("> !pr(1,1,1, 1e9);")
+@example("X = 1e308 * 10;")
+def test_random_text_never_crashes(text):
+    check(text, "--no-cpp")
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=list(HealthCheck))
+@given(mutated())
+def test_mutated_scenes_never_crash(text):
+    check(text)
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=list(HealthCheck))
+@given(st.lists(st.sampled_from(TOKENS), max_size=40))
+def test_token_soup_never_crashes(tokens):
+    check(" ".join(tokens), "--no-cpp")
+
+
+def test_deep_expression_nesting():
+    check("X = " + "(" * 10000 + "1" + ")" * 10000 + ";\n> @h(X) !cu(1,1,1);\n", "--no-cpp")
+    check("X = " + "-" * 10000 + "1;\n", "--no-cpp")
+    check("X = " + "(" * 30000 + "1" + ")" * 30000 + ";\n", "--no-cpp")
+
+
+def test_huge_repetition_is_refused():
+    status, out, err, _ = run_inprocess("> $U[I = 0, 1e7](@t(I, 0, 0) !cu(1,1,1));\n", "--no-cpp")
+    assert status == 1
+    assert "gives 10000001 values; at most 1000000 are allowed" in err
