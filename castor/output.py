@@ -28,12 +28,20 @@ def has_pattern(path: str) -> bool:
     return bool(_PATTERN.search(path))
 
 
+def _file_mode() -> int:
+    """The mode a new file gets from open(): 0o666 less the umask."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
 def _atomic_write(path: str, data: bytes) -> None:
     directory = os.path.dirname(os.path.abspath(path))
     fd, temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
     try:
         with os.fdopen(fd, "wb") as handle:
             handle.write(data)
+        os.chmod(temporary, _file_mode())  # mkstemp makes it private; open() would not
         os.replace(temporary, path)
     except BaseException:
         try:
@@ -43,7 +51,7 @@ def _atomic_write(path: str, data: bytes) -> None:
         raise
 
 
-def _render(frame: Frame, name: str) -> bytes:
+def _render(frame: Frame, name: str, path: str | None = None) -> bytes:
     module = writer(name)
     binary = FORMATS[name][3]
     if binary:
@@ -58,6 +66,8 @@ def _render(frame: Frame, name: str) -> bytes:
         module.write(frame, text)
     elif name == "stl-ascii":
         module.write_ascii(frame, text)
+    elif name == "obj":
+        module.write(frame, text, path)
     else:
         module.write(frame, text)
     return text.getvalue().encode("utf-8")
@@ -98,13 +108,18 @@ class Output:
                 f"{self.format} output holds one frame, and this is frame {frame.number} for "
                 f"{where}; give a pattern such as -o {stem}-%03d{suffix} for one file per frame",
                 location)
-        data = _render(frame, self.format)
-        if self.path is None:
+        target = None
+        if self.path is not None:
+            target = self.path % frame.number if has_pattern(self.path) else self.path
+        data = _render(frame, self.format, target)
+        if target is None:
             sys.stdout.buffer.write(data)
             sys.stdout.buffer.flush()
-        else:
-            target = self.path % frame.number if has_pattern(self.path) else self.path
-            _atomic_write(target, data)
+            return
+        module = writer(self.format)
+        for companion, content in getattr(module, "companions", lambda f, p: {})(frame, target).items():
+            _atomic_write(companion, content)
+        _atomic_write(target, data)
 
     def finish(self, had_errors: bool) -> bool:
         """Put a single cps file in place; False when it was left out."""

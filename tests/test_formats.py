@@ -1,0 +1,93 @@
+"""Mesh formats: each opens in trimesh, closed, with the stream's volume and colours."""
+
+from pathlib import Path
+
+import pytest
+import trimesh
+
+from meshcheck import parse_stream, run
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+FORMATS = ["off", "obj", "stl", "stl-ascii", "ply", "glb"]
+
+
+@pytest.fixture(scope="module", params=["car.cas", "house.cas"])
+def scene(request, tmp_path_factory):
+    directory = tmp_path_factory.mktemp(request.param.split(".")[0])
+    status, out, err = run(str(EXAMPLES / request.param), cwd=directory)
+    assert status == 0, err
+    (frame,) = parse_stream(out)[:1]
+    return EXAMPLES / request.param, directory, frame
+
+
+@pytest.mark.parametrize("name", FORMATS)
+def test_format_loads_closed_with_same_volume(scene, name):
+    source, directory, frame = scene
+    suffix = "stl" if name == "stl-ascii" else name
+    target = directory / f"out-{name}.{suffix}"
+    status, out, err = run("-f", name, "-o", str(target), str(source), "-D", "ONE_FRAME",
+                           cwd=directory)
+    assert status == 0, err
+    mesh = trimesh.load_mesh(str(target))
+    # OBJ materials and glTF primitives share their vertices in the file; trimesh
+    # copies them per material on loading, so identify them again by position.
+    mesh.merge_vertices()
+    assert mesh.is_watertight
+    expected = frame.volume()
+    tolerance = 1e-6 if name not in ("stl", "glb") else 1e-5  # single precision
+    assert mesh.volume == pytest.approx(expected, rel=tolerance)
+
+
+@pytest.mark.parametrize("name", ["off", "ply", "obj", "glb"])
+def test_format_keeps_colours(scene, name):
+    source, directory, frame = scene
+    target = directory / f"colours.{name}"
+    status, out, err = run("-o", str(target), str(source), "-D", "ONE_FRAME", cwd=directory)
+    assert status == 0, err
+    if name == "off":
+        lines = target.read_text().splitlines()
+        nv, nf, _ = map(int, lines[1].split())
+        colours = {tuple(l.split()[-3:]) for l in lines[2 + nv:2 + nv + nf]}
+    elif name == "ply":
+        colours = {tuple(c) for c in trimesh.load_mesh(str(target)).visual.face_colors.tolist()}
+    else:
+        loaded = trimesh.load(str(target))
+        colours = {tuple(g.visual.material.to_color(None).tolist()
+                         if hasattr(g.visual.material, "to_color") else
+                         g.visual.material.main_color.tolist())
+                   for g in loaded.geometry.values()}
+    assert len(colours) >= 2
+    assert len(colours) == len(frame.colours())
+
+
+def test_second_frame_without_pattern_is_an_error(tmp_path):
+    scene = "> !cu(1,1,1);\n> @t(2,0,0) !cu(1,1,1);\n"
+    status, out, err = run("--no-cpp", "-o", str(tmp_path / "x.stl"), stdin=scene)
+    assert status == 1
+    assert ("<stdin>:2:1: error: stl output holds one frame, and this is frame 2 for "
+            f"{tmp_path / 'x.stl'}; give a pattern such as -o {tmp_path / 'x'}-%03d.stl "
+            "for one file per frame") in err
+    assert trimesh.load_mesh(str(tmp_path / "x.stl")).volume == pytest.approx(1)
+
+
+def test_pattern_writes_one_file_per_frame(tmp_path):
+    scene = ">[T = 1, 3] @h(T, 1, 1) !cu(1,1,1);\n"
+    status, out, err = run("--no-cpp", "-o", str(tmp_path / "f-%02d.ply"), stdin=scene)
+    assert status == 0, err
+    volumes = [trimesh.load_mesh(str(tmp_path / f"f-{i:02d}.ply")).volume for i in (1, 2, 3)]
+    assert volumes == pytest.approx([1, 2, 3])
+
+
+def test_failed_run_keeps_the_old_file(tmp_path):
+    target = tmp_path / "keep.cps"
+    target.write_text("old\n")
+    status, out, err = run("--no-cpp", "-o", str(target), stdin="> nothing;\n")
+    assert status == 1
+    assert target.read_text() == "old\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["keep.cps"]
+
+
+def test_output_file_has_ordinary_permissions(tmp_path):
+    target = tmp_path / "p.off"
+    run("--no-cpp", "-o", str(target), stdin="> !cu(1,1,1);\n", check_status=0)
+    assert target.stat().st_mode & 0o777 == 0o644 or target.stat().st_mode & 0o044
