@@ -1,0 +1,210 @@
+"""The castor-view command: polygon stream or mesh file in, pictures out (CLI.md)."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import sys
+
+USAGE_ERROR = 2
+_PATTERN = re.compile(r"%0?\d*d")
+_MESH_SUFFIXES = (".off", ".obj", ".stl", ".ply", ".glb", ".gltf")
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        sys.stderr.write(f"castor-view: error: {message}\n")
+        sys.exit(USAGE_ERROR)
+
+
+def _triple(text: str, parser, option: str):
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if len(values) != 3:
+        parser.error(f"{option} takes X,Y,Z, not '{text}'")
+    return values
+
+
+def _arguments(argv):
+    from .. import __version__
+
+    p = _Parser(prog="castor-view", description="Draw castor's polygon stream or a mesh file.",
+                epilog="Example: castor house.cas | castor-view --view 30,20 -o house.png")
+    p.add_argument("file", nargs="?", default="-", metavar="FILE",
+                   help="polygon stream or mesh file (.off .obj .stl .ply .glb); default stdin")
+    p.add_argument("-o", "--output", metavar="PATH",
+                   help=".png for one frame; .gif, or .png with a %%d pattern, for every frame")
+    p.add_argument("--size", default="800x600", metavar="WxH", help="image size (800x600)")
+    p.add_argument("--view", default="-60,25", metavar="AZ,EL",
+                   help="camera direction in degrees: azimuth around z, elevation (-60,25)")
+    p.add_argument("--eye", metavar="X,Y,Z", help="camera position (with --look)")
+    p.add_argument("--look", metavar="X,Y,Z", help="point the camera looks at (with --eye)")
+    p.add_argument("--wire", action="store_true", help="wireframe (fil de fer)")
+    p.add_argument("--edges", action="store_true", help="shaded faces with their edges")
+    p.add_argument("--frame", type=int, metavar="N", help="only frame N")
+    p.add_argument("--delay", type=int, default=100, metavar="MS", help="GIF frame time (100 ms)")
+    p.add_argument("--version", action="version", version=f"castor-view {__version__}")
+    args = p.parse_args(argv)
+    size = re.fullmatch(r"(\d+)x(\d+)", args.size)
+    if not size or not (1 <= int(size[1]) <= 16384 and 1 <= int(size[2]) <= 16384):
+        p.error(f"--size takes WxH such as 800x600, not '{args.size}'")
+    args.width, args.height = int(size[1]), int(size[2])
+    try:
+        args.azimuth, args.elevation = (float(v) for v in args.view.split(","))
+    except ValueError:
+        p.error(f"--view takes AZ,EL in degrees, such as 30,20, not '{args.view}'")
+    if (args.eye is None) != (args.look is None):
+        p.error("--eye and --look go together")
+    if args.eye is not None:
+        args.eye = _triple(args.eye, p, "--eye")
+        args.look = _triple(args.look, p, "--look")
+        if args.eye == args.look:
+            p.error("--eye and --look must be different points")
+    if args.wire and args.edges:
+        p.error("choose one of --wire and --edges")
+    if args.output is None:
+        p.error("no output: castor-view writes images and opens no window; give -o FILE.png "
+                "(one frame) or -o FILE.gif (an animation), e.g. castor s.cas | castor-view -o s.png")
+    lowered = args.output.lower()
+    if not (lowered.endswith(".png") or lowered.endswith(".gif")):
+        p.error(f"-o takes a .png or .gif file, not '{args.output}'")
+    return args
+
+
+def _pictures(args):
+    from .scene import read_mesh_file, read_stream
+
+    if args.file != "-" and args.file.lower().endswith(_MESH_SUFFIXES):
+        yield read_mesh_file(args.file)
+        return
+    if args.file == "-":
+        yield from read_stream(iter(sys.stdin.readline, ""), "<stdin>")
+        return
+    try:
+        handle = open(args.file, encoding="utf-8", errors="replace")
+    except OSError as exc:
+        sys.stderr.write(f"castor-view: cannot read '{args.file}': {exc.strerror}\n")
+        sys.exit(USAGE_ERROR)
+    with handle:
+        yield from read_stream(handle, args.file)
+
+
+def _camera(args, points):
+    import numpy as np
+
+    from .render import Camera, frame_camera
+
+    if args.eye is not None:
+        eye, look = np.array(args.eye), np.array(args.look)
+        up = np.array([0.0, 0.0, 1.0])
+        if np.linalg.norm(np.cross(look - eye, up)) < 1e-9:
+            up = np.array([0.0, 1.0, 0.0])
+        return Camera(eye, look, up, 35.0)
+    return frame_camera(points, args.azimuth, args.elevation, args.width / args.height)
+
+
+def _image(args, picture, camera):
+    from PIL import Image
+
+    from .render import render
+
+    mode = "wire" if args.wire else "edges" if args.edges else "shaded"
+    return Image.fromarray(render(picture, camera, args.width, args.height, mode), "RGB")
+
+
+def _save(image, path):
+    import tempfile
+
+    directory = os.path.dirname(os.path.abspath(path))
+    suffix = os.path.splitext(path)[1]
+    fd, temporary = tempfile.mkstemp(prefix=".castor-view-", suffix=suffix, dir=directory)
+    os.close(fd)
+    try:
+        image.save(temporary)
+        mask = os.umask(0o022)
+        os.umask(mask)
+        os.chmod(temporary, 0o666 & ~mask)
+        os.replace(temporary, path)
+    except BaseException:
+        if os.path.exists(temporary):
+            os.unlink(temporary)
+        raise
+
+
+def run(args) -> int:
+    from .scene import ViewError
+
+    pattern = bool(_PATTERN.search(args.output))
+    gif = args.output.lower().endswith(".gif")
+    pictures = []
+    seen = 0
+    try:
+        for picture in _pictures(args):
+            seen += 1
+            if args.frame is not None and picture.number != args.frame:
+                continue
+            if pattern and not gif:
+                # one image per frame, written as soon as the frame arrives
+                image = _image(args, picture, _camera(args, picture.points))
+                _save(image, args.output % picture.number)
+                continue
+            pictures.append(picture)
+            if not gif:
+                break  # one .png: the first frame (or --frame N)
+    except ViewError as exc:
+        sys.stderr.write(f"castor-view: error: {exc}\n")
+        if not pictures:
+            return 1
+    if pattern and not gif:
+        if seen == 0:
+            sys.stderr.write("castor-view: error: no frame in the input\n")
+            return 1
+        return 0
+    if not pictures:
+        which = f"frame {args.frame}" if args.frame is not None else "frame"
+        sys.stderr.write(f"castor-view: error: no {which} in the input\n")
+        return 1
+    import numpy as np
+
+    # one camera for the whole animation, so that it does not jump
+    camera = _camera(args, np.concatenate([p.points for p in pictures]))
+    images = [_image(args, p, camera) for p in pictures]
+    if gif:
+        if len(images) == 1:
+            _save(images[0], args.output)
+        else:
+            import tempfile
+
+            from PIL import Image  # noqa: F401  (loaded by _image already)
+
+            directory = os.path.dirname(os.path.abspath(args.output))
+            fd, temporary = tempfile.mkstemp(prefix=".castor-view-", suffix=".gif", dir=directory)
+            os.close(fd)
+            images[0].save(temporary, save_all=True, append_images=images[1:],
+                           duration=args.delay, loop=0)
+            mask = os.umask(0o022)
+            os.umask(mask)
+            os.chmod(temporary, 0o666 & ~mask)
+            os.replace(temporary, args.output)
+    else:
+        _save(images[0], args.output)
+    return 0
+
+
+def main(argv=None) -> int:
+    args = _arguments(sys.argv[1:] if argv is None else argv)
+    try:
+        return run(args)
+    except BrokenPipeError:
+        return 1
+    except KeyboardInterrupt:
+        sys.stderr.write("castor-view: interrupted\n")
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())
