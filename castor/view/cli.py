@@ -48,7 +48,12 @@ def _arguments(argv):
     p.add_argument("--frame", type=int, metavar="N", help="only frame N")
     p.add_argument("--delay", type=int, default=100, metavar="MS", help="GIF frame time (100 ms)")
     p.add_argument("--version", action="version", version=f"castor-view {__version__}")
-    args = p.parse_args(argv)
+    # "--view -30,20": a negative azimuth is a value, not an option
+    argv = list(argv)
+    for i in range(len(argv) - 1):
+        if argv[i] in ("--view", "--eye", "--look") and re.match(r"-[\d.]", argv[i + 1]):
+            argv[i:i + 2] = [f"{argv[i]}={argv[i + 1]}", ""]
+    args = p.parse_args([a for a in argv if a != ""])
     size = re.fullmatch(r"(\d+)x(\d+)", args.size)
     if not size or not (1 <= int(size[1]) <= 16384 and 1 <= int(size[2]) <= 16384):
         p.error(f"--size takes WxH such as 800x600, not '{args.size}'")

@@ -147,7 +147,7 @@ def _rasterize_batch(batch, a, b, c, low, spans, areas, z, tris, polygon, colour
     with np.errstate(divide="ignore", invalid="ignore"):
         w0 = ((bx - cx) * (qy - cy) - (by - cy) * (qx - cx)) / area
         w1 = ((qx - cx) * (ay - cy) - (qy - cy) * (ax - cx)) / area
-    w2 = 1 - w0 - w1
+        w2 = 1 - w0 - w1
     eps = -1e-9
     inside = (area != 0) & (w0 >= eps) & (w1 >= eps) & (w2 >= eps)
     if not np.any(inside):
