@@ -67,6 +67,17 @@ class EngineError(Exception):
     """manifold3d refused a mesh (not an oriented 2-manifold)."""
 
 
+_FACE_BITS = 24
+
+
+def _face_ids(ident, faces: np.ndarray) -> np.ndarray:
+    """Face numbers unique across all inputs: the engine keeps an edge between
+    triangles of different face IDs, and may collapse one between equal IDs, so
+    two primitives must never share one."""
+    local = np.asarray(faces, dtype=np.uint64) & np.uint64((1 << _FACE_BITS) - 1)
+    return (np.asarray(ident, dtype=np.uint64) << np.uint64(_FACE_BITS)) | local
+
+
 def solid_from_mesh(mesh: Mesh, origin: Origin) -> Solid:
     """A primitive's mesh as a solid with one new origin ID."""
     ident = manifold3d.Manifold.reserve_ids(1)
@@ -75,7 +86,7 @@ def solid_from_mesh(mesh: Mesh, origin: Origin) -> Solid:
         tri_verts=mesh.triangles.astype(np.uint64),
         run_index=np.array([0, 3 * len(mesh.triangles)], dtype=np.uint64),
         run_original_id=np.array([ident], dtype=np.uint32),
-        face_id=mesh.faces.astype(np.uint64),
+        face_id=_face_ids(ident, mesh.faces),
     )
     manifold = manifold3d.Manifold(gl)
     if manifold.status() != manifold3d.Error.NoError:
@@ -96,6 +107,8 @@ def reinstanced(solid: Solid) -> Solid:
     unique = np.unique(old_ids)
     first = manifold3d.Manifold.reserve_ids(len(unique))
     new_ids = first + np.searchsorted(unique, old_ids)
+    run_index = np.asarray(gl.run_index, dtype=np.int64) // 3
+    per_triangle = np.repeat(new_ids, np.diff(run_index))
     def array(values, dtype):
         return np.array(values, dtype=dtype)  # an owned, writable copy: the engine wants one
 
@@ -104,7 +117,7 @@ def reinstanced(solid: Solid) -> Solid:
         tri_verts=array(gl.tri_verts, np.uint64),
         run_index=array(gl.run_index, np.uint64),
         run_original_id=array(new_ids, np.uint32),
-        face_id=array(gl.face_id, np.uint64),
+        face_id=_face_ids(per_triangle, np.asarray(gl.face_id)),
         merge_from_vert=array(gl.merge_from_vert, np.uint64),
         merge_to_vert=array(gl.merge_to_vert, np.uint64),
     )

@@ -125,14 +125,45 @@ def _convex(v: np.ndarray, poly: list[int], normal: np.ndarray) -> bool:
     return bool(np.all(turn >= -_CONVEX_SLACK * scale))
 
 
+def _split_off_plane(vertices: np.ndarray, triangles: np.ndarray, group: np.ndarray) -> np.ndarray:
+    """Give a triangle that does not lie in its group's plane a group of its own.
+
+    A group is one flat face of one primitive, so it is planar by construction;
+    this is a safety net for the rare sliver the engine labels with a
+    neighbouring face, so that no polygon is ever bent.
+    """
+    p = vertices[triangles]
+    normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])  # length: twice the area
+    count = group.max() + 1
+    plane = np.zeros((count, 3))
+    np.add.at(plane, group, normals)
+    length = np.linalg.norm(plane, axis=1, keepdims=True)
+    plane = np.divide(plane, length, out=np.zeros_like(plane), where=length > 0)
+    area = np.linalg.norm(normals, axis=1)
+    centre = p.mean(axis=1)
+    offset = np.zeros(count)
+    weight = np.zeros(count)
+    np.add.at(offset, group, area * np.einsum("ij,ij->i", centre, plane[group]))
+    np.add.at(weight, group, area)
+    offset = np.divide(offset, weight, out=np.zeros_like(offset), where=weight > 0)
+    distance = np.abs(np.einsum("tkj,tj->tk", p, plane[group]) - offset[group][:, None]).max(axis=1)
+    scale = max(1.0, float(np.abs(vertices).max())) if len(vertices) else 1.0
+    stray = np.flatnonzero(distance > 1e-9 * scale)
+    if len(stray):
+        group = group.copy()
+        group[stray] = count + np.arange(len(stray))
+    return group
+
+
 def merge(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
           face_ids: np.ndarray) -> Polygons:
     """Convex polygons made of the triangles, one origin each."""
     if len(triangles) == 0:
         return Polygons(np.zeros(1, np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64))
     keys = np.column_stack([origin_ids, face_ids])
-    _, group, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
-    group = group.ravel()
+    _, group = np.unique(keys, axis=0, return_inverse=True)
+    group = _split_off_plane(vertices, triangles, group.ravel())
+    counts = np.bincount(group)
     order = np.argsort(group, kind="stable")
     size = counts[group]
 

@@ -31,7 +31,7 @@ def test_format_loads_closed_with_same_volume(scene, name):
     mesh = trimesh.load_mesh(str(target))
     # OBJ materials and glTF primitives share their vertices in the file; trimesh
     # copies them per material on loading, so identify them again by position.
-    mesh.merge_vertices()
+    mesh.merge_vertices(merge_tex=True, merge_norm=True)
     assert mesh.is_watertight
     expected = frame.volume()
     tolerance = 1e-6 if name not in ("stl", "glb") else 1e-5  # single precision

@@ -1,0 +1,2 @@
+" Castor scene files
+autocmd BufRead,BufNewFile *.cas setfiletype castor
