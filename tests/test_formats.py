@@ -52,10 +52,11 @@ def test_format_keeps_colours(scene, name):
         colours = {tuple(c) for c in trimesh.load_mesh(str(target)).visual.face_colors.tolist()}
     else:
         loaded = trimesh.load(str(target))
-        colours = {tuple(g.visual.material.to_color(None).tolist()
-                         if hasattr(g.visual.material, "to_color") else
-                         g.visual.material.main_color.tolist())
-                   for g in loaded.geometry.values()}
+        materials = [g.visual.material for g in loaded.geometry.values()]
+        if name == "obj":
+            colours = {tuple(m.main_color.tolist()) for m in materials}
+        else:
+            colours = {tuple(m.baseColorFactor.tolist()) for m in materials}
     assert len(colours) >= 2
     assert len(colours) == len(frame.colours())
 
