@@ -97,14 +97,18 @@ class Facetizer:
             self._check_count(total, location)
             merged = polygons.merge(tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
             frame.objects.append(_frame_object(tri.vertices, merged, solid.origins))
-        stats = FrameStats(self.primitive_count, self.counter.booleans)
+        self.stats = FrameStats(self.primitive_count, self.counter.booleans)
+        self.stats.seconds = time.perf_counter() - started
+        return frame
+
+    def frame_stats(self, frame: Frame) -> FrameStats:
+        """The figures of --stats for the frame just made (counting edges costs)."""
+        stats = self.stats
         for obj in frame.objects:
             stats.polygons += obj.polygon_count
             stats.vertices += len(obj.vertices)
             stats.euler += len(obj.vertices) - obj.edge_count() + obj.polygon_count
-        stats.seconds = time.perf_counter() - started
-        self.stats = stats
-        return frame
+        return stats
 
     def _check_count(self, triangles: int, location: Location) -> None:
         if triangles > self.max_polygons:
@@ -244,8 +248,14 @@ def _quantize(tolerance: float) -> float:
 
 def _frame_object(vertices: np.ndarray, merged: polygons.Polygons, origin_table) -> FrameObject:
     """Compact vertices and origins to those the polygons use."""
-    used, indices = np.unique(merged.indices, return_inverse=True)
+    used = np.zeros(len(vertices), bool)
+    used[merged.indices] = True
+    indices = merged.indices
+    if not used.all():  # vertices left inside merged polygons
+        renumber = np.cumsum(used) - 1
+        indices = renumber[indices]
+        vertices = vertices[used]
     ids, origin_of = np.unique(merged.origin_ids, return_inverse=True)
     origins = [origin_table[int(i)] for i in ids]
-    return FrameObject(vertices[used], merged.offsets, indices.ravel().astype(np.int64),
+    return FrameObject(np.ascontiguousarray(vertices), merged.offsets, indices.astype(np.int64),
                        origin_of.ravel().astype(np.int64), origins)

@@ -125,7 +125,7 @@ class Interpreter:
             self.emit_frame(frame, statement.location)
         self.frames_written += 1
         if self.settings.stats:
-            s = self.facetizer.stats
+            s = self.facetizer.frame_stats(frame)
             self.reporter.note(
                 f"castor: frame {number} {where}: {_count(s.primitives, 'primitive')}, "
                 f"{_count(s.booleans, 'boolean operation')}, {_count(s.polygons, 'polygon')}, "

@@ -15,10 +15,10 @@ HEADER = "castor-polygons 1\n"
 
 def number_strings(values: np.ndarray) -> list[str]:
     """Shortest round-trip text of each value; -0 is written 0."""
-    out = []
-    for x in (values.ravel() + 0.0).tolist():
-        s = repr(x)
-        out.append(s[:-2] if s.endswith(".0") else s)
+    out = list(map(repr, (values.ravel() + 0.0).tolist()))
+    for i, text in enumerate(out):
+        if text[-2:] == ".0":
+            out[i] = text[:-2]
     return out
 
 
@@ -28,19 +28,17 @@ def format_frame(frame: Frame) -> str:
     count = 0
     for obj in frame.objects:
         numbers = number_strings(obj.vertices)
-        points = [" ".join(numbers[i:i + 3]) for i in range(0, len(numbers), 3)]
+        points = list(map(" ".join, zip(numbers[0::3], numbers[1::3], numbers[2::3])))
         heads = []
         for origin in obj.origins:
             colour = " ".join(number_strings(np.array(origin.colour, dtype=np.float64)))
             heads.append(f"poly {origin.path} {colour} ")
-        offsets = obj.offsets.tolist()
-        indices = obj.indices.tolist()
-        origin_of = obj.origin_of.tolist()
-        lines = []
-        for p in range(len(origin_of)):
-            start, end = offsets[p], offsets[p + 1]
-            lines.append(heads[origin_of[p]] + str(end - start) + " "
-                         + " ".join([points[i] for i in indices[start:end]]))
+        sizes = np.diff(obj.offsets)
+        # every polygon as its head, its size and its points, in one pass
+        head_of = [heads[i] + str(n) + " " for i, n in zip(obj.origin_of.tolist(), sizes.tolist())]
+        texts = list(map(points.__getitem__, obj.indices.tolist()))
+        bounds = obj.offsets.tolist()
+        lines = [head_of[p] + " ".join(texts[bounds[p]:bounds[p + 1]]) for p in range(len(head_of))]
         if lines:
             parts.append("\n".join(lines))
             parts.append("\n")
