@@ -168,8 +168,11 @@ def main(argv=None) -> int:
     reporter = Reporter(quiet=args.quiet)
     from .interpreter import Settings
 
+    from .writers import FORMATS
+
     settings = Settings(overrides=_overrides(parser, args.sets), tolerance=args.tolerance,
-                        max_polygons=args.max_polygons, check_only=args.check, stats=args.stats)
+                        max_polygons=args.max_polygons, check_only=args.check, stats=args.stats,
+                        merge_polygons=not FORMATS[args.format][4])
     result: list = []
 
     def work():

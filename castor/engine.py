@@ -67,31 +67,24 @@ class EngineError(Exception):
     """manifold3d refused a mesh (not an oriented 2-manifold)."""
 
 
-_FACE_BITS = 24
-
-
-def _face_ids(ident, faces: np.ndarray) -> np.ndarray:
-    """Face numbers unique across all inputs: the engine keeps an edge between
-    triangles of different face IDs, and may collapse one between equal IDs, so
-    two primitives must never share one."""
-    local = np.asarray(faces, dtype=np.uint64) & np.uint64((1 << _FACE_BITS) - 1)
-    return (np.asarray(ident, dtype=np.uint64) << np.uint64(_FACE_BITS)) | local
-
-
-def solid_from_mesh(mesh: Mesh, origin: Origin) -> Solid:
-    """A primitive's mesh as a solid with one new origin ID."""
-    ident = manifold3d.Manifold.reserve_ids(1)
+def template(mesh: Mesh) -> manifold3d.Manifold:
+    """A primitive's mesh in the engine, built once and instanced many times."""
     gl = manifold3d.Mesh64(
         vert_properties=mesh.vertices,
         tri_verts=mesh.triangles.astype(np.uint64),
-        run_index=np.array([0, 3 * len(mesh.triangles)], dtype=np.uint64),
-        run_original_id=np.array([ident], dtype=np.uint32),
-        face_id=_face_ids(ident, mesh.faces),
+        face_id=mesh.faces.astype(np.uint64),
     )
     manifold = manifold3d.Manifold(gl)
     if manifold.status() != manifold3d.Error.NoError:
         raise EngineError(str(manifold.status()))
-    return Solid(manifold, {ident: origin})
+    return manifold
+
+
+def instance(shape: manifold3d.Manifold, origin: Origin) -> Solid:
+    """One use of a primitive: the engine gives it a new ID that every output
+    triangle coming from it will carry (as_original is cheap: no rebuilding)."""
+    manifold = shape.as_original()
+    return Solid(manifold, {manifold.original_id(): origin})
 
 
 def reinstanced(solid: Solid) -> Solid:
@@ -107,8 +100,6 @@ def reinstanced(solid: Solid) -> Solid:
     unique = np.unique(old_ids)
     first = manifold3d.Manifold.reserve_ids(len(unique))
     new_ids = first + np.searchsorted(unique, old_ids)
-    run_index = np.asarray(gl.run_index, dtype=np.int64) // 3
-    per_triangle = np.repeat(new_ids, np.diff(run_index))
     def array(values, dtype):
         return np.array(values, dtype=dtype)  # an owned, writable copy: the engine wants one
 
@@ -117,7 +108,7 @@ def reinstanced(solid: Solid) -> Solid:
         tri_verts=array(gl.tri_verts, np.uint64),
         run_index=array(gl.run_index, np.uint64),
         run_original_id=array(new_ids, np.uint32),
-        face_id=_face_ids(per_triangle, np.asarray(gl.face_id)),
+        face_id=array(gl.face_id, np.uint64),
         merge_from_vert=array(gl.merge_from_vert, np.uint64),
         merge_to_vert=array(gl.merge_to_vert, np.uint64),
     )
@@ -218,7 +209,7 @@ class Triangles(NamedTuple):
     vertices: np.ndarray  # (V, 3) float64
     triangles: np.ndarray  # (T, 3) int64
     origin_ids: np.ndarray  # (T,) int64
-    face_ids: np.ndarray  # (T,) int64
+    face_ids: np.ndarray  # (T,) int64, unique to one flat face of one primitive
 
 
 def triangles(solid: Solid) -> Triangles:
@@ -238,5 +229,6 @@ def triangles(solid: Solid) -> Triangles:
     run_index = np.asarray(gl.run_index, dtype=np.int64) // 3
     run_ids = np.asarray(gl.run_original_id, dtype=np.int64)
     origin_ids = np.repeat(run_ids, np.diff(run_index))
-    face_ids = np.asarray(gl.face_id, dtype=np.int64)
+    # one key for each flat face of each primitive: the origin in the high bits
+    face_ids = (origin_ids << 32) | (np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF)
     return Triangles(vertices, tris, origin_ids, face_ids)

@@ -63,13 +63,18 @@ class FrameStats:
 
 
 class Facetizer:
-    def __init__(self, max_polygons: int = 20_000_000, check_only: bool = False):
+    def __init__(self, max_polygons: int = 20_000_000, check_only: bool = False,
+                 merge_polygons: bool = True):
         self.max_polygons = max_polygons
+        # False for formats that hold triangles only (STL, PLY, glTF): merging
+        # triangles into polygons that the writer cuts up again is wasted work
+        self.merge_polygons = merge_polygons
         # --check: evaluate every value and validate every primitive, build nothing
         self.check_only = check_only
         self.cache: dict[tuple, engine.Solid] = {}
         self.cache_triangles = 0
-        self.mesh_cache: dict[tuple, primitives.Mesh] = {}
+        # primitive shapes already built in the engine, by kind, size and facets
+        self.shape_cache: dict[tuple, object] = {}
         self.counter = engine.Counter()
         self.primitive_count = 0
         self.stats = FrameStats()
@@ -95,7 +100,10 @@ class Facetizer:
             tri = engine.triangles(solid)
             total += len(tri.triangles)
             self._check_count(total, location)
-            merged = polygons.merge(tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
+            if self.merge_polygons:
+                merged = polygons.merge(tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
+            else:
+                merged = polygons.as_triangles(tri.triangles, tri.origin_ids)
             frame.objects.append(_frame_object(tri.vertices, merged, solid.origins))
         self.stats = FrameStats(self.primitive_count, self.counter.booleans)
         self.stats.seconds = time.perf_counter() - started
@@ -226,17 +234,18 @@ class Facetizer:
         estimate = primitives.estimate_triangles(node.kind, shape, local)
         self._check_count(estimate, node.location)
         key = (node.kind, shape, local if node.kind in ("sp", "cy", "co", "to", "rv") else None)
-        mesh = self.mesh_cache.get(key)
-        if mesh is None:
+        shape_in_engine = self.shape_cache.get(key)
+        if shape_in_engine is None:
             mesh = primitives.build(node.kind, shape, local, node.location, here)
-            if len(self.mesh_cache) > 4096:
-                self.mesh_cache.clear()
-            self.mesh_cache[key] = mesh
+            try:
+                shape_in_engine = engine.template(mesh)
+            except engine.EngineError as exc:
+                raise GeometryError(f"{here} gives no valid solid ({exc})", node.location) from None
+            if len(self.shape_cache) > 4096:
+                self.shape_cache.clear()
+            self.shape_cache[key] = shape_in_engine
         self.primitive_count += 1
-        try:
-            return engine.solid_from_mesh(mesh, engine.Origin(f"!{node.kind}", colour))
-        except engine.EngineError as exc:
-            raise GeometryError(f"{here} gives no valid solid ({exc})", node.location) from None
+        return engine.instance(shape_in_engine, engine.Origin(f"!{node.kind}", colour))
 
 
 def _quantize(tolerance: float) -> float:

@@ -26,6 +26,7 @@ class Settings:
     max_polygons: int = 20_000_000
     check_only: bool = False
     stats: bool = False
+    merge_polygons: bool = True  # False when the output format holds triangles only
 
 
 class Interpreter:
@@ -51,7 +52,8 @@ class Interpreter:
             # imported here: numpy and manifold3d are only needed once a frame is made
             from .facetize import Facetizer
 
-            self._facetizer = Facetizer(self.settings.max_polygons, self.settings.check_only)
+            self._facetizer = Facetizer(self.settings.max_polygons, self.settings.check_only,
+                                        self.settings.merge_polygons)
         return self._facetizer
 
     def run(self, chunks: Iterable[Chunk]) -> None:

@@ -173,7 +173,7 @@ def merge(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
     """Convex polygons made of the triangles, one origin each."""
     if len(triangles) == 0:
         return Polygons(np.zeros(1, np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64))
-    # A face ID names one flat face of one primitive (engine._face_ids puts the
+    # A face ID names one flat face of one primitive (engine.triangles puts the
     # primitive's ID in its high bits), so it alone is the group key.
     _, group = np.unique(face_ids, return_inverse=True)
     group = _split_off_plane(vertices, triangles, group.ravel())
@@ -225,3 +225,9 @@ def merge(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
     np.cumsum(sizes, out=offsets[1:])
     return Polygons(offsets, np.concatenate(out_indices).astype(np.int64),
                     np.concatenate(out_origin).astype(np.int64))
+
+
+def as_triangles(triangles: np.ndarray, origin_ids: np.ndarray) -> Polygons:
+    """The triangles themselves as polygons, for formats that hold triangles only."""
+    offsets = np.arange(len(triangles) + 1, dtype=np.int64) * 3
+    return Polygons(offsets, triangles.reshape(-1).astype(np.int64), origin_ids.astype(np.int64))
