@@ -15,6 +15,7 @@ from typing import NamedTuple
 import manifold3d
 import numpy as np
 
+from .paths import Path
 from .primitives import Mesh
 
 _Add = manifold3d.OpType.Add
@@ -24,15 +25,12 @@ _Intersect = manifold3d.OpType.Intersect
 class Origin(NamedTuple):
     """Where a polygon comes from: the path of its primitive and its colour."""
 
-    path: str
+    steps: Path
     colour: tuple[float, float, float]
 
-
-def join_path(prefix: str, path: str) -> str:
-    """``(voiture)`` + ``U3(roue)!cy`` -> ``(voiture).U3(roue)!cy``."""
-    if prefix and path and path[0] in "UID":
-        return prefix + "." + path
-    return prefix + path
+    @property
+    def path(self) -> str:
+        return str(self.steps)
 
 
 @dataclass(frozen=True, slots=True)
@@ -53,7 +51,7 @@ class Solid:
 
     def prefixed(self, prefix: str) -> "Solid":
         """The same solid with ``prefix`` put in front of every path."""
-        return Solid(self.manifold, {i: Origin(join_path(prefix, o.path), o.colour)
+        return Solid(self.manifold, {i: Origin(o.steps.under(prefix), o.colour)
                                      for i, o in self.origins.items()})
 
     def transformed(self, matrix: np.ndarray) -> "Solid":

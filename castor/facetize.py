@@ -20,6 +20,7 @@ from . import engine, polygons, primitives
 from .diagnostics import EvaluationError, GeometryError, LimitError, Location
 from .expressions import evaluate, format_number
 from .frame import Frame, FrameObject
+from .paths import ROOT, Path, Trail
 from .scene import Boolean, Named, Node, Primitive, Repeat, Transformed
 from .transforms import step_matrix
 
@@ -92,11 +93,11 @@ class Facetizer:
         frame = Frame(number, where)
         if self.check_only:
             for node in objects:
-                self.solid(node, env, 1.0, tolerance, "")
+                self.solid(node, env, 1.0, tolerance, ROOT)
             return frame
         total = 0
         for node in objects:
-            solid = self.solid(node, env, 1.0, tolerance, "")
+            solid = self.solid(node, env, 1.0, tolerance, ROOT)
             tri = engine.triangles(solid)
             total += len(tri.triangles)
             self._check_count(total, location)
@@ -124,7 +125,9 @@ class Facetizer:
                              f"(--max-polygons); simplify the scene or raise the limit", location)
 
     # --- one node
-    def solid(self, node: Node, env, scale: float, tolerance: float, path: str) -> engine.Solid:
+    def solid(self, node: Node, env, scale: float, tolerance: float, path: Trail) -> engine.Solid:
+        """The solid of ``node`` in its own coordinates; ``path`` is the way down to
+        it, for messages."""
         kind = type(node)
         if kind is Named:
             return self._named(node, env, scale, tolerance, path)
@@ -135,7 +138,7 @@ class Facetizer:
         return self._primitive(node, env, scale, tolerance, path)
 
     def _named(self, node: Named, env, scale, tolerance, path) -> engine.Solid:
-        here = engine.join_path(path, f"({node.name})")
+        here = path.down(f"({node.name})")
         local = _quantize(tolerance / scale)
         key = (node, tuple(env.get(p, _MISSING) for p in sorted(node.params)), local)
         cached = self.cache.get(key)
@@ -163,12 +166,12 @@ class Facetizer:
                                         f"{format_number(values[0])}", step.location)
                 tolerance = values[0]
                 continue
-            m, stretch = step_matrix(step.kind, values, step.location, path or "the object")
+            m, stretch = step_matrix(step.kind, values, step.location, path)
             matrix = matrix @ m
             scale *= stretch
             moved = True
         if not np.all(np.abs(matrix) <= MAX_COORDINATE):
-            raise GeometryError(f"the transformations of {path or 'the object'} reach beyond "
+            raise GeometryError(f"the transformations of {path} reach beyond "
                                 f"{MAX_COORDINATE:g}, the largest coordinate castor handles",
                                 node.location)
         solid = self.solid(node.child, env, scale, tolerance, path)
@@ -177,7 +180,7 @@ class Facetizer:
         solid = solid.transformed(matrix)
         box = solid.box()
         if not np.all(np.abs(box) <= MAX_COORDINATE):
-            raise GeometryError(f"{path or 'the object'} reaches beyond {MAX_COORDINATE:g}, "
+            raise GeometryError(f"{path} reaches beyond {MAX_COORDINATE:g}, "
                                 "the largest coordinate castor handles", node.location)
         return solid
 
@@ -188,7 +191,7 @@ class Facetizer:
             for k, child in enumerate(node.operands, 1):
                 step = f"{op}{k}"
                 operands.append(self.solid(child, env, scale, tolerance,
-                                           engine.join_path(path, step)).prefixed(step))
+                                           path.down(step)).prefixed(step))
         else:
             name = node.repeat.param
             saved = env.get(name, _MISSING)
@@ -197,7 +200,7 @@ class Facetizer:
                     env[name] = value
                     step = f"{op}{k}"
                     operands.append(self.solid(node.operands[0], env, scale, tolerance,
-                                               engine.join_path(path, step)).prefixed(step))
+                                               path.down(step)).prefixed(step))
             finally:
                 if saved is _MISSING:
                     env.pop(name, None)
@@ -217,7 +220,7 @@ class Facetizer:
         return result
 
     def _primitive(self, node: Primitive, env, scale, tolerance, path) -> engine.Solid:
-        here = engine.join_path(path, f"!{node.kind}")
+        here = path.down(f"!{node.kind}")
         values = [evaluate(a, env) for a in node.args]
         colour = tuple(values[:3])
         for name, c, arg in zip(("red", "green", "blue"), colour, node.args):
@@ -245,7 +248,7 @@ class Facetizer:
                 self.shape_cache.clear()
             self.shape_cache[key] = shape_in_engine
         self.primitive_count += 1
-        return engine.instance(shape_in_engine, engine.Origin(f"!{node.kind}", colour))
+        return engine.instance(shape_in_engine, engine.Origin(Path(f"!{node.kind}"), colour))
 
 
 def _quantize(tolerance: float) -> float:

@@ -25,7 +25,7 @@ from .scene import (EMPTY, Binary, Boolean, Call, Facetize, Named, Number, Objec
                     ParamDef, Primitive, Repeat, Step, Tables, Transformed, Unary)
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
-MAX_DEPTH = 20_000
+MAX_DEPTH = 100_000
 
 # primitive -> (minimum argument count, maximum or None, description of the form)
 PRIMITIVES: dict[str, tuple[int, int | None, str]] = {

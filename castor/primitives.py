@@ -191,7 +191,7 @@ def torus(k: float, around: int, tube: int) -> Mesh:
     return _quads(vertices.reshape(-1, 3), quads.reshape(-1, 4), 0)
 
 
-def _check_simple(points: np.ndarray, what: str, location: Location, path: str) -> None:
+def _check_simple(points: np.ndarray, what: str, location: Location, path: object) -> None:
     """Refuse repeated vertices, self-intersection and zero area."""
     n = len(points)
     nxt = np.roll(points, -1, axis=0)
@@ -239,7 +239,7 @@ def _signed_area(points: np.ndarray) -> float:
     return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
 
 
-def _polygon(values: tuple, what: str, location: Location, path: str) -> np.ndarray:
+def _polygon(values: tuple, what: str, location: Location, path: object) -> np.ndarray:
     points = np.array(values, dtype=np.float64).reshape(-1, 2)
     if len(points) > 3 and np.all(points[0] == points[-1]):
         points = points[:-1]  # a closing vertex repeating the first is allowed
@@ -249,7 +249,7 @@ def _polygon(values: tuple, what: str, location: Location, path: str) -> np.ndar
     return points
 
 
-def extrusion(values: tuple, location: Location, path: str) -> Mesh:
+def extrusion(values: tuple, location: Location, path: object) -> Mesh:
     """The simple polygon (x1, y1, ...) in z = 0 swept to z = 1."""
     from manifold3d import triangulate
 
@@ -267,7 +267,7 @@ def extrusion(values: tuple, location: Location, path: str) -> Mesh:
                  [np.zeros(len(cap), np.int64), np.ones(len(cap), np.int64), side.faces])
 
 
-def revolution(values: tuple, segments: int, location: Location, path: str) -> Mesh:
+def revolution(values: tuple, segments: int, location: Location, path: object) -> Mesh:
     """The simple profile (r1, z1, ...) turned a full circle about the z axis."""
     profile = _profile(values, location, path)
     if _signed_area(profile) < 0:
@@ -324,7 +324,7 @@ def signed_volume(vertices: np.ndarray, triangles: np.ndarray) -> float:
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
 
-def validate(kind: str, shape: tuple, location: Location, path: str) -> None:
+def validate(kind: str, shape: tuple, location: Location, path: object) -> None:
     """Refuse arguments that give no valid solid, without building anything."""
     if kind == "to":
         k = shape[0]
@@ -344,7 +344,7 @@ def validate(kind: str, shape: tuple, location: Location, path: str) -> None:
         _profile(shape, location, path)
 
 
-def _profile(values: tuple, location: Location, path: str) -> np.ndarray:
+def _profile(values: tuple, location: Location, path: object) -> np.ndarray:
     profile = _polygon(values, "profile", location, path)
     if np.any(profile[:, 0] < 0):
         i = int(np.argmax(profile[:, 0] < 0))
@@ -354,7 +354,7 @@ def _profile(values: tuple, location: Location, path: str) -> np.ndarray:
     return profile
 
 
-def build(kind: str, shape: tuple, tolerance: float, location: Location, path: str) -> Mesh:
+def build(kind: str, shape: tuple, tolerance: float, location: Location, path: object) -> Mesh:
     """The mesh of primitive ``kind`` with its non-colour arguments ``shape``."""
     if kind in ("to", "pr", "py"):
         validate(kind, shape, location, path)

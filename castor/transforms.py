@@ -55,7 +55,7 @@ def _axis_rotation(axis: int, degrees: float) -> np.ndarray:
     return m
 
 
-def step_matrix(kind: str, values: list[float], location: Location, path: str) -> tuple[np.ndarray, float]:
+def step_matrix(kind: str, values: list[float], location: Location, path: object) -> tuple[np.ndarray, float]:
     """The matrix and stretch factor of one transformation step."""
     if kind == "t":
         return translation(*values), 1.0

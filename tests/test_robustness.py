@@ -129,3 +129,55 @@ def test_huge_repetition_is_refused():
     status, out, err, _ = run_inprocess("> $U[I = 0, 1e7](@t(I, 0, 0) !cu(1,1,1));\n", "--no-cpp")
     assert status == 1
     assert "gives 10000001 values; at most 1000000 are allowed" in err
+
+
+# --- the UNIX-filter contract, with real processes ---------------------------
+
+import subprocess  # noqa: E402
+import tempfile  # noqa: E402
+
+
+def _castor(*args):
+    return [sys.executable, "-m", "castor", *args]
+
+
+def test_reader_closing_the_pipe_is_quiet():
+    scene = "> $U[I = 0, 2000](@t(2 * I, 0, 0) !cu(1, 1, 1));\n" * 3
+    castor = subprocess.Popen(_castor("--no-cpp"), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, cwd=tempfile.gettempdir())
+    castor.stdin.write(scene.encode())
+    castor.stdin.close()
+    head = castor.stdout.read(100)
+    castor.stdout.close()  # like `| head -c 100`
+    err = castor.stderr.read().decode()
+    castor.wait(timeout=120)
+    assert head.startswith(b"castor-polygons 1\nframe 1")
+    assert err == ""
+    assert castor.returncode in (0, 1)
+
+
+def test_statements_run_as_they_arrive_with_no_cpp():
+    castor = subprocess.Popen(_castor("--no-cpp"), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, cwd=tempfile.gettempdir())
+    castor.stdin.write(b"a = !cu(1, 0, 0);\n> a;\n")
+    castor.stdin.flush()
+    # the first frame comes out while the pipe is still open
+    lines = [castor.stdout.readline() for _ in range(3)]
+    assert lines[0] == b"castor-polygons 1\n"
+    assert lines[1].startswith(b"frame 1 <stdin>:2")
+    castor.stdin.write(b"> @t(1, 0, 0) a;\n")
+    castor.stdin.close()
+    rest = castor.stdout.read()
+    castor.wait(timeout=60)
+    assert b"frame 2 <stdin>:3" in rest
+    assert castor.returncode == 0
+
+
+def test_deep_object_chain_stays_small():
+    lines = ["a0 = !cu(1, 1, 1);"]
+    lines += [f"a{i} = $U(@t(0.001, 0, 0) a{i - 1});" for i in range(1, 5000)]
+    lines.append("> a4999;")
+    status, out, err, _ = run_inprocess("\n".join(lines) + "\n", "--no-cpp")
+    assert status == 0, err
+    assert out.count("\npoly ") == 6
+    assert "(a4999).U1(a4998).U1" in out
