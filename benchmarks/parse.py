@@ -28,13 +28,14 @@ def scene(count: int) -> str:
 
 
 BARE_LARK = r'''
-import sys, time
+import sys
 from lark import Lark, Transformer
 from castor.parse import grammar_text
 text = open(sys.argv[1]).read()
-class Nothing(Transformer):
-    def __default__(self, data, children, meta):
-        return None
+RULES = ["program", "param_def", "object_def", "facetize", "object", "transform", "primitive",
+         "boolean", "reference", "repeat", "args", "binary", "unary", "number", "parameter", "call"]
+# a callback for every rule that keeps nothing: no tree is built
+Nothing = type("Nothing", (Transformer,), {name: (lambda self, children: None) for name in RULES})
 parser = Lark(grammar_text(), parser="lalr", lexer="contextual", start="program",
               transformer=Nothing(), maybe_placeholders=True, cache=True)
 parser.parse(text)

@@ -9,13 +9,12 @@ that vi's quickfix list and other editors jump to it.
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass
+from typing import NamedTuple
 
 MAX_ERRORS = 50
 
 
-@dataclass(frozen=True, slots=True)
-class Location:
+class Location(NamedTuple):
     """A place in an original source file (after mapping cpp line markers)."""
 
     file: str

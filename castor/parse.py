@@ -16,7 +16,6 @@ from typing import Iterator
 
 from lark import Lark, Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
-from lark.visitors import Transformer, v_args
 
 from .diagnostics import CastorError, CastorSyntaxError, EvaluationError, LimitError, SceneError
 from .expressions import FUNCTIONS, arity_message, evaluate, format_number
@@ -102,12 +101,14 @@ def _suggest(name: str, choices) -> str:
     return f"; did you mean '{close[0]}'?" if close else ""
 
 
-@v_args(inline=True)
-class Builder(Transformer):
-    """Makes scene-graph nodes as the parser reduces rules."""
+class Builder:
+    """Makes scene-graph nodes as the parser reduces rules.
+
+    Lark calls each method with the list of a rule's children (no v_args
+    wrapper: parsing speed is start-up speed, and a wrapper is a call more).
+    """
 
     def __init__(self, tables: Tables):
-        super().__init__()
         self.tables = tables
         self.chunk: Chunk | None = None
         self.faults: list[CastorError] = []
@@ -121,29 +122,37 @@ class Builder(Transformer):
         return depth
 
     # --- statements
-    def param_def(self, name, expr):
+    def param_def(self, children):
+        name, expr = children
         return ParamDef(str(name), expr, self._at(name))
 
-    def object_def(self, name, node):
+    def object_def(self, children):
+        name, node = children
         location = self._at(name)
         return ObjectDef(str(name), Named(str(name), node, location, node.params,
                                           self._depth(node.depth + 1, location)), location)
 
-    def facetize(self, mark, *rest):
+    def facetize(self, children):
+        mark, rest = children[0], children[1:]
         repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
         objects = rest[1:] if repeat else rest
         return Facetize(tuple(objects), repeat, self._at(mark))
 
     # --- objects
-    def object(self, *items):
+    def object(self, items):
         atom = items[-1]
         if len(items) == 1:
             return atom
         steps = items[:-1]
-        params = atom.params.union(*(a.params for s in steps for a in s.args))
+        params = atom.params
+        for s in steps:
+            for a in s.args:
+                if a.params and not a.params <= params:
+                    params = params | a.params
         return Transformed(tuple(steps), atom, steps[0].location, params, atom.depth + 1)
 
-    def transform(self, token, args):
+    def transform(self, children):
+        token, args = children
         args = args or ()
         location = self._at(token)
         kind = token[1:]
@@ -170,7 +179,8 @@ class Builder(Transformer):
             return f"; did you mean '{prefix}{close[0]}'? (known: {known})"
         return f" (known: {known})"
 
-    def primitive(self, token, args):
+    def primitive(self, children):
+        token, args = children
         args = args or ()
         location = self._at(token)
         kind = token[1:]
@@ -193,7 +203,8 @@ class Builder(Transformer):
         depth = max((a.depth for a in args), default=0) + 1
         return Primitive(kind, args, location, params, depth)
 
-    def boolean(self, token, *rest):
+    def boolean(self, children):
+        token, rest = children[0], children[1:]
         location = self._at(token)
         repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
         operands = rest[1:] if repeat else rest
@@ -220,7 +231,8 @@ class Builder(Transformer):
         depth = self._depth(max(o.depth for o in operands) + 1, location)
         return Boolean(op, tuple(operands), repeat, location, params, depth)
 
-    def reference(self, token):
+    def reference(self, children):
+        token = children[0]
         name = str(token)
         location = self._at(token)
         node = self.tables.objects.get(name)
@@ -234,15 +246,18 @@ class Builder(Transformer):
             return Primitive("cu", (), location)  # placeholder; the statement is dropped
         return node
 
-    def repeat(self, param, start, stop, step=None):
+    def repeat(self, children):
+        param, start, stop = children[:3]
+        step = children[3] if len(children) > 3 else None
         params = start.params | stop.params | (step.params if step is not None else EMPTY)
         return Repeat(str(param), start, stop, step, self._at(param), params)
 
-    def args(self, *exprs):
-        return exprs
+    def args(self, exprs):
+        return tuple(exprs)
 
     # --- expressions
-    def number(self, token):
+    def number(self, children):
+        token = children[0]
         value = float(token)
         location = self._at(token)
         if not math.isfinite(value):
@@ -250,23 +265,27 @@ class Builder(Transformer):
             value = 0.0
         return Number(value, location)
 
-    def parameter(self, token):
+    def parameter(self, children):
+        token = children[0]
         name = str(token)
         return Param(name, self._at(token), frozenset((name,)))
 
-    def binary(self, left, op, right):
+    def binary(self, children):
+        left, op, right = children
         location = self._at(op)
         node = Binary(str(op), left, right, location, left.params | right.params,
                       self._depth(max(left.depth, right.depth) + 1, location))
         return self._fold(node)
 
-    def unary(self, op, operand):
+    def unary(self, children):
+        op, operand = children
         location = self._at(op)
         node = Unary(str(op), operand, location, operand.params,
                      self._depth(operand.depth + 1, location))
         return self._fold(node)
 
-    def call(self, name, args):
+    def call(self, children):
+        name, args = children
         args = args or ()
         location = self._at(name)
         function = str(name)

@@ -8,10 +8,22 @@ files too.
 from __future__ import annotations
 
 import io
+import os
+import re
 
 from .diagnostics import Location, PreprocessError, Reporter
 
 MAX_INCLUDE_DEPTH = 200
+
+
+def _shown(name: str) -> str:
+    """A file name as pcpp shows it: relative to the current directory when inside it."""
+    here = os.path.abspath("") + os.sep
+    return name[len(here):] if name.startswith(here) else name
+
+
+def _escape(name: str) -> str:
+    return name.replace("\\", "\\\\").replace('"', '\\"')
 
 
 class IncludeTooDeep(Exception):
@@ -53,9 +65,16 @@ def _make_preprocessor(reporter: Reporter):
     return Preprocessor()
 
 
+_DIRECTIVE = re.compile(r"^[ \t]*#", re.M)
+
+
 def preprocess(sources: list[tuple[str, str]], defines: list[str], undefines: list[str],
                include_dirs: list[str], reporter: Reporter) -> str:
     """Run the sources, in order, through one preprocessor; return its output."""
+    if not defines and not any(_DIRECTIVE.search(text) or "\\\n" in text for _, text in sources):
+        # No directive and no -D: cpp would change nothing (castor keeps the
+        # comments), so skip the pure-Python pass and mark each file's start.
+        return "".join(f'#line 1 "{_escape(_shown(name))}"\n{text}\n' for name, text in sources)
     p = _make_preprocessor(reporter)
     for directory in include_dirs:
         p.add_path(directory)

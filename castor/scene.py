@@ -4,7 +4,9 @@ The parser builds these bottom-up; an object reference shares the node of the
 named object, so a scene is a DAG. Every node records the free parameters it
 reads (``params``) so that the facetizer can cache a shared subgraph once per
 set of parameter values, and its nesting ``depth`` so that deep graphs are
-refused before they exhaust the stack. Behaviour lives elsewhere:
+refused before they exhaust the stack. Nodes are never changed once made (they are not declared frozen only because
+frozen dataclasses are slow to create, and a scene has many). Behaviour lives
+elsewhere:
 ``expressions.py`` evaluates expressions, ``facetize.py`` turns nodes into
 solids.
 """
@@ -21,7 +23,7 @@ EMPTY: frozenset[str] = frozenset()
 # --- expressions -----------------------------------------------------------
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Number:
     value: float
     location: Location
@@ -29,7 +31,7 @@ class Number:
     depth: int = 1
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Param:
     name: str
     location: Location
@@ -37,7 +39,7 @@ class Param:
     depth: int = 1
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Unary:
     op: str
     operand: "Expr"
@@ -46,7 +48,7 @@ class Unary:
     depth: int = 1
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Binary:
     op: str
     left: "Expr"
@@ -56,7 +58,7 @@ class Binary:
     depth: int = 1
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Call:
     function: str
     args: tuple["Expr", ...]
@@ -71,7 +73,7 @@ Expr = Number | Param | Unary | Binary | Call
 # --- scene graph nodes -----------------------------------------------------
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Repeat:
     """``[I = A, B, S]``: the parameter I takes the values A, A+S, ... up to B."""
 
@@ -83,7 +85,7 @@ class Repeat:
     params: frozenset[str] = EMPTY
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Primitive:
     """``!cu(R, G, B)`` and friends: a unit solid with a colour."""
 
@@ -94,7 +96,7 @@ class Primitive:
     depth: int = 1
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Step:
     """One transformation prefix such as ``@rz(90)``."""
 
@@ -103,7 +105,7 @@ class Step:
     location: Location
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Transformed:
     """A run of transformation prefixes applied to one object, right to left.
 
@@ -118,7 +120,7 @@ class Transformed:
     depth: int = 1
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Boolean:
     """``$U``, ``$I`` or ``$D`` of operands, or of a repeated body."""
 
@@ -130,7 +132,7 @@ class Boolean:
     depth: int = 1
 
 
-@dataclass(frozen=True, eq=False, slots=True)
+@dataclass(eq=False, slots=True)
 class Named:
     """The node an object definition creates: it knows the name pointing at it."""
 
