@@ -112,6 +112,7 @@ class Builder:
         self.tables = tables
         self.chunk: Chunk | None = None
         self.faults: list[CastorError] = []
+        self._param_sets: dict[str, frozenset[str]] = {}
 
     def _at(self, token: Token):
         return self.chunk.location(token.line, token.column)
@@ -259,8 +260,8 @@ class Builder:
     def number(self, children):
         token = children[0]
         value = float(token)
-        location = self._at(token)
-        if not math.isfinite(value):
+        location = self.chunk.location(token.line, token.column)
+        if value == math.inf:
             self.faults.append(EvaluationError(f"number '{token}' is too large", location))
             value = 0.0
         return Number(value, location)
@@ -268,7 +269,10 @@ class Builder:
     def parameter(self, children):
         token = children[0]
         name = str(token)
-        return Param(name, self._at(token), frozenset((name,)))
+        params = self._param_sets.get(name)
+        if params is None:
+            params = self._param_sets[name] = frozenset((name,))
+        return Param(name, self.chunk.location(token.line, token.column), params)
 
     def binary(self, children):
         left, op, right = children

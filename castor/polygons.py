@@ -11,6 +11,7 @@ a convex quad (the facets of spheres and cylinders) are handled with numpy.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -70,41 +71,83 @@ def _pairs_to_quads(tris: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _merge_group(v: np.ndarray, tris: np.ndarray) -> list[list[int]]:
-    """Hertel-Mehlhorn on one planar group of triangles."""
-    p = v[tris]
-    normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]).sum(axis=0)
-    length = np.linalg.norm(normal)
-    if length == 0:
-        return [list(t) for t in tris.tolist()]
-    normal = normal / length
-    polys: dict[int, list[int]] = {i: t for i, t in enumerate(tris.tolist())}
+    """Convex polygons covering one planar group of triangles.
+
+    Groups are small (a cap, a face cut by a few booleans), so this works on
+    Python lists: numpy's per-call cost would dominate. If the group's outline
+    is one convex loop (a cylinder's cap), that loop is the answer; otherwise
+    Hertel-Mehlhorn: remove diagonals, longest first, while both sides stay
+    convex.
+    """
+    tri_list = tris.tolist()
+    ids = sorted({i for t in tri_list for i in t})
+    point = dict(zip(ids, v[ids].tolist()))
+    normal = [0.0, 0.0, 0.0]
+    for a, b, c in tri_list:
+        n = _cross3(_sub(point[b], point[a]), _sub(point[c], point[a]))
+        normal[0] += n[0]
+        normal[1] += n[1]
+        normal[2] += n[2]
+    if normal == [0.0, 0.0, 0.0]:
+        return [list(t) for t in tri_list]
+
     owner: dict[tuple[int, int], int] = {}
-    for i, t in polys.items():
-        for k in range(3):
-            owner[(t[k], t[(k + 1) % 3])] = i
+    for index, (a, b, c) in enumerate(tri_list):
+        owner[(a, b)] = owner[(b, c)] = owner[(c, a)] = index
+    outline = _single_loop([e for e in owner if (e[1], e[0]) not in owner])
+    if outline is not None and _convex(point, outline, normal):
+        return [outline]
+
+    polys: dict[int, list[int]] = dict(enumerate(tri_list))
     interior = [(a, b) for (a, b) in owner if a < b and (b, a) in owner]
-    if not interior:
-        return list(polys.values())
-    # longest diagonals first: fewer, better-shaped polygons
-    ia = np.array(interior)
-    lengths = np.linalg.norm(v[ia[:, 0]] - v[ia[:, 1]], axis=1)
-    for e in np.argsort(-lengths, kind="stable").tolist():
-        a, b = interior[e]
+
+    def length(edge):
+        d = _sub(point[edge[0]], point[edge[1]])
+        return d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+
+    for a, b in sorted(interior, key=length, reverse=True):
         pi, qi = owner.get((a, b)), owner.get((b, a))
         if pi is None or qi is None or pi == qi:
             continue
         merged = _join(polys[pi], polys[qi], a, b)
-        if merged is None or not _convex(v, merged, normal):
+        if merged is None or not _convex(point, merged, normal):
             continue
-        for k in range(len(polys[qi])):
-            owner.pop((polys[qi][k], polys[qi][(k + 1) % len(polys[qi])]), None)
-        for k in range(len(polys[pi])):
-            owner.pop((polys[pi][k], polys[pi][(k + 1) % len(polys[pi])]), None)
+        for poly in (polys[qi], polys[pi]):
+            for k in range(len(poly)):
+                owner.pop((poly[k], poly[(k + 1) % len(poly)]), None)
         del polys[qi]
         polys[pi] = merged
         for k in range(len(merged)):
             owner[(merged[k], merged[(k + 1) % len(merged)])] = pi
     return list(polys.values())
+
+
+def _sub(p, q):
+    return (p[0] - q[0], p[1] - q[1], p[2] - q[2])
+
+
+def _cross3(p, q):
+    return (p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0])
+
+
+def _single_loop(edges: list[tuple[int, int]]) -> list[int] | None:
+    """The vertices of the outline if its edges form exactly one loop."""
+    if len(edges) < 3:
+        return None
+    following: dict[int, int] = {}
+    for a, b in edges:
+        if a in following:
+            return None  # a vertex where the outline touches itself
+        following[a] = b
+    start = edges[0][0]
+    loop = [start]
+    node = following[start]
+    while node != start:
+        loop.append(node)
+        node = following.get(node)
+        if node is None or len(loop) > len(edges):
+            return None
+    return loop if len(loop) == len(edges) else None
 
 
 def _join(p: list[int], q: list[int], a: int, b: int) -> list[int] | None:
@@ -130,13 +173,22 @@ def _join(p: list[int], q: list[int], a: int, b: int) -> list[int] | None:
     return merged
 
 
-def _convex(v: np.ndarray, poly: list[int], normal: np.ndarray) -> bool:
-    p = v[poly]
-    edges = np.roll(p, -1, axis=0) - p
-    nxt = np.roll(edges, -1, axis=0)
-    turn = np.cross(edges, nxt) @ normal
-    scale = np.linalg.norm(edges, axis=1) * np.linalg.norm(nxt, axis=1)
-    return bool(np.all(turn >= -_CONVEX_SLACK * scale))
+def _convex(point: dict, poly: list[int], normal) -> bool:
+    """No corner of ``poly`` turns against ``normal`` (beyond rounding)."""
+    n = len(poly)
+    for k in range(n):
+        p0, p1, p2 = point[poly[k - 1]], point[poly[k]], point[poly[(k + 1) % n]]
+        e1 = _sub(p1, p0)
+        e2 = _sub(p2, p1)
+        c = _cross3(e1, e2)
+        turn = c[0] * normal[0] + c[1] * normal[1] + c[2] * normal[2]
+        if turn < 0:
+            size = (math.sqrt(e1[0] ** 2 + e1[1] ** 2 + e1[2] ** 2)
+                    * math.sqrt(e2[0] ** 2 + e2[1] ** 2 + e2[2] ** 2)
+                    * math.sqrt(normal[0] ** 2 + normal[1] ** 2 + normal[2] ** 2))
+            if turn < -_CONVEX_SLACK * size:
+                return False
+    return True
 
 
 def _split_off_plane(vertices: np.ndarray, triangles: np.ndarray, group: np.ndarray) -> np.ndarray:

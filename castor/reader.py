@@ -32,10 +32,10 @@ class Chunk:
 
     def location(self, line: int, column: int) -> Location:
         """Map a 1-based (line, column) inside the chunk to the original file."""
-        line = min(max(line, 1), len(self.origins))
-        file, original = self.origins[line - 1]
         if line == 1:
-            column += self.first_column
+            file, original = self.origins[0]
+            return Location(file, original, column + self.first_column)
+        file, original = self.origins[min(max(line, 1), len(self.origins)) - 1]
         return Location(file, original, column)
 
     def end_location(self) -> Location:
