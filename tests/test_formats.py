@@ -92,3 +92,24 @@ def test_output_file_has_ordinary_permissions(tmp_path):
     target = tmp_path / "p.off"
     run("--no-cpp", "-o", str(target), stdin="> !cu(1,1,1);\n", check_status=0)
     assert target.stat().st_mode & 0o777 == 0o644 or target.stat().st_mode & 0o044
+
+
+@pytest.mark.skipif(__import__("shutil").which("openscad") is None,
+                    reason="OpenSCAD not installed (apt-get install openscad)")
+@pytest.mark.parametrize("name", ["off", "stl", "stl-ascii"])
+def test_openscad_imports(tmp_path, name):
+    """OpenSCAD 2021's import() takes OFF and STL (it has no PLY reader)."""
+    import subprocess
+
+    suffix = "stl" if name.startswith("stl") else name
+    source = tmp_path / f"house.{suffix}"
+    run("-f", name, "-o", str(source), str(EXAMPLES / "house.cas"), check_status=0)
+    (tmp_path / "imp.scad").write_text(f'import("{source.name}");\n')
+    result = subprocess.run(["openscad", "-o", "back.stl", "imp.scad"], cwd=tmp_path,
+                            capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0, result.stderr
+    assert "WARNING" not in result.stderr and "ERROR" not in result.stderr
+    back = trimesh.load_mesh(str(tmp_path / "back.stl"))
+    original = trimesh.load_mesh(str(source))
+    assert back.is_watertight
+    assert back.volume == pytest.approx(original.volume, rel=1e-5)
