@@ -9,6 +9,8 @@ frame without an error is still written.
 from __future__ import annotations
 
 import math
+import threading
+import time
 from dataclasses import dataclass, field
 from typing import Callable, Iterable
 
@@ -117,7 +119,8 @@ class Interpreter:
     def _frame(self, statement: Facetize, env: dict, where: str) -> None:
         self.frames_attempted += 1
         number = self.frames_attempted
-        frame = self.facetizer.frame(statement.objects, env, number, where, statement.location)
+        with Progress(f"frame {number} {where}", self.reporter.stream):
+            frame = self.facetizer.frame(statement.objects, env, number, where, statement.location)
         if self.settings.check_only:
             return
         if frame.polygon_count == 0:
@@ -133,6 +136,55 @@ class Interpreter:
                 f"{_count(s.booleans, 'boolean operation')}, {_count(s.polygons, 'polygon')}, "
                 f"{_count(s.vertices, 'vertex', 'vertices')}, Euler characteristic {s.euler}, "
                 f"{s.seconds:.3f} s")
+
+
+class Progress:
+    """A line on the terminal while a frame takes more than a second.
+
+    Only when standard error is a terminal: never in a pipeline's logs. The
+    line is cleared when the frame is done.
+    """
+
+    DELAY = 1.0
+
+    def __init__(self, what: str, stream):
+        self.what = what
+        self.stream = stream
+        self.shown = False
+        self.done = threading.Event()
+        self.thread = None
+
+    def __enter__(self):
+        try:
+            terminal = self.stream.isatty()
+        except (AttributeError, ValueError):
+            terminal = False
+        if terminal:
+            self.thread = threading.Thread(target=self._run, daemon=True)
+            self.thread.start()
+        return self
+
+    def _run(self):
+        started = time.monotonic()
+        if self.done.wait(self.DELAY):
+            return
+        spinner = "|/-\\"
+        tick = 0
+        while not self.done.wait(0.25):
+            tick += 1
+            self.stream.write(f"\rcastor: {self.what}: facetizing {spinner[tick % 4]} "
+                              f"{time.monotonic() - started:.0f} s ")
+            self.stream.flush()
+            self.shown = True
+
+    def __exit__(self, *exc):
+        self.done.set()
+        if self.thread is not None:
+            self.thread.join()
+            if self.shown:
+                self.stream.write("\r\033[K")
+                self.stream.flush()
+        return False
 
 
 def _count(n: int, one: str, many: str | None = None) -> str:
