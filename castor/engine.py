@@ -35,30 +35,56 @@ class Origin(NamedTuple):
 
 @dataclass(frozen=True, slots=True)
 class Solid:
-    manifold: manifold3d.Manifold
+    """A solid as parts whose bounding boxes do not meet, and its origins.
+
+    A union of operands that do not meet never goes to the engine and is
+    never composed into one mesh: it stays a list of parts, so that a forest
+    of copies of one tree, or a union of 100,000 operands, costs no more
+    than its parts. The engine sees one part, or the composition of all,
+    only when a boolean needs it.
+    """
+
+    parts: tuple[manifold3d.Manifold, ...]  # never empty manifolds
     origins: dict[int, Origin]
 
     @property
     def empty(self) -> bool:
-        return self.manifold.is_empty()
+        return not self.parts
 
     def triangle_count(self) -> int:
-        return self.manifold.num_tri()
+        return sum(part.num_tri() for part in self.parts)
+
+    def part_boxes(self) -> np.ndarray:
+        """(parts, 2, 3): each part's (min xyz, max xyz)."""
+        return np.array([part.bounding_box() for part in self.parts],
+                        dtype=np.float64).reshape(-1, 2, 3)
 
     def box(self) -> np.ndarray:
         """(min xyz, max xyz) as a (2, 3) array."""
-        return np.array(self.manifold.bounding_box(), dtype=np.float64).reshape(2, 3)
+        boxes = self.part_boxes()
+        return np.array([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])
+
+    def whole(self) -> manifold3d.Manifold:
+        """All parts as one manifold, for a boolean that needs them together."""
+        if len(self.parts) == 1:
+            return self.parts[0]
+        return manifold3d.Manifold.compose(list(self.parts))
 
     def prefixed(self, prefix: str) -> "Solid":
         """The same solid with ``prefix`` put in front of every path."""
-        return Solid(self.manifold, {i: Origin(o.steps.under(prefix), o.colour)
-                                     for i, o in self.origins.items()})
+        return Solid(self.parts, {i: Origin(o.steps.under(prefix), o.colour)
+                                  for i, o in self.origins.items()})
 
     def transformed(self, matrix: np.ndarray) -> "Solid":
-        return Solid(self.manifold.transform(np.ascontiguousarray(matrix[:3, :])), self.origins)
+        m = np.ascontiguousarray(matrix[:3, :])
+        return Solid(tuple(part.transform(m) for part in self.parts), self.origins)
 
 
-EMPTY = Solid(manifold3d.Manifold(), {})
+def _solid(manifolds, origins: dict[int, Origin]) -> Solid:
+    return Solid(tuple(m for m in manifolds if not m.is_empty()), origins)
+
+
+EMPTY = Solid((), {})
 
 
 class EngineError(Exception):
@@ -82,7 +108,7 @@ def instance(shape: manifold3d.Manifold, origin: Origin) -> Solid:
     """One use of a primitive: the engine gives it a new ID that every output
     triangle coming from it will carry (as_original is cheap: no rebuilding)."""
     manifold = shape.as_original()
-    return Solid(manifold, {manifold.original_id(): origin})
+    return Solid((manifold,), {manifold.original_id(): origin})
 
 
 def reinstanced(solid: Solid) -> Solid:
@@ -93,26 +119,28 @@ def reinstanced(solid: Solid) -> Solid:
     """
     if solid.empty:
         return solid
-    gl = solid.manifold.to_mesh64()
-    old_ids = np.asarray(gl.run_original_id, dtype=np.int64)
-    unique = np.unique(old_ids)
+    meshes = [part.to_mesh64() for part in solid.parts]
+    run_ids = [np.asarray(gl.run_original_id, dtype=np.int64) for gl in meshes]
+    unique = np.unique(np.concatenate(run_ids))
     first = manifold3d.Manifold.reserve_ids(len(unique))
-    new_ids = first + np.searchsorted(unique, old_ids)
+
     def array(values, dtype):
         return np.array(values, dtype=dtype)  # an owned, writable copy: the engine wants one
 
-    copy = manifold3d.Mesh64(
-        vert_properties=np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64),
-        tri_verts=array(gl.tri_verts, np.uint64),
-        run_index=array(gl.run_index, np.uint64),
-        run_original_id=array(new_ids, np.uint32),
-        face_id=array(gl.face_id, np.uint64),
-        merge_from_vert=array(gl.merge_from_vert, np.uint64),
-        merge_to_vert=array(gl.merge_to_vert, np.uint64),
-    )
-    manifold = manifold3d.Manifold(copy)
+    parts = []
+    for gl, ids in zip(meshes, run_ids):
+        copy = manifold3d.Mesh64(
+            vert_properties=np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64),
+            tri_verts=array(gl.tri_verts, np.uint64),
+            run_index=array(gl.run_index, np.uint64),
+            run_original_id=array(first + np.searchsorted(unique, ids), np.uint32),
+            face_id=array(gl.face_id, np.uint64),
+            merge_from_vert=array(gl.merge_from_vert, np.uint64),
+            merge_to_vert=array(gl.merge_to_vert, np.uint64),
+        )
+        parts.append(manifold3d.Manifold(copy))
     mapping = dict(zip(unique.tolist(), range(first, first + len(unique))))
-    return Solid(manifold, {mapping[i]: o for i, o in solid.origins.items() if i in mapping})
+    return _solid(parts, {mapping[i]: o for i, o in solid.origins.items() if i in mapping})
 
 
 def _merged_origins(solids) -> dict[int, Origin]:
@@ -159,22 +187,27 @@ class Counter:
 
 
 def union(solids: list[Solid], counter: Counter) -> Solid:
-    """Regularized union; operands whose boxes do not meet are only put together."""
+    """Regularized union; parts whose boxes do not meet stay separate parts."""
     solids = [s for s in solids if not s.empty]
     if not solids:
         return EMPTY
     if len(solids) == 1:
         return solids[0]
-    boxes = np.stack([s.box() for s in solids])
-    parts = []
+    parts = [part for s in solids for part in s.parts]
+    boxes = np.concatenate([s.part_boxes() for s in solids])
+    result = []
     for group in _overlap_groups(boxes):
         if len(group) == 1:
-            parts.append(solids[group[0]].manifold)
+            result.append(parts[group[0]])
         else:
             counter.booleans += 1
-            parts.append(manifold3d.Manifold.batch_boolean([solids[i].manifold for i in group], _Add))
-    manifold = parts[0] if len(parts) == 1 else manifold3d.Manifold.compose(parts)
-    return Solid(manifold, _merged_origins(solids))
+            result.append(manifold3d.Manifold.batch_boolean([parts[i] for i in group], _Add))
+    return _solid(result, _merged_origins(solids))
+
+
+def _apart(a: np.ndarray, b: np.ndarray) -> bool:
+    """Boxes with no common interior (touching counts as apart)."""
+    return bool(np.any(np.maximum(a[0], b[0]) >= np.minimum(a[1], b[1])))
 
 
 def intersection(solids: list[Solid], counter: Counter) -> Solid:
@@ -188,34 +221,75 @@ def intersection(solids: list[Solid], counter: Counter) -> Solid:
     if np.any(lo >= hi):
         return EMPTY
     counter.booleans += 1
-    manifold = manifold3d.Manifold.batch_boolean([s.manifold for s in solids], _Intersect)
-    return Solid(manifold, _merged_origins(solids))
+    manifold = manifold3d.Manifold.batch_boolean([s.whole() for s in solids], _Intersect)
+    return _solid([manifold], _merged_origins(solids))
 
 
 def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
-    """Regularized a - b; a itself if the boxes have no common interior."""
+    """Regularized a - b, part by part; a part whose box does not meet b's stays."""
     if a.empty or b.empty:
         return a
-    box_a, box_b = a.box(), b.box()
-    if np.any(np.maximum(box_a[0], box_b[0]) >= np.minimum(box_a[1], box_b[1])):
+    box_b = b.box()
+    boxes = a.part_boxes()
+    touched = [i for i in range(len(a.parts)) if not _apart(boxes[i], box_b)]
+    if not touched:
         return a
     counter.booleans += 1
-    return Solid(a.manifold - b.manifold, _merged_origins((a, b)))
+    cutter = b.whole()
+    parts = list(a.parts)
+    for i in touched:
+        parts[i] = parts[i] - cutter
+    return _solid(parts, _merged_origins((a, b)))
 
 
 class Triangles(NamedTuple):
     vertices: np.ndarray  # (V, 3) float64
     triangles: np.ndarray  # (T, 3) int64
     origin_ids: np.ndarray  # (T,) int64
-    face_ids: np.ndarray  # (T,) int64, unique to one flat face of one primitive
+    face_ids: np.ndarray  # (T,) int64: the flat face (of one primitive) each lies on
 
 
-def triangles(solid: Solid) -> Triangles:
-    """The solid's triangles in double precision, with each one's origin and face."""
-    if solid.empty:
-        return Triangles(np.zeros((0, 3)), np.zeros((0, 3), np.int64),
-                         np.zeros(0, np.int64), np.zeros(0, np.int64))
-    gl = solid.manifold.to_mesh64()
+def batches(parts, triangles: int = 20_000, count: int = 256):
+    """Parts in batches of about ``triangles`` triangles, so that the work after
+    the engine is done in large array operations, not once for each of many
+    small parts. (Not composed by the engine: that would renumber them, and
+    copies of one object would no longer look alike.)"""
+    batch: list[manifold3d.Manifold] = []
+    size = 0
+    for part in parts:
+        size_of_part = part.num_tri()
+        if size_of_part >= 256:
+            # big enough to go alone: copies of one object are then recognized
+            if batch:
+                yield batch
+                batch, size = [], 0
+            yield [part]
+            continue
+        batch.append(part)
+        size += size_of_part
+        if size >= triangles or len(batch) >= count:
+            yield batch
+            batch, size = [], 0
+    if batch:
+        yield batch
+
+
+def triangles(parts) -> Triangles:
+    """The triangles of the parts, one vertex list for all."""
+    pieces = [_part_triangles(part) for part in parts]
+    if len(pieces) == 1:
+        return pieces[0]
+    base = np.cumsum([0] + [len(p.vertices) for p in pieces[:-1]])
+    # faces of different parts must not share a number: the part in the top bits
+    return Triangles(np.concatenate([p.vertices for p in pieces]),
+                     np.concatenate([p.triangles + b for p, b in zip(pieces, base)]),
+                     np.concatenate([p.origin_ids for p in pieces]),
+                     np.concatenate([p.face_ids + (k << 48) for k, p in enumerate(pieces)]))
+
+
+def _part_triangles(part: manifold3d.Manifold) -> Triangles:
+    """A part's triangles in double precision, with each one's origin and face."""
+    gl = part.to_mesh64()
     vertices = np.asarray(gl.vert_properties, dtype=np.float64)[:, :3]
     tris = np.asarray(gl.tri_verts, dtype=np.int64)
     # identify vertices that manifold3d split only for properties
@@ -226,7 +300,11 @@ def triangles(solid: Solid) -> Triangles:
         tris = remap[tris]
     run_index = np.asarray(gl.run_index, dtype=np.int64) // 3
     run_ids = np.asarray(gl.run_original_id, dtype=np.int64)
-    origin_ids = np.repeat(run_ids, np.diff(run_index))
-    # one key for each flat face of each primitive: the origin in the high bits
-    face_ids = (origin_ids << 32) | (np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF)
-    return Triangles(vertices, tris, origin_ids, face_ids)
+    counts = np.diff(run_index)
+    origin_ids = np.repeat(run_ids, counts)
+    # one number for each flat face of each primitive: the rank of its origin
+    # in this part, then its face. Copies of one object (whose IDs keep their
+    # order) number their faces alike, so their polygons can be reused.
+    rank = np.searchsorted(np.unique(run_ids), run_ids)
+    faces = (np.repeat(rank, counts) << 32) | (np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF)
+    return Triangles(vertices, tris, origin_ids, faces)

@@ -96,16 +96,20 @@ class Facetizer:
                 self.solid(node, env, 1.0, tolerance, ROOT)
             return frame
         total = 0
+        merger = polygons.Merger()
         for node in objects:
             solid = self.solid(node, env, 1.0, tolerance, ROOT)
-            tri = engine.triangles(solid)
-            total += len(tri.triangles)
-            self._check_count(total, location)
-            if self.merge_polygons:
-                merged = polygons.merge(tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
-            else:
-                merged = polygons.as_triangles(tri.triangles, tri.origin_ids)
-            frame.objects.append(_frame_object(tri.vertices, merged, solid.origins))
+            pieces = []
+            for batch in engine.batches(solid.parts):
+                tri = engine.triangles(batch)
+                total += len(tri.triangles)
+                self._check_count(total, location)
+                if self.merge_polygons:
+                    merged = merger.merge(tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
+                else:
+                    merged = polygons.as_triangles(tri.triangles, tri.origin_ids)
+                pieces.append((tri.vertices, merged))
+            frame.objects.append(_frame_object(pieces, solid.origins))
         self.stats = FrameStats(self.primitive_count, self.counter.booleans)
         self.stats.seconds = time.perf_counter() - started
         return frame
@@ -258,16 +262,30 @@ def _quantize(tolerance: float) -> float:
     return 2.0 ** (math.floor(math.log2(tolerance) * 4) / 4)
 
 
-def _frame_object(vertices: np.ndarray, merged: polygons.Polygons, origin_table) -> FrameObject:
-    """Compact vertices and origins to those the polygons use."""
+def _frame_object(pieces, origin_table) -> FrameObject:
+    """One object from its parts' polygons: vertices and origins compacted to
+    those the polygons use."""
+    if not pieces:
+        return FrameObject(np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64),
+                           np.zeros(0, np.int64), [])
+    if len(pieces) == 1:
+        vertices, merged = pieces[0]
+        offsets, indices, origin_ids = merged.offsets, merged.indices, merged.origin_ids
+    else:
+        vertex_base = np.cumsum([0] + [len(v) for v, _ in pieces[:-1]])
+        index_base = np.cumsum([0] + [len(m.indices) for _, m in pieces[:-1]])
+        vertices = np.concatenate([v for v, _ in pieces])
+        indices = np.concatenate([m.indices + b for (_, m), b in zip(pieces, vertex_base)])
+        offsets = np.concatenate([np.zeros(1, np.int64)]
+                                 + [m.offsets[1:] + b for (_, m), b in zip(pieces, index_base)])
+        origin_ids = np.concatenate([m.origin_ids for _, m in pieces])
     used = np.zeros(len(vertices), bool)
-    used[merged.indices] = True
-    indices = merged.indices
+    used[indices] = True
     if not used.all():  # vertices left inside merged polygons
         renumber = np.cumsum(used) - 1
         indices = renumber[indices]
         vertices = vertices[used]
-    ids, origin_of = np.unique(merged.origin_ids, return_inverse=True)
+    ids, origin_of = np.unique(origin_ids, return_inverse=True)
     origins = [origin_table[int(i)] for i in ids]
-    return FrameObject(np.ascontiguousarray(vertices), merged.offsets, indices.astype(np.int64),
+    return FrameObject(np.ascontiguousarray(vertices), offsets, indices.astype(np.int64),
                        origin_of.ravel().astype(np.int64), origins)

@@ -25,6 +25,7 @@ class Polygons(NamedTuple):
     offsets: np.ndarray  # (P + 1,) start of each polygon in indices
     indices: np.ndarray  # vertex numbers, counter-clockwise from outside
     origin_ids: np.ndarray  # (P,) origin of each polygon
+    source: np.ndarray  # (P,) one triangle each polygon was made of
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -224,9 +225,10 @@ def merge(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
           face_ids: np.ndarray) -> Polygons:
     """Convex polygons made of the triangles, one origin each."""
     if len(triangles) == 0:
-        return Polygons(np.zeros(1, np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64))
-    # A face ID names one flat face of one primitive (engine.triangles puts the
-    # primitive's ID in its high bits), so it alone is the group key.
+        return Polygons(np.zeros(1, np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64),
+                        np.zeros(0, np.int64))
+    # A face number names one flat face of one primitive (engine.triangles), so
+    # it alone is the group key.
     _, group = np.unique(face_ids, return_inverse=True)
     group = _split_off_plane(vertices, triangles, group.ravel())
     counts = np.bincount(group)
@@ -235,12 +237,12 @@ def merge(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
 
     out_sizes: list[np.ndarray] = []
     out_indices: list[np.ndarray] = []
-    out_origin: list[np.ndarray] = []
+    out_source: list[np.ndarray] = []
 
     singles = np.flatnonzero(size == 1)
     out_sizes.append(np.full(len(singles), 3, np.int64))
     out_indices.append(triangles[singles].ravel())
-    out_origin.append(origin_ids[singles])
+    out_source.append(singles)
 
     general: list[int] = []  # group numbers for the slow path
     pairs_mask = size[order] == 2
@@ -251,35 +253,92 @@ def merge(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
         good[found] = _convex_quads(vertices, quads[found])
         out_sizes.append(np.full(int(good.sum()), 4, np.int64))
         out_indices.append(quads[good].ravel())
-        out_origin.append(origin_ids[pairs[good, 0]])
+        out_source.append(pairs[good, 0])
         bad = pairs[~good]
         out_sizes.append(np.full(2 * len(bad), 3, np.int64))
         out_indices.append(triangles[bad.ravel()].ravel())
-        out_origin.append(origin_ids[bad.ravel()])
+        out_source.append(bad.ravel())
 
     big = order[size[order] > 2]
     if len(big):
         big_groups = group[big]
         bounds = np.flatnonzero(np.diff(big_groups)) + 1
-        sizes, indices, origins = [], [], []
+        sizes, indices, sources = [], [], []
         for members in np.split(big, bounds):
             for poly in _merge_group(vertices, triangles[members]):
                 sizes.append(len(poly))
                 indices.extend(poly)
-                origins.append(origin_ids[members[0]])
+                sources.append(members[0])
         out_sizes.append(np.array(sizes, np.int64))
         out_indices.append(np.array(indices, np.int64))
-        out_origin.append(np.array(origins, np.int64))
+        out_source.append(np.array(sources, np.int64))
     del general
 
     sizes = np.concatenate(out_sizes)
     offsets = np.zeros(len(sizes) + 1, np.int64)
     np.cumsum(sizes, out=offsets[1:])
-    return Polygons(offsets, np.concatenate(out_indices).astype(np.int64),
-                    np.concatenate(out_origin).astype(np.int64))
+    source = np.concatenate(out_source).astype(np.int64)
+    return Polygons(offsets, np.concatenate(out_indices).astype(np.int64), origin_ids[source],
+                    source)
 
 
 def as_triangles(triangles: np.ndarray, origin_ids: np.ndarray) -> Polygons:
     """The triangles themselves as polygons, for formats that hold triangles only."""
     offsets = np.arange(len(triangles) + 1, dtype=np.int64) * 3
-    return Polygons(offsets, triangles.reshape(-1).astype(np.int64), origin_ids.astype(np.int64))
+    return Polygons(offsets, triangles.reshape(-1).astype(np.int64), origin_ids.astype(np.int64),
+                    np.arange(len(triangles), dtype=np.int64))
+
+
+def still_convex(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray) -> bool:
+    """Whether every polygon is planar and convex on these vertices (all at once)."""
+    if len(indices) == 0:
+        return True
+    p = vertices[indices]
+    starts = offsets[:-1]
+    following = np.arange(1, len(indices) + 1)
+    following[offsets[1:] - 1] = starts
+    previous = np.arange(-1, len(indices) - 1)
+    previous[starts] = offsets[1:] - 1
+    normal = np.add.reduceat(_cross(p, p[following]), starts, axis=0)
+    sizes = np.diff(offsets)
+    polygon = np.repeat(np.arange(len(sizes)), sizes)
+    n = normal[polygon]
+    e_in = p - p[previous]
+    e_out = p[following] - p
+    turn = np.einsum("ij,ij->i", _cross(e_in, e_out), n)
+    if np.any(turn < -_CONVEX_SLACK * _norm(e_in) * _norm(e_out) * _norm(n)):
+        return False
+    length = _norm(normal)
+    if np.any(length == 0):
+        return False
+    unit = (normal / length[:, None])[polygon]
+    centre = (np.add.reduceat(p, starts, axis=0) / sizes[:, None])[polygon]
+    scale = max(1.0, float(np.abs(p).max()))
+    return bool(np.all(np.abs(np.einsum("ij,ij->i", p - centre, unit)) <= 1e-9 * scale))
+
+
+class Merger:
+    """Merges parts into polygons, reusing the work for parts of one pattern.
+
+    Copies of a shared object arrive as parts with the same triangles and the
+    same faces, only moved: their polygons are the first copy's, once checked
+    planar and convex where this copy stands.
+    """
+
+    LARGEST = 200_000  # triangles: bigger parts are merged afresh, not remembered
+
+    def __init__(self):
+        self.known: dict[tuple[bytes, bytes], Polygons] = {}
+
+    def merge(self, vertices, triangles, origin_ids, face_ids) -> Polygons:
+        if len(triangles) > self.LARGEST or len(triangles) == 0:
+            return merge(vertices, triangles, origin_ids, face_ids)
+        key = (triangles.tobytes(), face_ids.tobytes())
+        known = self.known.get(key)
+        if known is not None and still_convex(vertices, known.offsets, known.indices):
+            return Polygons(known.offsets, known.indices, origin_ids[known.source], known.source)
+        polygons = merge(vertices, triangles, origin_ids, face_ids)
+        if len(self.known) > 10_000:
+            self.known.clear()
+        self.known[key] = polygons
+        return polygons
