@@ -88,7 +88,7 @@ TOKENS = ["a", "b", "X", "T", "=", ";", ",", "(", ")", "[", "]", ">", "+", "-", 
           "$I", "$D", "1", "0", "2.5", "1e308", "1e-308", "PI", "sin", "\n", "/*", "*/", "//"]
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=400, deadline=None, suppress_health_check=list(HealthCheck))
 @given(st.text(ALPHABET, max_size=80))
 @example("> !cu(1,1,1")
 @example("/*")
@@ -107,13 +107,13 @@ def test_random_text_never_crashes(text):
     check(text, "--no-cpp")
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=400, deadline=None, suppress_health_check=list(HealthCheck))
 @given(mutated())
 def test_mutated_scenes_never_crash(text):
     check(text)
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=400, deadline=None, suppress_health_check=list(HealthCheck))
 @given(st.lists(st.sampled_from(TOKENS), max_size=40))
 def test_token_soup_never_crashes(tokens):
     check(" ".join(tokens), "--no-cpp")
@@ -181,3 +181,11 @@ def test_deep_object_chain_stays_small():
     assert status == 0, err
     assert out.count("\npoly ") == 6
     assert "(a4999).U1(a4998).U1" in out
+
+
+def test_union_of_a_hundred_thousand_operands():
+    status, out, err, elapsed = run_inprocess(
+        "> $U[I = 0, 99999](@t(2 * I, 0, 0) !cu(1, 1, 1));\n", "--no-cpp", "--max-polygons",
+        "10000000")
+    assert status == 0, err
+    assert out.endswith("endframe 1 600000\n")
