@@ -100,7 +100,7 @@ class Reporter:
         text = self.source_lines.get((location.file, location.line))
         if text is not None:
             text = text.rstrip("\n").expandtabs(1)
-            if len(text) <= 300:
+            if len(text) <= 300 and text.isprintable():
                 lines.append(f" {text}")
                 lines.append(" " + " " * max(location.column - 1, 0) + "^")
         self._emit_plain("\n".join(lines))

@@ -470,6 +470,10 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list
             message = "'$' must be followed directly by U, I or D"
         elif char == "#":
             message = "a preprocessor directive must start its own line"
+        elif "\udc80" <= char <= "\udcff" or char == "\ufffd":
+            message = "unexpected byte: the input is not UTF-8 text"
+        elif not char.isprintable():
+            message = f"unexpected character U+{ord(char):04X}"
         else:
             message = f"unexpected character '{char}'"
             if char == '"' or char == "'":

@@ -59,6 +59,19 @@ def _make_preprocessor(reporter: Reporter):
                 raise IncludeTooDeep(includepath)
             return super().on_file_open(is_system_include, includepath)
 
+        def on_directive_unknown(self, directive, toks, ifpassthru, precedingtoks):
+            text = "".join(tok.value for tok in toks).strip()
+            location = Location(directive.source or "<stdin>", int(directive.lineno or 0), 1)
+            if directive.value == "error":
+                self.return_code += 1
+                reporter.error(PreprocessError(f"#error {text}", location))
+            elif directive.value == "warning":
+                reporter.warning(f"#warning {text}", location)
+            elif directive.value != "pragma":  # unknown pragmas are ignored, as cpp does
+                reporter.error(PreprocessError(
+                    f"unknown preprocessor directive '#{directive.value}'", location))
+            return True
+
         def on_comment(self, tok):
             return True  # keep comments: the grammar skips them, and columns stay right
 
