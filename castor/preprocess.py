@@ -60,6 +60,8 @@ def _make_preprocessor(reporter: Reporter):
             return super().on_file_open(is_system_include, includepath)
 
         def on_directive_unknown(self, directive, toks, ifpassthru, precedingtoks):
+            if directive.value == "line" or directive.value.isdigit():
+                return None  # a line marker from an earlier cpp: the reader follows it
             text = "".join(tok.value for tok in toks).strip()
             location = Location(directive.source or "<stdin>", int(directive.lineno or 0), 1)
             if directive.value == "error":
