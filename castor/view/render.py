@@ -38,7 +38,8 @@ class Camera:
 
 
 def frame_camera(points: np.ndarray, azimuth: float, elevation: float, aspect: float) -> Camera:
-    """A camera looking from (azimuth, elevation) that frames all the points."""
+    """A camera looking from (azimuth, elevation) that frames all the points,
+    as close as it can while every point stays in the picture."""
     if len(points) == 0:
         points = np.zeros((1, 3))
     low, high = points.min(axis=0), points.max(axis=0)
@@ -47,13 +48,27 @@ def frame_camera(points: np.ndarray, azimuth: float, elevation: float, aspect: f
     a, e = math.radians(azimuth), math.radians(elevation)
     direction = np.array([math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e)])
     fov = 35.0
-    half = math.radians(fov) / 2
-    fit = min(math.tan(half), math.tan(half) * aspect)
-    distance = radius / math.sin(math.atan(fit)) * 1.05
     up = np.array([0.0, 0.0, 1.0])
     if abs(direction[2]) > 0.999:
         up = np.array([0.0, 1.0, 0.0])
-    return Camera(centre + direction * distance, centre, up, fov)
+    camera = Camera(centre + direction * radius * 3, centre, up, fov)
+    right, true_up, forward = camera.basis()
+    # the 8 corners of the box suffice: the nearest distance at which each
+    # corner is inside the picture, for a camera looking at the centre
+    box = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
+                    for z in (low[2], high[2])])
+    tan_v = math.tan(math.radians(fov) / 2) * 0.94
+    tan_h = tan_v * aspect
+    for _ in range(3):  # fit, then move sideways to centre the picture, and fit again
+        corners = box - centre
+        across, along, depth = corners @ right, corners @ true_up, corners @ forward
+        distance = float(np.max(np.maximum(np.abs(across) / tan_h, np.abs(along) / tan_v)
+                                - depth))
+        distance = max(distance, radius * 0.5, 1e-9)
+        u, v = across / (distance + depth), along / (distance + depth)
+        centre = centre + (right * (u.max() + u.min()) / 2
+                           + true_up * (v.max() + v.min()) / 2) * distance
+    return Camera(centre - forward * distance, centre, up, fov)
 
 
 def _project(points: np.ndarray, camera: Camera, width: int, height: int):
