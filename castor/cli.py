@@ -149,14 +149,18 @@ def _run(args, settings, reporter) -> int:
     try:
         if args.no_cpp:
             reader = Reader(reporter, directives_allowed=False)
-            interpreter.run(reader.chunks(_streamed_lines(args.files, reader)))
+            # statements run as they arrive from a pipe or a terminal; files are
+            # all there, and are parsed in batches
+            streaming = not args.files or any(f == "-" for f in args.files)
+            interpreter.run(reader.chunks(_streamed_lines(args.files, reader)),
+                            streaming=streaming)
         else:
             from .preprocess import preprocess
 
             text = preprocess(_read_inputs(args.files), args.defines, args.undefines,
                               args.include_dirs, reporter)
             reader = Reader(reporter, directives_allowed=True)
-            interpreter.run(reader.chunks(text.splitlines()))
+            interpreter.run(reader.chunks(text.splitlines()), streaming=False)
     except TooManyErrors:
         pass
     if output is not None and not output.finish(reporter.errors > 0):

@@ -8,6 +8,7 @@ frame without an error is still written.
 
 from __future__ import annotations
 
+import itertools
 import math
 import threading
 import time
@@ -19,6 +20,10 @@ from .expressions import evaluate
 from .parse import Parser, SkippedDefinition
 from .reader import Chunk
 from .scene import Facetize, ObjectDef, ParamDef, Tables
+
+
+# statements parsed by one call to the parser when the input is not streamed
+BATCH = 500
 
 
 @dataclass
@@ -58,12 +63,23 @@ class Interpreter:
                                         self.settings.merge_polygons)
         return self._facetizer
 
-    def run(self, chunks: Iterable[Chunk]) -> None:
-        """Execute every statement; stops early only after too many errors."""
+    def run(self, chunks: Iterable[Chunk], streaming: bool = True) -> None:
+        """Execute every statement; stops early only after too many errors.
+
+        Streaming, each statement runs as soon as its chunk arrives; otherwise
+        chunks are parsed in batches, which is faster."""
         try:
-            for chunk in chunks:
-                for item in self.parser.parse(chunk):
-                    self.execute(item)
+            if streaming:
+                for chunk in chunks:
+                    for item in self.parser.parse(chunk):
+                        self.execute(item)
+                return
+            iterator = iter(chunks)
+            while True:
+                batch = list(itertools.islice(iterator, BATCH))
+                if not batch:
+                    break
+                self.parser.run_batch(batch, self.execute)
         except CastorError as exc:  # from the reader: an unterminated comment
             self.reporter.error(exc)
 

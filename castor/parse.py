@@ -113,6 +113,7 @@ class Builder:
         self.chunk: Chunk | None = None
         self.faults: list[CastorError] = []
         self._param_sets: dict[str, frozenset[str]] = {}
+        self.on_statement = None
 
     def _at(self, token: Token):
         return self.chunk.location(token.line, token.column)
@@ -123,21 +124,34 @@ class Builder:
         return depth
 
     # --- statements
+    def _statement(self, statement):
+        """In a batch (on_statement set), hand each statement over as soon as it is
+        reduced, so that it runs before the next one is read."""
+        if self.on_statement is None:
+            return statement
+        faults, self.faults = self.faults, []
+        self.on_statement(statement, faults)
+        return None
+
     def param_def(self, children):
         name, expr = children
-        return ParamDef(str(name), expr, self._at(name))
+        return self._statement(ParamDef(str(name), expr, self._at(name)))
 
     def object_def(self, children):
         name, node = children
         location = self._at(name)
-        return ObjectDef(str(name), Named(str(name), node, location, node.params,
-                                          self._depth(node.depth + 1, location)), location)
+        return self._statement(ObjectDef(str(name), Named(
+            str(name), node, location, node.params, self._depth(node.depth + 1, location)),
+            location))
 
     def facetize(self, children):
         mark, rest = children[0], children[1:]
         repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
         objects = rest[1:] if repeat else rest
-        return Facetize(tuple(objects), repeat, self._at(mark))
+        return self._statement(Facetize(tuple(objects), repeat, self._at(mark)))
+
+    def program(self, children):
+        return None
 
     # --- objects
     def object(self, items):
@@ -330,11 +344,13 @@ def _lark_and_builder(tables: Tables) -> tuple[Lark, Builder]:
     if _shared is None:
         builder = Builder(tables)
         try:
-            lark = Lark(grammar_text(), parser="lalr", lexer="contextual", start="statement",
-                        transformer=builder, maybe_placeholders=True, cache=True)
+            lark = Lark(grammar_text(), parser="lalr", lexer="contextual",
+                        start=["statement", "program"], transformer=builder,
+                        maybe_placeholders=True, cache=True)
         except OSError:  # an unwritable temporary directory: build without the cache
-            lark = Lark(grammar_text(), parser="lalr", lexer="contextual", start="statement",
-                        transformer=builder, maybe_placeholders=True)
+            lark = Lark(grammar_text(), parser="lalr", lexer="contextual",
+                        start=["statement", "program"], transformer=builder,
+                        maybe_placeholders=True)
         _shared = (lark, builder)
     lark, builder = _shared
     builder.tables = tables
@@ -356,7 +372,7 @@ class Parser:
             self.builder.chunk = chunk
             self.builder.faults = []
             try:
-                statement = self.lark.parse(chunk.text)
+                statement = self.lark.parse(chunk.text, start="statement")
             except LimitError as exc:
                 yield exc
                 continue
@@ -368,13 +384,59 @@ class Parser:
             except RecursionError:
                 yield LimitError("statement nested too deeply", chunk.location(1, 1))
                 continue
-            if self.builder.faults:
-                yield from self.builder.faults
-                if isinstance(statement, ObjectDef):
-                    self.builder.tables.broken.add(statement.name)
-                    yield SkippedDefinition(statement.name)
-            else:
-                yield statement
+            yield from self._deliver(statement, self.builder.faults)
+
+    def _deliver(self, statement, faults):
+        """The statement, or its faults (a faulty definition leaves its name broken)."""
+        if faults:
+            yield from faults
+            if isinstance(statement, ObjectDef):
+                self.builder.tables.broken.add(statement.name)
+                yield SkippedDefinition(statement.name)
+        else:
+            yield statement
+
+    def run_batch(self, chunks: list[Chunk], execute) -> None:
+        """Parse many statements with one call to lark, running each as it is
+        reduced; a chunk with an error goes through ``parse`` on its own, which
+        reports it, and the batch goes on after it. (One call per statement
+        costs a third more: lark sets up a lexer and a parser state each time.)"""
+        first = 0
+        while first < len(chunks):
+            batch = chunks[first:]
+            done = 0
+
+            def on_statement(statement, faults):
+                nonlocal done
+                done += 1
+                for item in self._deliver(statement, faults):
+                    execute(item)
+
+            self.builder.chunk = _combined(batch)
+            self.builder.faults = []
+            self.builder.on_statement = on_statement
+            try:
+                self.lark.parse(self.builder.chunk.text, start="program")
+                return
+            except (UnexpectedInput, LimitError, RecursionError):
+                pass  # the chunk where it failed is parsed again below, alone
+            finally:
+                self.builder.on_statement = None
+            failed = first + done
+            for item in self.parse(chunks[failed]):
+                execute(item)
+            first = failed + 1
+
+
+def _combined(chunks: list[Chunk]) -> Chunk:
+    """Consecutive chunks as one: their texts join back into the original text,
+    and each chunk's first line is the previous one's last."""
+    if len(chunks) == 1:
+        return chunks[0]
+    origins = list(chunks[0].origins)
+    for chunk in chunks[1:]:
+        origins.extend(chunk.origins[1:])
+    return Chunk("".join(c.text for c in chunks), tuple(origins), chunks[0].first_column)
 
 
 class SkippedDefinition:

@@ -6,6 +6,7 @@ below as a regression test.
 """
 
 import io
+import os
 import re
 import sys
 import time
@@ -189,3 +190,30 @@ def test_union_of_a_hundred_thousand_operands():
         "10000000")
     assert status == 0, err
     assert out.endswith("endframe 1 600000\n")
+
+
+def _run_file(text: str, *args: str):
+    """castor on a file: statements are parsed in batches, not one by one."""
+    with tempfile.NamedTemporaryFile("w", suffix=".cas", delete=False, dir=tempfile.gettempdir()) as f:
+        f.write(text)
+        name = f.name
+    try:
+        status, out, err, _ = run_inprocess("", *args, name)
+        return status, out.replace(name, "<stdin>"), err.replace(name, "<stdin>")
+    finally:
+        os.unlink(name)
+
+
+@settings(max_examples=200, deadline=None, suppress_health_check=list(HealthCheck))
+@given(mutated())
+@example("a = !cu(1,1,1)\n> a;\n> b;\n> @t(1,0,0) a;\n")
+@example("> !cu(1,1,1); ? > !cu(1,1,1);\n> !cu(1,1,1);")
+@example("X = 1;\nX = ;\na = @h(X) !cu(1,1,1);\n> a\n")
+def test_batches_and_streaming_agree(text):
+    """Parsing many statements at once must say and write exactly what parsing
+    them one by one does."""
+    if "#" in text:
+        return  # directives need the preprocessor; --no-cpp refuses them either way
+    streamed = run_inprocess(text, "--no-cpp")[:3]
+    batched = _run_file(text, "--no-cpp")
+    assert batched == streamed
