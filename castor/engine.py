@@ -52,7 +52,7 @@ class Solid:
         return not self.parts
 
     def triangle_count(self) -> int:
-        return sum(part.num_tri() for part in self.parts)
+        return sum(part.num_tri() for part in self.parts)  # at most MAX_PARTS calls
 
     def part_boxes(self) -> np.ndarray:
         """(parts, 2, 3): each part's (min xyz, max xyz)."""
@@ -195,14 +195,31 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
         return solids[0]
     parts = [part for s in solids for part in s.parts]
     boxes = np.concatenate([s.part_boxes() for s in solids])
-    result = []
+    result, result_boxes = [], []
     for group in _overlap_groups(boxes):
         if len(group) == 1:
             result.append(parts[group[0]])
+            result_boxes.append(boxes[group[0]])
         else:
             counter.booleans += 1
             result.append(manifold3d.Manifold.batch_boolean([parts[i] for i in group], _Add))
-    return _solid(result, _merged_origins(solids))
+            result_boxes.append(np.array([boxes[group, 0].min(axis=0), boxes[group, 1].max(axis=0)]))
+    return _solid(_fewer_parts(result, np.array(result_boxes)), _merged_origins(solids))
+
+
+# More parts than this are composed into fewer: each part costs the engine a
+# few kilobytes and castor a Python call, whatever its size.
+MAX_PARTS = 1024
+
+
+def _fewer_parts(parts: list, boxes: np.ndarray) -> list:
+    """Many parts composed into at most MAX_PARTS, neighbours together (by x)."""
+    if len(parts) <= MAX_PARTS:
+        return parts
+    order = np.argsort(boxes[:, 0, 0], kind="stable")
+    size = -(-len(parts) // MAX_PARTS)
+    return [manifold3d.Manifold.compose([parts[i] for i in order[k:k + size]])
+            for k in range(0, len(parts), size)]
 
 
 def _apart(a: np.ndarray, b: np.ndarray) -> bool:

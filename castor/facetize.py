@@ -29,6 +29,9 @@ MAX_REPEAT = 1_000_000
 MAX_COORDINATE = 1e12
 DEFAULT_TOLERANCE = 0.01
 _MISSING = object()
+# A frame whose estimate is this many times --max-polygons is refused before
+# it is built (operands of a union add up; their overlap would only remove).
+ESTIMATE_SLACK = 4
 # Cache entries are kept while the cached solids hold fewer triangles than this.
 _CACHE_TRIANGLES = 4_000_000
 
@@ -95,6 +98,11 @@ class Facetizer:
             for node in objects:
                 self.solid(node, env, 1.0, tolerance, ROOT)
             return frame
+        estimate = sum(self.estimate(node, env, tolerance, {}) for node in objects)
+        if estimate > ESTIMATE_SLACK * self.max_polygons:
+            raise LimitError(f"the frame would need about {estimate:,} polygons, more than "
+                             f"--max-polygons {self.max_polygons:,}; is an object used twice "
+                             "at every level of a deep chain?", location)
         total = 0
         merger = polygons.Merger()
         for node in objects:
@@ -122,6 +130,49 @@ class Facetizer:
             stats.vertices += len(obj.vertices)
             stats.euler += len(obj.vertices) - obj.edge_count() + obj.polygon_count
         return stats
+
+    def estimate(self, node: Node, env, tolerance: float, seen: dict) -> int:
+        """About how many triangles ``node`` gives, without building anything:
+        operands add up, primitives count their facets. It catches a graph whose
+        expansion explodes before any memory goes to it."""
+        known = seen.get(id(node))
+        if known is not None:
+            return known
+        kind = type(node)
+        if kind is Named:
+            count = self.estimate(node.child, env, tolerance, seen)
+        elif kind is Transformed:
+            count = self.estimate(node.child, env, tolerance, seen)
+        elif kind is Boolean:
+            if node.repeat is None:
+                count = sum(self.estimate(o, env, tolerance, seen) for o in node.operands)
+            else:
+                try:
+                    times = len(repeat_values(node.repeat, env))
+                except (EvaluationError, LimitError):
+                    times = 0
+                name = node.repeat.param
+                saved = env.get(name, _MISSING)
+                try:
+                    env[name] = evaluate(node.repeat.start, env) if times else 0.0
+                    count = times * self.estimate(node.operands[0], env, tolerance, {})
+                except EvaluationError:
+                    count = 0
+                finally:
+                    if saved is _MISSING:
+                        env.pop(name, None)
+                    else:
+                        env[name] = saved
+            if node.op == "D" and node.operands:
+                count = max(count, 1)
+        else:
+            try:
+                shape = tuple(evaluate(a, env) for a in node.args[3:])
+                count = primitives.estimate_triangles(node.kind, shape, tolerance)
+            except (EvaluationError, ValueError, IndexError, OverflowError):
+                count = 12
+        seen[id(node)] = count
+        return count
 
     def _check_count(self, triangles: int, location: Location) -> None:
         if triangles > self.max_polygons:

@@ -206,10 +206,17 @@ def test_polygon_limit_stops_an_exploding_graph():
     for i in range(1, 31):
         lines.append(f"a{i} = $U(a{i - 1}, @t({2 ** (i - 1) * 3}, 0, 0) a{i - 1});")
     lines.append("> a30;")
-    status, out, err = run("--no-cpp", "--max-polygons", "200000", stdin="\n".join(lines) + "\n")
+    status, out, err = run("--no-cpp", stdin="\n".join(lines) + "\n")
     assert status == 1
-    assert "more than 200000 polygons" in err
+    # refused from an estimate, before anything is built
+    assert ("error: the frame would need about 1,099,511,627,776 polygons, more than "
+            "--max-polygons 20,000,000") in err
     assert parse_stream(out) == []
+    # a smaller explosion passes the estimate and is stopped while it is built
+    lines[-1] = "> a5;"
+    status, out, err = run("--no-cpp", "--max-polygons", "10000", stdin="\n".join(lines) + "\n")
+    assert status == 1
+    assert "the frame needs more than 10000 polygons (--max-polygons)" in err
 
 
 def test_deep_nesting_works_or_errors():
