@@ -8,7 +8,6 @@ Targets: at least 5,000 statements/s, and within 1.3x of bare lark.
 import os
 import sys
 import tempfile
-import time
 
 from _common import castor_command, runs_from_env, timed
 

@@ -9,7 +9,6 @@ import math
 import os
 import sys
 import tempfile
-import time
 
 from _common import castor_command, runs_from_env, table, timed
 

@@ -5,7 +5,6 @@ in-process after facetization, and the whole processes for reference.
 Targets: polygon stream at most 3 s, binary STL at most 1 s.
 """
 
-import io
 import os
 import statistics
 import tempfile

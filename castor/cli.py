@@ -71,7 +71,6 @@ def _arguments(argv):
 
 def _overrides(parser, sets: list[str]) -> dict[str, float]:
     """Evaluate each --set NAME=EXPR with the grammar's expressions."""
-    from .diagnostics import Reporter as _Reporter
     from .parse import Parser
     from .reader import Chunk
     from .scene import ParamDef, Tables

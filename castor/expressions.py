@@ -11,7 +11,7 @@ import math
 from typing import Callable, Mapping
 
 from .diagnostics import EvaluationError, Location
-from .scene import Binary, Call, Expr, Number, Param, Unary
+from .scene import Binary, Expr, Number, Param, Unary
 
 _RAD = math.pi / 180.0
 

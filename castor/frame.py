@@ -30,17 +30,6 @@ class FrameObject:
         a, b = start, start[following]
         return len(np.unique(np.minimum(a, b) * (len(self.vertices) + 1) + np.maximum(a, b)))
 
-    def triangles(self) -> tuple[np.ndarray, np.ndarray]:
-        """A fan triangulation of the polygons and the polygon of each triangle."""
-        sizes = np.diff(self.offsets)
-        per = sizes - 2
-        poly = np.repeat(np.arange(len(sizes)), per)
-        first = self.offsets[:-1][poly]
-        k = np.arange(len(poly)) - np.repeat(np.cumsum(per) - per, per)
-        tris = np.column_stack([self.indices[first], self.indices[first + k + 1],
-                                self.indices[first + k + 2]])
-        return tris, poly
-
 
 @dataclass
 class Frame:

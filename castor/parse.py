@@ -18,7 +18,7 @@ from lark import Lark, Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from .diagnostics import CastorError, CastorSyntaxError, EvaluationError, LimitError, SceneError
-from .expressions import FUNCTIONS, arity_message, evaluate, format_number
+from .expressions import FUNCTIONS, arity_message, evaluate
 from .reader import Chunk
 from .scene import (EMPTY, Binary, Boolean, Call, Facetize, Named, Number, ObjectDef, Param,
                     ParamDef, Primitive, Repeat, Step, Tables, Transformed, Unary)

@@ -68,7 +68,7 @@ def test_output_to_a_cps_file(tmp_path):
 
 
 def test_tolerance_option_wins_over_the_scene():
-    scene = f"TOLERANCE = 0.5;\n> !sp(1, 1, 1);\n"
+    scene = "TOLERANCE = 0.5;\n> !sp(1, 1, 1);\n"
     status, out, err = run("--no-cpp", "--tolerance", "0.01", stdin=scene)
     fine = len(parse_stream(out)[0].polygons)
     status, out, err = run("--no-cpp", stdin=scene)

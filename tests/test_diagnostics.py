@@ -86,8 +86,8 @@ def test_missing_include(tmp_path):
 
 
 def test_error_in_included_file_names_it(tmp_path):
-    write(tmp_path, "parts/wall.cas", f"#define C 0.9, 0.9, 0.9\n\nmur = @h(4, 0.2, 3) !cu(C);\nbad = @h(1) zz;\n")
-    scene = write(tmp_path, "house.cas", f"#include \"parts/wall.cas\"\n> mur;\n")
+    write(tmp_path, "parts/wall.cas", "#define C 0.9, 0.9, 0.9\n\nmur = @h(4, 0.2, 3) !cu(C);\nbad = @h(1) zz;\n")
+    scene = write(tmp_path, "house.cas", "#include \"parts/wall.cas\"\n> mur;\n")
     status, out, err = run(str(scene), cwd=tmp_path)
     assert status == 1
     assert err.splitlines()[0] == "parts/wall.cas:4:13: error: object 'zz' is not defined"

@@ -95,7 +95,7 @@ def test_touching_solids_intersect_to_nothing(other):
 
 
 def test_roof_standing_on_walls_merges():
-    scene = f"""
+    scene = """
     murs = @h(4, 3, 2.5) !cu(0.9, 0.9, 0.85);
     toit = @t(2, 1.5, 2.5) @rz(45) @h(2.9, 2.9, 1.5) !py(0.6, 0.2, 0.1, 4);
     > $U(murs, toit);
@@ -118,7 +118,7 @@ def _area(points):
 
 
 def test_drilled_block_has_red_bore():
-    scene = f"""
+    scene = """
     bloc = @h(2, 2, 1) !cu(1, 1, 1);
     trou = @t(1, 1, -1) @h(0.5, 0.5, 3) !cy(1, 0, 0);
     > $D(bloc, trou);
@@ -185,7 +185,7 @@ def test_stats_line():
 
 
 def test_shared_tree_is_facetized_once():
-    scene = f"""
+    scene = """
     arbre = $U(@h(0.1, 0.1, 1) !cy(0.4, 0.2, 0), @t(0, 0, 1.3) @h(0.5) !sp(0, 0.6, 0));
     rangee = $U[J = 0, 19](@t(2 * J, 0, 0) arbre);
     foret = $U[I = 0, 19](@t(0, 2 * I, 0) rangee);

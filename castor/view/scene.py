@@ -4,7 +4,7 @@ polygon stream as it arrives, or from a mesh file through trimesh."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Iterator, TextIO
+from typing import Iterator
 
 import numpy as np
 
