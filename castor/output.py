@@ -35,7 +35,8 @@ def _file_mode() -> int:
     return 0o666 & ~mask
 
 
-def _atomic_write(path: str, data: bytes) -> None:
+def write_atomically(path: str, data: bytes) -> None:
+    """Write beside ``path`` and rename into place: never half a file."""
     directory = os.path.dirname(os.path.abspath(path))
     fd, temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
     try:
@@ -118,8 +119,8 @@ class Output:
             return
         module = writer(self.format)
         for companion, content in getattr(module, "companions", lambda f, p: {})(frame, target).items():
-            _atomic_write(companion, content)
-        _atomic_write(target, data)
+            write_atomically(companion, content)
+        write_atomically(target, data)
 
     def finish(self, had_errors: bool) -> bool:
         """Put a single cps file in place; False when it was left out."""
@@ -129,5 +130,5 @@ class Output:
             return False
         from .writers.cps import HEADER
 
-        _atomic_write(self.path, (HEADER + "".join(self.stream_parts)).encode("utf-8"))
+        write_atomically(self.path, (HEADER + "".join(self.stream_parts)).encode("utf-8"))
         return True

@@ -282,6 +282,17 @@ def merge(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
                     source)
 
 
+def fan_triangles(offsets: np.ndarray, indices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each convex polygon as a fan of triangles; also the polygon of each triangle."""
+    sizes = np.diff(offsets)
+    per = np.maximum(sizes - 2, 0)
+    polygon = np.repeat(np.arange(len(sizes)), per)
+    first = offsets[:-1][polygon]
+    k = np.arange(len(polygon)) - np.repeat(np.cumsum(per) - per, per)
+    tris = np.column_stack([indices[first], indices[first + k + 1], indices[first + k + 2]])
+    return tris, polygon
+
+
 def as_triangles(triangles: np.ndarray, origin_ids: np.ndarray) -> Polygons:
     """The triangles themselves as polygons, for formats that hold triangles only."""
     offsets = np.arange(len(triangles) + 1, dtype=np.int64) * 3

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import os
 import re
 import sys
 
@@ -121,23 +120,15 @@ def _image(args, picture, camera):
     return Image.fromarray(render(picture, camera, args.width, args.height, mode), "RGB")
 
 
-def _save(image, path):
-    import tempfile
+def _save(image, path, **options):
+    """The image written beside ``path`` and renamed into place."""
+    import io
 
-    directory = os.path.dirname(os.path.abspath(path))
-    suffix = os.path.splitext(path)[1]
-    fd, temporary = tempfile.mkstemp(prefix=".castor-view-", suffix=suffix, dir=directory)
-    os.close(fd)
-    try:
-        image.save(temporary)
-        mask = os.umask(0o022)
-        os.umask(mask)
-        os.chmod(temporary, 0o666 & ~mask)
-        os.replace(temporary, path)
-    except BaseException:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
-        raise
+    from ..output import write_atomically
+
+    buffer = io.BytesIO()
+    image.save(buffer, format="GIF" if path.lower().endswith(".gif") else "PNG", **options)
+    write_atomically(path, buffer.getvalue())
 
 
 def run(args) -> int:
@@ -178,23 +169,9 @@ def run(args) -> int:
     # one camera for the whole animation, so that it does not jump
     camera = _camera(args, np.concatenate([p.points for p in pictures]))
     images = [_image(args, p, camera) for p in pictures]
-    if gif:
-        if len(images) == 1:
-            _save(images[0], args.output)
-        else:
-            import tempfile
-
-            from PIL import Image  # noqa: F401  (loaded by _image already)
-
-            directory = os.path.dirname(os.path.abspath(args.output))
-            fd, temporary = tempfile.mkstemp(prefix=".castor-view-", suffix=".gif", dir=directory)
-            os.close(fd)
-            images[0].save(temporary, save_all=True, append_images=images[1:],
-                           duration=args.delay, loop=0)
-            mask = os.umask(0o022)
-            os.umask(mask)
-            os.chmod(temporary, 0o666 & ~mask)
-            os.replace(temporary, args.output)
+    if gif and len(images) > 1:
+        _save(images[0], args.output, save_all=True, append_images=images[1:],
+              duration=args.delay, loop=0)
     else:
         _save(images[0], args.output)
     return 0

@@ -29,12 +29,9 @@ class Picture:
 
     def triangles(self) -> tuple[np.ndarray, np.ndarray]:
         """Fan triangles as point numbers, and the polygon of each."""
-        sizes = np.diff(self.offsets)
-        per = np.maximum(sizes - 2, 0)
-        polygon = np.repeat(np.arange(len(sizes)), per)
-        first = self.offsets[:-1][polygon]
-        k = np.arange(len(polygon)) - np.repeat(np.cumsum(per) - per, per)
-        return np.column_stack([first, first + k + 1, first + k + 2]), polygon
+        from ..polygons import fan_triangles
+
+        return fan_triangles(self.offsets, np.arange(len(self.points)))
 
 
 def read_stream(lines: Iterator[str], name: str = "<stdin>") -> Iterator[Picture]:

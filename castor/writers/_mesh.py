@@ -37,26 +37,6 @@ def combine(frame: Frame) -> Combined:
                     np.concatenate(colours), np.concatenate(objects))
 
 
-def fan_triangles(offsets: np.ndarray, indices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Each convex polygon as a fan of triangles; also the polygon of each triangle."""
-    sizes = np.diff(offsets)
-    per = sizes - 2
-    polygon = np.repeat(np.arange(len(sizes)), per)
-    first = offsets[:-1][polygon]
-    k = np.arange(len(polygon)) - np.repeat(np.cumsum(per) - per, per)
-    tris = np.column_stack([indices[first], indices[first + k + 1], indices[first + k + 2]])
-    return tris, polygon
-
-
-def number_text(values: np.ndarray) -> list[str]:
-    """Shortest round-trip text; whole numbers without '.0'."""
-    out = []
-    for x in (np.asarray(values, dtype=np.float64).ravel() + 0.0).tolist():
-        s = repr(x)
-        out.append(s[:-2] if s.endswith(".0") else s)
-    return out
-
-
 def byte_colours(colours: np.ndarray) -> np.ndarray:
     return np.clip(np.rint(colours * 255), 0, 255).astype(np.uint8)
 

@@ -15,7 +15,7 @@ HEADER = "castor-polygons 1\n"
 
 def number_strings(values: np.ndarray) -> list[str]:
     """Shortest round-trip text of each value; -0 is written 0."""
-    out = list(map(repr, (values.ravel() + 0.0).tolist()))
+    out = list(map(repr, (np.asarray(values, dtype=np.float64).ravel() + 0.0).tolist()))
     for i, text in enumerate(out):
         if text[-2:] == ".0":
             out[i] = text[:-2]

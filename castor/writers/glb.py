@@ -13,7 +13,7 @@ import struct
 import numpy as np
 
 from ..frame import Frame
-from ._mesh import fan_triangles
+from ..polygons import fan_triangles
 
 
 def _linear(c: float) -> float:

@@ -12,12 +12,13 @@ import os
 import numpy as np
 
 from ..frame import Frame
-from ._mesh import combine, number_text
+from ._mesh import combine
+from .cps import number_strings
 
 
 def _material_names(colours: np.ndarray) -> tuple[list[str], np.ndarray, np.ndarray]:
     unique, inverse = np.unique(colours, axis=0, return_inverse=True)
-    names = ["c_" + "_".join(number_text(c)) for c in unique]
+    names = ["c_" + "_".join(number_strings(c)) for c in unique]
     return names, unique, inverse.ravel()
 
 
@@ -27,7 +28,7 @@ def write(frame: Frame, stream, path: str | None = None) -> None:
     lines = ["# castor: one frame, polygons counter-clockwise seen from outside"]
     if path is not None:
         lines.append(f"mtllib {os.path.splitext(os.path.basename(path))[0]}.mtl")
-    numbers = number_text(mesh.vertices)
+    numbers = number_strings(mesh.vertices)
     lines.extend("v " + " ".join(numbers[i:i + 3]) for i in range(0, len(numbers), 3))
     offsets = mesh.offsets.tolist()
     indices = (mesh.indices + 1).tolist()
@@ -51,6 +52,6 @@ def companions(frame: Frame, path: str) -> dict[str, bytes]:
     names, unique, _ = _material_names(mesh.colours)
     lines = []
     for name, colour in zip(names, unique):
-        rgb = " ".join(number_text(colour))
+        rgb = " ".join(number_strings(colour))
         lines += [f"newmtl {name}", f"Ka {rgb}", f"Kd {rgb}", "Ks 0 0 0", "d 1", "illum 1", ""]
     return {os.path.splitext(path)[0] + ".mtl": "\n".join(lines).encode("utf-8")}

@@ -7,13 +7,14 @@ readers (trimesh's OFF loader) take nothing larger.
 from __future__ import annotations
 
 from ..frame import Frame
-from ._mesh import byte_colours, combine, number_text, split_large
+from ._mesh import byte_colours, combine, split_large
+from .cps import number_strings
 
 
 def write(frame: Frame, stream) -> None:
     mesh = combine(frame)
     offsets, indices, colours = split_large(mesh.offsets, mesh.indices, mesh.colours)
-    numbers = number_text(mesh.vertices)
+    numbers = number_strings(mesh.vertices)
     lines = ["OFF", f"{len(mesh.vertices)} {len(offsets) - 1} 0"]
     lines.extend(" ".join(numbers[i:i + 3]) for i in range(0, len(numbers), 3))
     offsets = offsets.tolist()

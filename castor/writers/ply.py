@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..frame import Frame
-from ._mesh import byte_colours, combine, fan_triangles
+from ..polygons import fan_triangles
+from ._mesh import byte_colours, combine
 
 
 def write(frame: Frame, stream) -> None:

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..frame import Frame
-from ._mesh import combine, fan_triangles
+from ..polygons import fan_triangles
+from ._mesh import combine
 
 
 def _triangles(frame: Frame) -> tuple[np.ndarray, np.ndarray]:
