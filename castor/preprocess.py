@@ -15,6 +15,11 @@ from .diagnostics import Location, PreprocessError, Reporter
 
 MAX_INCLUDE_DEPTH = 200
 
+# directives that mean nothing without an argument, and what they need
+_NEEDS = {"define": "a macro name", "undef": "a macro name", "ifdef": "a macro name",
+          "ifndef": "a macro name", "if": "a condition", "elif": "a condition",
+          "include": "a file name, as in #include \"walls.cas\""}
+
 
 def _shown(name: str) -> str:
     """A file name as pcpp shows it: relative to the current directory when inside it."""
@@ -58,6 +63,17 @@ def _make_preprocessor(reporter: Reporter):
             if len(self.temp_path) > MAX_INCLUDE_DEPTH:
                 raise IncludeTooDeep(includepath)
             return super().on_file_open(is_system_include, includepath)
+
+        def on_directive_handle(self, directive, toks, ifpassthru, precedingtoks):
+            self.lastdirective = directive
+            what = _NEEDS.get(directive.value)
+            if what and not any(tok.value.strip() for tok in toks):
+                # pcpp itself would fail on these with an IndexError
+                reporter.error(PreprocessError(
+                    f"#{directive.value} needs {what}",
+                    Location(directive.source or "<stdin>", int(directive.lineno or 0), 1)))
+                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+            return True
 
         def on_directive_unknown(self, directive, toks, ifpassthru, precedingtoks):
             if directive.value == "line" or directive.value.isdigit():

@@ -101,6 +101,18 @@ def test_includes_itself(tmp_path):
     assert "include" in err.splitlines()[0] and err.splitlines()[0].startswith("loop.cas:")
 
 
+@pytest.mark.parametrize("directive, message", [
+    ("#define", "#define needs a macro name"),
+    ("#ifdef", "#ifdef needs a macro name"),
+    ("#include", "#include needs a file name, as in #include \"walls.cas\""),
+])
+def test_directive_without_its_argument(directive, message):
+    status, out, err = run(stdin=f"{directive}\n> !cu(1,1,1);\n")
+    assert status == 1
+    assert err.splitlines()[0] == f"<stdin>:1:1: error: {message}"
+    assert len(parse_stream(out)) == 1
+
+
 def test_directive_with_no_cpp_is_explained():
     status, out, err = run("--no-cpp", stdin="#define A 1\n> !cu(1,1,1);\n")
     assert status == 1
