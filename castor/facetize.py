@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import MutableMapping
 
@@ -139,9 +140,7 @@ class Facetizer:
         if known is not None:
             return known
         kind = type(node)
-        if kind is Named:
-            count = self.estimate(node.child, env, tolerance, seen)
-        elif kind is Transformed:
+        if kind is Named or kind is Transformed:
             count = self.estimate(node.child, env, tolerance, seen)
         elif kind is Boolean:
             if node.repeat is None:
@@ -151,18 +150,12 @@ class Facetizer:
                     times = len(repeat_values(node.repeat, env))
                 except (EvaluationError, LimitError):
                     times = 0
-                name = node.repeat.param
-                saved = env.get(name, _MISSING)
                 try:
-                    env[name] = evaluate(node.repeat.start, env) if times else 0.0
-                    count = times * self.estimate(node.operands[0], env, tolerance, {})
+                    with _restored(env, node.repeat.param):
+                        env[node.repeat.param] = evaluate(node.repeat.start, env) if times else 0.0
+                        count = times * self.estimate(node.operands[0], env, tolerance, {})
                 except EvaluationError:
                     count = 0
-                finally:
-                    if saved is _MISSING:
-                        env.pop(name, None)
-                    else:
-                        env[name] = saved
             if node.op == "D" and node.operands:
                 count = max(count, 1)
         else:
@@ -248,23 +241,17 @@ class Facetizer:
                 operands.append(self.solid(child, env, scale, tolerance,
                                            path.down(step)).prefixed(step))
         else:
-            name = node.repeat.param
-            saved = env.get(name, _MISSING)
-            try:
+            with _restored(env, node.repeat.param):
                 for k, value in enumerate(repeat_values(node.repeat, env), 1):
-                    env[name] = value
+                    env[node.repeat.param] = value
                     step = f"{op}{k}"
                     operands.append(self.solid(node.operands[0], env, scale, tolerance,
                                                path.down(step)).prefixed(step))
-            finally:
-                if saved is _MISSING:
-                    env.pop(name, None)
-                else:
-                    env[name] = saved
         if self.check_only:
             return engine.EMPTY
-        if sum(s.triangle_count() for s in operands) > 2 * self.max_polygons:
-            self._check_count(sum(s.triangle_count() for s in operands), node.location)
+        operand_triangles = sum(s.triangle_count() for s in operands)
+        if operand_triangles > 2 * self.max_polygons:
+            self._check_count(operand_triangles, node.location)
         if op == "U":
             result = engine.union(operands, self.counter)
         elif op == "I":
@@ -304,6 +291,19 @@ class Facetizer:
             self.shape_cache[key] = shape_in_engine
         self.primitive_count += 1
         return engine.instance(shape_in_engine, engine.Origin(Path(f"!{node.kind}"), colour))
+
+
+@contextmanager
+def _restored(env, name: str):
+    """A repetition's parameter gets its previous value (or none) back afterwards."""
+    saved = env.get(name, _MISSING)
+    try:
+        yield
+    finally:
+        if saved is _MISSING:
+            env.pop(name, None)
+        else:
+            env[name] = saved
 
 
 def _quantize(tolerance: float) -> float:

@@ -94,11 +94,23 @@ def _plural(n: int, word: str) -> str:
     return f"{n} {word}{'' if n == 1 else 's'}"
 
 
-def _suggest(name: str, choices) -> str:
+def _suggest(name: str, choices, prefix: str = "") -> str:
+    """'; did you mean ...?' for the closest of ``choices``, or nothing."""
     import difflib
 
     close = difflib.get_close_matches(name, list(choices), n=1, cutoff=0.5)
-    return f"; did you mean '{close[0]}'?" if close else ""
+    return f"; did you mean '{prefix}{close[0]}'?" if close else ""
+
+
+def _known(prefix: str, name: str, choices) -> str:
+    """The suggestion and the list of the known names, for an unknown primitive or
+    transformation."""
+    known = ", ".join(prefix + c for c in choices)
+    return f"{_suggest(name, choices, prefix)} (known: {known})"
+
+
+def _given(n: int) -> str:
+    return f"{n} {'was' if n == 1 else 'were'} given"
 
 
 class Builder:
@@ -173,7 +185,7 @@ class Builder:
         kind = token[1:]
         if kind not in TRANSFORMS:
             self.faults.append(SceneError(
-                f"unknown transformation '{token}'{self._suggest_prefixed('@', kind, TRANSFORMS)}",
+                f"unknown transformation '{token}'{_known('@', kind, TRANSFORMS)}",
                 location))
         else:
             counts, form = TRANSFORMS[kind]
@@ -181,18 +193,8 @@ class Builder:
                 wanted = " or ".join(str(c) for c in counts)
                 self.faults.append(SceneError(
                     f"'{token}' takes {wanted} argument{'s' if counts[-1] > 1 else ''} ({form}), "
-                    f"but {len(args)} {'was' if len(args) == 1 else 'were'} given", location))
+                    f"but {_given(len(args))}", location))
         return Step(kind, args, location)
-
-    @staticmethod
-    def _suggest_prefixed(prefix: str, name: str, choices) -> str:
-        import difflib
-
-        close = difflib.get_close_matches(name, list(choices), n=1, cutoff=0.5)
-        known = ", ".join(prefix + c for c in choices)
-        if close:
-            return f"; did you mean '{prefix}{close[0]}'? (known: {known})"
-        return f" (known: {known})"
 
     def primitive(self, children):
         token, args = children
@@ -201,15 +203,14 @@ class Builder:
         kind = token[1:]
         if kind not in PRIMITIVES:
             self.faults.append(SceneError(
-                f"unknown primitive '{token}'{self._suggest_prefixed('!', kind, PRIMITIVES)}", location))
+                f"unknown primitive '{token}'{_known('!', kind, PRIMITIVES)}", location))
         else:
             low, high, form = PRIMITIVES[kind]
             n = len(args)
             if n < low or (high is not None and n > high):
                 wanted = str(low) if low == high else f"at least {low}"
                 self.faults.append(SceneError(
-                    f"'{token}' takes {wanted} arguments ({form}), but {n} "
-                    f"{'was' if n == 1 else 'were'} given", location))
+                    f"'{token}' takes {wanted} arguments ({form}), but {_given(n)}", location))
             elif high is None and (n - 3) % 2:
                 self.faults.append(SceneError(
                     f"'{token}' takes the colour then pairs of coordinates ({form}), "
@@ -233,8 +234,7 @@ class Builder:
                 "'$D' cannot repeat; subtract a repeated union instead: $D(a, $U[I = ...](b))", location))
         elif op == "D" and len(operands) != 2:
             self.faults.append(SceneError(
-                f"'$D' takes exactly two operands (a - b), but {len(operands)} "
-                f"{'was' if len(operands) == 1 else 'were'} given; "
+                f"'$D' takes exactly two operands (a - b), but {_given(len(operands))}; "
                 "to subtract several, write $D(a, $U(b, c))", location))
         elif repeat is not None and len(operands) != 1:
             self.faults.append(SceneError(
