@@ -18,11 +18,11 @@ rangee = $U[J = 0, 19](@t(2.5 * J, 0, 0) arbre);
 
 
 def main() -> None:
-    from castor.facetize import Facetizer
-    from castor.parse import Parser
-    from castor.reader import Chunk
-    from castor.scene import Tables
-    from castor.writers import cps
+    from castor.mesh.facetize import Facetizer
+    from castor.language.parse import Parser
+    from castor.language.reader import Chunk
+    from castor.language.scene import Tables
+    from castor.formats import cps
 
     best = None
     for _ in range(RUNS):

@@ -29,7 +29,7 @@ def scene(count: int) -> str:
 BARE_LARK = r'''
 import sys
 from lark import Lark, Transformer
-from castor.parse import grammar_text
+from castor.language.parse import grammar_text
 text = open(sys.argv[1]).read()
 RULES = ["program", "param_def", "object_def", "facetize", "object", "transform", "primitive",
          "boolean", "reference", "repeat", "args", "binary", "unary", "number", "parameter", "call"]

@@ -17,11 +17,11 @@ TOLERANCE = 1.2e-5  # about 1.1 million triangles for the unit sphere
 
 
 def main() -> None:
-    from castor.facetize import Facetizer
-    from castor.parse import Parser
-    from castor.reader import Chunk
-    from castor.scene import Tables
-    from castor.writers import cps, stl
+    from castor.mesh.facetize import Facetizer
+    from castor.language.parse import Parser
+    from castor.language.reader import Chunk
+    from castor.language.scene import Tables
+    from castor.formats import cps, stl
 
     (statement,) = list(Parser(Tables()).parse(Chunk("> !sp(1, 1, 1);", (("bench", 1),), 0)))
     started = time.perf_counter()

@@ -1,3 +1,3 @@
-from .cli import entry
+from castor.cli import entry
 
 entry()

@@ -13,8 +13,8 @@ import re
 import sys
 import threading
 
-from . import __version__
-from .diagnostics import CastorError, Reporter, TooManyErrors
+from castor import __version__
+from castor.diagnostics import CastorError, Reporter, TooManyErrors
 
 USAGE_ERROR = 2
 _STACK_BYTES = 512 * 1024 * 1024
@@ -29,7 +29,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _arguments(argv):
-    from .writers import FORMATS
+    from castor.formats import FORMATS
 
     p = _Parser(prog="castor", description="Interpret Castor CSG scenes and write their polygons.",
                 epilog="Exit status: 0 success, 1 errors in the input, 2 usage error.")
@@ -63,7 +63,7 @@ def _arguments(argv):
     if args.max_polygons < 1:
         p.error("--max-polygons must be at least 1")
     if args.format is None:
-        from .writers import format_for_suffix
+        from castor.formats import format_for_suffix
 
         args.format = (format_for_suffix(args.output) if args.output else None) or "cps"
     return p, args
@@ -71,10 +71,10 @@ def _arguments(argv):
 
 def _overrides(parser, sets: list[str]) -> dict[str, float]:
     """Evaluate each --set NAME=EXPR with the grammar's expressions."""
-    from .parse import Parser
-    from .reader import Chunk
-    from .scene import ParamDef, Tables
-    from .expressions import evaluate
+    from castor.language.parse import Parser
+    from castor.language.reader import Chunk
+    from castor.language.scene import ParamDef, Tables
+    from castor.language.expressions import evaluate
     import math
 
     values: dict[str, float] = {}
@@ -131,9 +131,9 @@ def _streamed_lines(files: list[str], reader):
 
 
 def _run(args, settings, reporter) -> int:
-    from .interpreter import Interpreter
-    from .output import Output
-    from .reader import Reader
+    from castor.interpreter import Interpreter
+    from castor.formats.output import Output
+    from castor.language.reader import Reader
 
     for name in args.files:
         if name != "-" and not os.access(name, os.R_OK):
@@ -154,7 +154,7 @@ def _run(args, settings, reporter) -> int:
             interpreter.run(reader.chunks(_streamed_lines(args.files, reader)),
                             streaming=streaming)
         else:
-            from .preprocess import preprocess
+            from castor.language.preprocess import preprocess
 
             text = preprocess(_read_inputs(args.files), args.defines, args.undefines,
                               args.include_dirs, reporter)
@@ -170,9 +170,9 @@ def _run(args, settings, reporter) -> int:
 def main(argv=None) -> int:
     parser, args = _arguments(sys.argv[1:] if argv is None else argv)
     reporter = Reporter(quiet=args.quiet)
-    from .interpreter import Settings
+    from castor.interpreter import Settings
 
-    from .writers import FORMATS
+    from castor.formats import FORMATS
 
     settings = Settings(overrides=_overrides(parser, args.sets), tolerance=args.tolerance,
                         max_polygons=args.max_polygons, check_only=args.check, stats=args.stats,

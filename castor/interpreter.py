@@ -15,11 +15,11 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable, Iterable
 
-from .diagnostics import CastorError, Reporter, TooManyErrors
-from .expressions import evaluate
-from .parse import Parser, SkippedDefinition
-from .reader import Chunk
-from .scene import Facetize, ObjectDef, ParamDef, Tables
+from castor.diagnostics import CastorError, Reporter, TooManyErrors
+from castor.language.expressions import evaluate
+from castor.language.parse import Parser, SkippedDefinition
+from castor.language.reader import Chunk
+from castor.language.scene import Facetize, ObjectDef, ParamDef, Tables
 
 
 # statements parsed by one call to the parser when the input is not streamed
@@ -57,7 +57,7 @@ class Interpreter:
     def facetizer(self):
         if self._facetizer is None:
             # imported here: numpy and manifold3d are only needed once a frame is made
-            from .facetize import Facetizer
+            from castor.mesh.facetize import Facetizer
 
             self._facetizer = Facetizer(self.settings.max_polygons, self.settings.check_only,
                                         self.settings.merge_polygons)
@@ -116,7 +116,7 @@ class Interpreter:
         self.tables.broken.discard(name)
 
     def _facetize(self, statement: Facetize) -> None:
-        from .facetize import repeat_values
+        from castor.mesh.facetize import repeat_values
 
         where = f"{statement.location.file}:{statement.location.line}"
         env = dict(self.tables.parameters)

@@ -29,7 +29,7 @@ def _triple(text: str, parser, option: str):
 
 
 def _arguments(argv):
-    from .. import __version__
+    from castor import __version__
 
     p = _Parser(prog="castor-view", description="Draw castor's polygon stream or a mesh file.",
                 epilog="Example: castor house.cas | castor-view --view 30,20 -o house.png")
@@ -80,7 +80,7 @@ def _arguments(argv):
 
 
 def _pictures(args):
-    from .scene import read_mesh_file, read_stream
+    from castor.view.scene import read_mesh_file, read_stream
 
     if args.file != "-" and args.file.lower().endswith(_MESH_SUFFIXES):
         yield read_mesh_file(args.file)
@@ -100,7 +100,7 @@ def _pictures(args):
 def _camera(args, points):
     import numpy as np
 
-    from .render import Camera, frame_camera
+    from castor.view.render import Camera, frame_camera
 
     if args.eye is not None:
         eye, look = np.array(args.eye), np.array(args.look)
@@ -114,7 +114,7 @@ def _camera(args, points):
 def _image(args, picture, camera):
     from PIL import Image
 
-    from .render import render
+    from castor.view.render import render
 
     mode = "wire" if args.wire else "edges" if args.edges else "shaded"
     return Image.fromarray(render(picture, camera, args.width, args.height, mode), "RGB")
@@ -124,7 +124,7 @@ def _save(image, path, **options):
     """The image written beside ``path`` and renamed into place."""
     import io
 
-    from ..output import write_atomically
+    from castor.formats.output import write_atomically
 
     buffer = io.BytesIO()
     image.save(buffer, format="GIF" if path.lower().endswith(".gif") else "PNG", **options)
@@ -132,7 +132,7 @@ def _save(image, path, **options):
 
 
 def run(args) -> int:
-    from .scene import ViewError
+    from castor.view.scene import ViewError
 
     pattern = bool(_PATTERN.search(args.output))
     gif = args.output.lower().endswith(".gif")

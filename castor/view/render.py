@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .scene import Picture
+from castor.view.scene import Picture
 
 BACKGROUND = np.array([1.0, 1.0, 1.0])
 EDGE_COLOUR = np.array([0.1, 0.1, 0.12])

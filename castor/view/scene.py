@@ -29,7 +29,7 @@ class Picture:
 
     def triangles(self) -> tuple[np.ndarray, np.ndarray]:
         """Fan triangles as point numbers, and the polygon of each."""
-        from ..polygons import fan_triangles
+        from castor.mesh.polygons import fan_triangles
 
         return fan_triangles(self.offsets, np.arange(len(self.points)))
 

@@ -3,10 +3,22 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
-from .engine import Origin
+from castor.csg.paths import Path
+
+
+class Origin(NamedTuple):
+    """Where a polygon comes from: the path of its primitive and its colour."""
+
+    steps: Path
+    colour: tuple[float, float, float]
+
+    @property
+    def path(self) -> str:
+        return str(self.steps)
 
 
 @dataclass

@@ -13,9 +13,9 @@ import re
 import sys
 import tempfile
 
-from .diagnostics import CastorError, Location
-from .frame import Frame
-from .writers import FORMATS, writer
+from castor.diagnostics import CastorError, Location
+from castor.mesh.frame import Frame
+from castor.formats import FORMATS, writer
 
 _PATTERN = re.compile(r"%0?\d*d")
 
@@ -61,7 +61,7 @@ def _render(frame: Frame, name: str, path: str | None = None) -> bytes:
         return buffer.getvalue()
     text = io.StringIO()
     if name == "cps":
-        from .writers.cps import HEADER
+        from castor.formats.cps import HEADER
 
         text.write(HEADER)
         module.write(frame, text)
@@ -85,7 +85,7 @@ class Output:
 
     def start(self) -> None:
         if self.path is None and self.format == "cps":
-            from .writers.cps import HEADER
+            from castor.formats.cps import HEADER
 
             sys.stdout.write(HEADER)
             sys.stdout.flush()
@@ -93,7 +93,7 @@ class Output:
     def frame(self, frame: Frame, location: Location) -> None:
         self.frames += 1
         if self.format == "cps" and not (self.path and has_pattern(self.path)):
-            from .writers.cps import format_frame
+            from castor.formats.cps import format_frame
 
             text = format_frame(frame)
             if self.path is None:
@@ -128,7 +128,7 @@ class Output:
             return True
         if had_errors and not self.stream_parts:
             return False
-        from .writers.cps import HEADER
+        from castor.formats.cps import HEADER
 
         write_atomically(self.path, (HEADER + "".join(self.stream_parts)).encode("utf-8"))
         return True

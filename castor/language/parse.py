@@ -17,10 +17,10 @@ from typing import Iterator
 from lark import Lark, Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
-from .diagnostics import CastorError, CastorSyntaxError, EvaluationError, LimitError, SceneError
-from .expressions import FUNCTIONS, arity_message, evaluate
-from .reader import Chunk
-from .scene import (EMPTY, Binary, Boolean, Call, Facetize, Named, Number, ObjectDef, Param,
+from castor.diagnostics import CastorError, CastorSyntaxError, EvaluationError, LimitError, SceneError
+from castor.language.expressions import FUNCTIONS, arity_message, evaluate
+from castor.language.reader import Chunk
+from castor.language.scene import (EMPTY, Binary, Boolean, Call, Facetize, Named, Number, ObjectDef, Param,
                     ParamDef, Primitive, Repeat, Step, Tables, Transformed, Unary)
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
@@ -78,16 +78,10 @@ _EXPR_START = {"NUMBER", "PARAM", "LPAR"}
 
 @lru_cache(maxsize=1)
 def grammar_text() -> str:
-    """The grammar shipped in the package (castor.grammar), or the source tree's."""
-    try:
-        from importlib.resources import files
+    """The grammar, castor.lark, shipped beside this module."""
+    from pathlib import Path
 
-        return files("castor.grammar").joinpath("castor.lark").read_text(encoding="utf-8")
-    except (ModuleNotFoundError, FileNotFoundError):
-        from pathlib import Path
-
-        path = Path(__file__).resolve().parent.parent / "grammar" / "castor.lark"
-        return path.read_text(encoding="utf-8")
+    return (Path(__file__).resolve().parent / "castor.lark").read_text(encoding="utf-8")
 
 
 def _plural(n: int, word: str) -> str:

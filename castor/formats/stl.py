@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..frame import Frame
-from ..polygons import fan_triangles
-from ._mesh import combine
+from castor.mesh.frame import Frame
+from castor.mesh.polygons import fan_triangles
+from castor.formats._mesh import combine
 
 
 def _triangles(frame: Frame) -> tuple[np.ndarray, np.ndarray]:

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .diagnostics import Location
+from castor.diagnostics import Location
 
 EMPTY: frozenset[str] = frozenset()
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..frame import Frame
+from castor.mesh.frame import Frame
 
 HEADER = "castor-polygons 1\n"
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..frame import Frame
-from ..polygons import fan_triangles
-from ._mesh import byte_colours, combine
+from castor.mesh.frame import Frame
+from castor.mesh.polygons import fan_triangles
+from castor.formats._mesh import byte_colours, combine
 
 
 def write(frame: Frame, stream) -> None:

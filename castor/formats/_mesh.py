@@ -6,7 +6,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..frame import Frame
+from castor.mesh.frame import Frame
 
 
 class Combined(NamedTuple):

@@ -12,8 +12,8 @@ import struct
 
 import numpy as np
 
-from ..frame import Frame
-from ..polygons import fan_triangles
+from castor.mesh.frame import Frame
+from castor.mesh.polygons import fan_triangles
 
 
 def _linear(c: float) -> float:

@@ -14,7 +14,7 @@ import re
 from dataclasses import dataclass
 from typing import Iterable, Iterator
 
-from .diagnostics import CastorError, Location, PreprocessError, Reporter
+from castor.diagnostics import CastorError, Location, PreprocessError, Reporter
 
 _MARKER = re.compile(r'\s*#\s*(?:line\s+)?(\d+)(?:\s+"((?:[^"\\]|\\.)*)")?[^\n]*$')
 _DIRECTIVE = re.compile(r"\s*#\s*([A-Za-z_]*)")

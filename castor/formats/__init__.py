@@ -31,4 +31,4 @@ def format_for_suffix(path: str) -> str | None:
 
 def writer(name: str):
     """The module that writes format ``name``."""
-    return importlib.import_module(f"castor.writers.{FORMATS[name][0]}")
+    return importlib.import_module(f"castor.formats.{FORMATS[name][0]}")

@@ -17,13 +17,13 @@ from typing import MutableMapping
 
 import numpy as np
 
-from . import engine, polygons, primitives
-from .diagnostics import EvaluationError, GeometryError, LimitError, Location
-from .expressions import evaluate, format_number
-from .frame import Frame, FrameObject
-from .paths import ROOT, Path, Trail
-from .scene import Boolean, Named, Node, Primitive, Repeat, Transformed
-from .transforms import step_matrix
+from castor.mesh import engine, polygons, primitives
+from castor.diagnostics import EvaluationError, GeometryError, LimitError, Location
+from castor.language.expressions import evaluate, format_number
+from castor.mesh.frame import Frame, FrameObject
+from castor.csg.paths import ROOT, Path, Trail
+from castor.language.scene import Boolean, Named, Node, Primitive, Repeat, Transformed
+from castor.csg.transforms import step_matrix
 
 MAX_REPEAT = 1_000_000
 # Beyond this, double precision leaves too few digits for exact booleans.

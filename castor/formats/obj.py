@@ -11,9 +11,9 @@ import os
 
 import numpy as np
 
-from ..frame import Frame
-from ._mesh import combine
-from .cps import number_strings
+from castor.mesh.frame import Frame
+from castor.formats._mesh import combine
+from castor.formats.cps import number_strings
 
 
 def _material_names(colours: np.ndarray) -> tuple[list[str], np.ndarray, np.ndarray]:

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .diagnostics import GeometryError, Location
+from castor.diagnostics import GeometryError, Location
 
 
 def _cos_sin(degrees: float) -> tuple[float, float]:

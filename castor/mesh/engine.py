@@ -15,22 +15,11 @@ from typing import NamedTuple
 import manifold3d
 import numpy as np
 
-from .paths import Path
-from .primitives import Mesh
+from castor.mesh.frame import Origin
+from castor.mesh.primitives import Mesh
 
 _Add = manifold3d.OpType.Add
 _Intersect = manifold3d.OpType.Intersect
-
-
-class Origin(NamedTuple):
-    """Where a polygon comes from: the path of its primitive and its colour."""
-
-    steps: Path
-    colour: tuple[float, float, float]
-
-    @property
-    def path(self) -> str:
-        return str(self.steps)
 
 
 @dataclass(frozen=True, slots=True)

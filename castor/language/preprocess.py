@@ -11,7 +11,7 @@ import io
 import os
 import re
 
-from .diagnostics import Location, PreprocessError, Reporter
+from castor.diagnostics import Location, PreprocessError, Reporter
 
 MAX_INCLUDE_DEPTH = 200
 

@@ -6,9 +6,9 @@ readers (trimesh's OFF loader) take nothing larger.
 
 from __future__ import annotations
 
-from ..frame import Frame
-from ._mesh import byte_colours, combine, split_large
-from .cps import number_strings
+from castor.mesh.frame import Frame
+from castor.formats._mesh import byte_colours, combine, split_large
+from castor.formats.cps import number_strings
 
 
 def write(frame: Frame, stream) -> None:

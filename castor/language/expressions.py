@@ -10,8 +10,8 @@ from __future__ import annotations
 import math
 from typing import Callable, Mapping
 
-from .diagnostics import EvaluationError, Location
-from .scene import Binary, Expr, Number, Param, Unary
+from castor.diagnostics import EvaluationError, Location
+from castor.language.scene import Binary, Expr, Number, Param, Unary
 
 _RAD = math.pi / 180.0
 

@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .diagnostics import GeometryError, Location
+from castor.diagnostics import GeometryError, Location
 
 MIN_SEGMENTS = 8
 

@@ -1,1 +1,0 @@
-"""The Castor grammar, installed as the package ``castor.grammar``."""
