@@ -15,6 +15,10 @@ import threading
 
 from castor import __version__
 from castor.diagnostics import CastorError, Reporter, TooManyErrors
+from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
+                            DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
+                            parse_point, parse_scale, parse_section, parse_size, parse_sun,
+                            parse_view)
 
 USAGE_ERROR = 2
 _STACK_BYTES = 512 * 1024 * 1024
@@ -53,15 +57,61 @@ def _arguments(argv):
                    help="facet tolerance in scene units (default 0.01)")
     p.add_argument("--check", action="store_true", help="read and evaluate everything, write nothing")
     p.add_argument("--stats", action="store_true", help="one line of figures per frame on stderr")
-    p.add_argument("--max-polygons", type=int, default=20_000_000, metavar="N",
-                   help="refuse a frame of more than N polygons (default 20000000)")
+    p.add_argument("--summary", metavar="PATH", help="write a quantity take-off (JSON) to PATH")
+    p.add_argument("--max-polygons", type=int, default=DEFAULT_MAX_POLYGONS, metavar="N",
+                   help=f"refuse a frame of more than N polygons (default {DEFAULT_MAX_POLYGONS})")
+    p.add_argument("-j", "--jobs", default="1", metavar="N",
+                   help="make up to N frames at once in separate processes (0: one per core)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="send frames to a Dask cluster (tcp://host:8786)")
+    p.add_argument("--serve", action="store_true",
+                   help="live preview in a web browser, evaluated again at each save")
+    p.add_argument("--port", default=str(DEFAULT_PORT), metavar="N",
+                   help=f"--serve: the port (default {DEFAULT_PORT}, or the next free one)")
+    p.add_argument("--bind", default="127.0.0.1", metavar="ADDRESS",
+                   help="--serve: the address to listen on (default loopback only)")
+    pictures = p.add_argument_group("pictures and drawings")
+    pictures.add_argument("--size", default="%dx%d" % DEFAULT_SIZE, metavar="WxH",
+                          help="picture size in pixels (default %(default)s)")
+    pictures.add_argument("--view", default="%g,%g" % DEFAULT_VIEW, metavar="AZ,EL|NAME",
+                          help="camera direction in degrees, or top, bottom, front, back, "
+                               "left, right (orthographic)")
+    pictures.add_argument("--eye", metavar="X,Y,Z", help="camera position (with --look)")
+    pictures.add_argument("--look", metavar="X,Y,Z", help="the point the camera looks at")
+    pictures.add_argument("--sun", default="%g,%g" % DEFAULT_SUN, metavar="AZ,EL|none",
+                          help="direction of the sun (default %(default)s), or none")
+    pictures.add_argument("--samples", default=str(DEFAULT_SAMPLES), metavar="N",
+                          help="rays per pixel for anti-aliasing (default %(default)s)")
+    pictures.add_argument("--edges", action="store_true", help="outline silhouettes and creases")
+    pictures.add_argument("--section", metavar="AXIS=VALUE",
+                          help="a drawing cut by the plane z=H (a plan), x=V or y=V")
+    pictures.add_argument("--scale", default=f"1:{DEFAULT_SCALE}", metavar="1:N",
+                          help="printed scale of a drawing (default %(default)s)")
     p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
     p.add_argument("--version", action="version", version=f"castor {__version__}")
-    args = p.parse_args(argv)
+    args = p.parse_args(negative_values(argv, ("--view", "--eye", "--look", "--sun",
+                                               "--section")))
     if args.tolerance is not None and not (args.tolerance > 0 and args.tolerance < float("inf")):
         p.error(f"--tolerance must be a positive number, not {args.tolerance}")
     if args.max_polygons < 1:
         p.error("--max-polygons must be at least 1")
+    try:
+        args.jobs = parse_count(args.jobs, "--jobs", 0, 256)
+        args.port = parse_count(args.port, "--port", 0, 65535)
+        args.samples = parse_count(args.samples, "--samples", 1, 256)
+        args.size = parse_size(args.size)
+        args.view = parse_view(args.view)
+        args.sun = parse_sun(args.sun)
+        args.scale = parse_scale(args.scale)
+        args.section = parse_section(args.section) if args.section is not None else None
+        args.eye = parse_point(args.eye, "--eye") if args.eye is not None else None
+        args.look = parse_point(args.look, "--look") if args.look is not None else None
+    except ValueError as exc:
+        p.error(str(exc))
+    if (args.eye is None) != (args.look is None):
+        p.error("--eye and --look go together")
+    if args.eye is not None and args.eye == args.look:
+        p.error("--eye and --look must be different points")
     if args.format is None:
         from castor.formats import format_for_suffix
 
@@ -176,7 +226,7 @@ def main(argv=None) -> int:
 
     settings = Settings(overrides=_overrides(parser, args.sets), tolerance=args.tolerance,
                         max_polygons=args.max_polygons, check_only=args.check, stats=args.stats,
-                        merge_polygons=not FORMATS[args.format][4])
+                        merge_polygons=not FORMATS[args.format].triangles_only)
     result: list = []
 
     def work():

@@ -1,34 +1,59 @@
-"""Output formats: one module per format, each a ``write(frame, stream)`` function.
+"""Output formats: one module per format, chosen from one table of named fields.
 
-``FORMATS`` maps a format name to (module name, file suffix, description, binary,
-triangles only);
-modules are imported only when their format is used, so that the default path
-(the polygon stream) stays light.
+Modules are imported only when their format is used, so that the default path
+(the polygon stream) stays light. ``kind`` says what a format is made from:
+``mesh`` formats from a frame's polygons, ``picture`` formats from its
+evaluated CSG tree (ray traced), ``drawing`` formats from its solids cut and
+seen from a side.
 """
 
 from __future__ import annotations
 
 import importlib
+from typing import NamedTuple
 
-FORMATS: dict[str, tuple[str, str, str, bool, bool]] = {
-    "cps": ("cps", ".cps", "the Castor polygon stream", False, False),
-    "off": ("off", ".off", "Geomview OFF with a colour per face", False, False),
-    "obj": ("obj", ".obj", "Wavefront OBJ with a material per colour", False, False),
-    "stl": ("stl", ".stl", "binary STL, geometry only", True, True),
-    "stl-ascii": ("stl", ".stl", "ASCII STL, geometry only", False, True),
-    "ply": ("ply", ".ply", "binary PLY with face colours", True, True),
-    "glb": ("glb", ".glb", "binary glTF 2.0, one mesh per object", True, True),
-}
+
+class Format(NamedTuple):
+    name: str
+    module: str  # castor.formats.<module>
+    suffix: str
+    description: str
+    kind: str  # "mesh", "picture" or "drawing"
+    binary: bool
+    triangles_only: bool  # the format holds triangles: polygon merging is skipped
+    all_frames: bool = False  # one file holds every frame (the stream, a GIF)
+
+
+FORMATS: dict[str, Format] = {f.name: f for f in (
+    Format("cps", "cps", ".cps", "the Castor polygon stream", "mesh", False, False, True),
+    Format("off", "off", ".off", "Geomview OFF with a colour per face", "mesh", False, False),
+    Format("obj", "obj", ".obj", "Wavefront OBJ with a material per colour", "mesh", False, False),
+    Format("stl", "stl", ".stl", "binary STL, geometry only", "mesh", True, True),
+    Format("stl-ascii", "stl", ".stl", "ASCII STL, geometry only", "mesh", False, True),
+    Format("ply", "ply", ".ply", "binary PLY with colours", "mesh", True, True),
+    Format("glb", "glb", ".glb", "binary glTF 2.0, one node per object", "mesh", True, True),
+    Format("3mf", "threemf", ".3mf", "3D Manufacturing Format, coloured, in millimetres",
+           "mesh", True, True),
+    Format("png", "png", ".png", "a ray-traced picture of the exact solids", "picture", True,
+           False),
+    Format("gif", "gif", ".gif", "every frame ray traced, as an animation", "picture", True,
+           False, True),
+    Format("svg", "svg", ".svg", "a plan, section or elevation as a vector drawing", "drawing",
+           False, False),
+    Format("dxf", "dxf", ".dxf", "a plan, section or elevation for CAD, in metres", "drawing",
+           False, False),
+)}
 
 
 def format_for_suffix(path: str) -> str | None:
+    """The format whose suffix ``path`` ends with (the binary one where two share it)."""
     lowered = path.lower()
-    for name, (_, suffix, _, _, _) in FORMATS.items():
-        if name != "stl-ascii" and lowered.endswith(suffix):
-            return name
+    for f in FORMATS.values():
+        if f.name != "stl-ascii" and lowered.endswith(f.suffix):
+            return f.name
     return None
 
 
-def writer(name: str):
+def module(name: str):
     """The module that writes format ``name``."""
-    return importlib.import_module(f"castor.formats.{FORMATS[name][0]}")
+    return importlib.import_module(f"castor.formats.{FORMATS[name].module}")

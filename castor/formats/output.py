@@ -15,7 +15,7 @@ import tempfile
 
 from castor.diagnostics import CastorError, Location
 from castor.mesh.frame import Frame
-from castor.formats import FORMATS, writer
+from castor.formats import FORMATS, module as writer
 
 _PATTERN = re.compile(r"%0?\d*d")
 
@@ -54,7 +54,7 @@ def write_atomically(path: str, data: bytes) -> None:
 
 def _render(frame: Frame, name: str, path: str | None = None) -> bytes:
     module = writer(name)
-    binary = FORMATS[name][3]
+    binary = FORMATS[name].binary
     if binary:
         buffer = io.BytesIO()
         module.write(frame, buffer)
@@ -104,7 +104,7 @@ class Output:
             return
         if self.frames > 1 and not (self.path and has_pattern(self.path)):
             where = self.path or "standard output"
-            stem, suffix = os.path.splitext(self.path or f"scene{FORMATS[self.format][1]}")
+            stem, suffix = os.path.splitext(self.path or f"scene{FORMATS[self.format].suffix}")
             raise OutputError(
                 f"{self.format} output holds one frame, and this is frame {frame.number} for "
                 f"{where}; give a pattern such as -o {stem}-%03d{suffix} for one file per frame",

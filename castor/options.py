@@ -1,0 +1,139 @@
+"""Option values shared by ``castor`` and ``castor-view``: their defaults and parsers.
+
+Each parser takes the option's text and returns its value or raises
+``ValueError`` with the message a usage error shows; the commands turn that
+into ``PROG: error: MESSAGE`` and exit status 2. Defaults live here only.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import NamedTuple
+
+DEFAULT_TOLERANCE = 0.01
+DEFAULT_MAX_POLYGONS = 20_000_000
+DEFAULT_SIZE = (800, 600)
+DEFAULT_VIEW = (-60.0, 25.0)
+DEFAULT_SUN = (135.0, 50.0)
+DEFAULT_SAMPLES = 4
+DEFAULT_SCALE = 100  # 1:100
+DEFAULT_PORT = 8000
+MAX_PIXELS = 16384
+
+# orthographic views by name: the direction the camera looks in, and its up
+VIEW_NAMES = ("top", "bottom", "front", "back", "left", "right")
+
+
+class View(NamedTuple):
+    """A camera: a direction (azimuth, elevation in degrees) for a perspective
+    view framing the scene, or a name for an orthographic one."""
+
+    name: str | None  # "top", "front", ... (orthographic) or None (perspective)
+    azimuth: float
+    elevation: float
+
+
+class Section(NamedTuple):
+    axis: str  # "x", "y" or "z"
+    value: float
+
+
+def _number(text: str, what: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise ValueError(f"{what}: '{text}' is not a number") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{what}: '{text}' is not a finite number")
+    return value
+
+
+def _numbers(text: str, count: int, option: str, form: str) -> tuple[float, ...]:
+    parts = text.split(",")
+    if len(parts) != count:
+        raise ValueError(f"{option} takes {form}, not '{text}'")
+    return tuple(_number(p.strip(), option) for p in parts)
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    match = re.fullmatch(r"\s*(\d{1,6})\s*[xX]\s*(\d{1,6})\s*", text)
+    if not match or not (1 <= int(match[1]) <= MAX_PIXELS and 1 <= int(match[2]) <= MAX_PIXELS):
+        raise ValueError(f"--size takes WxH in pixels (each 1 to {MAX_PIXELS}) such as 800x600, "
+                         f"not '{text}'")
+    return int(match[1]), int(match[2])
+
+
+def parse_view(text: str) -> View:
+    name = text.strip().lower()
+    if name in VIEW_NAMES:
+        return View(name, 0.0, 0.0)
+    try:
+        azimuth, elevation = _numbers(text, 2, "--view", "AZ,EL in degrees")
+    except ValueError:
+        raise ValueError(f"--view takes AZ,EL in degrees (such as -60,25) or one of "
+                         f"{', '.join(VIEW_NAMES)}, not '{text}'") from None
+    if not -90 <= elevation <= 90:
+        raise ValueError(f"--view: the elevation must lie between -90 and 90 degrees, not "
+                         f"{elevation:g}")
+    return View(None, azimuth, elevation)
+
+
+def parse_point(text: str, option: str) -> tuple[float, float, float]:
+    return _numbers(text, 3, option, "X,Y,Z")
+
+
+def parse_sun(text: str) -> tuple[float, float] | None:
+    if text.strip().lower() == "none":
+        return None
+    try:
+        azimuth, elevation = _numbers(text, 2, "--sun", "AZ,EL")
+    except ValueError:
+        raise ValueError(f"--sun takes AZ,EL in degrees (such as 135,50) or none, not "
+                         f"'{text}'") from None
+    if not 0 < elevation <= 90:
+        raise ValueError(f"--sun: the elevation must lie above the horizon (0 < EL <= 90), "
+                         f"not {elevation:g}")
+    return azimuth, elevation
+
+
+def parse_section(text: str) -> Section:
+    match = re.fullmatch(r"\s*([xyzXYZ])\s*=\s*(\S+)\s*", text)
+    if not match:
+        raise ValueError(f"--section takes AXIS=VALUE such as z=1.2 (a plan) or x=3, not '{text}'")
+    return Section(match[1].lower(), _number(match[2], "--section"))
+
+
+def parse_scale(text: str) -> float:
+    match = re.fullmatch(r"\s*1\s*:\s*(\S+)\s*", text)
+    denominator = None
+    if match:
+        try:
+            denominator = float(match[1])
+        except ValueError:
+            denominator = None
+    if denominator is None or not (math.isfinite(denominator) and denominator > 0):
+        raise ValueError(f"--scale takes 1:N such as 1:100 or 1:50, not '{text}'")
+    return denominator
+
+
+def parse_count(text: str, option: str, low: int, high: int) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise ValueError(f"{option} takes a whole number, not '{text}'") from None
+    if not low <= value <= high:
+        raise ValueError(f"{option} takes a whole number from {low} to {high}, not {value}")
+    return value
+
+
+def negative_values(argv: list[str], options: tuple[str, ...]) -> list[str]:
+    """``--view -30,20``: a value that starts with '-' joined to its option, so
+    that argparse does not take it for an option."""
+    out = list(argv)
+    i = 0
+    while i < len(out) - 1:
+        if out[i] in options and re.match(r"-[\d.]", out[i + 1]):
+            out[i:i + 2] = [f"{out[i]}={out[i + 1]}"]
+        i += 1
+    return out
