@@ -149,89 +149,26 @@ def _overrides(parser, sets: list[str]) -> dict[str, float]:
     return values
 
 
-def _read_inputs(files: list[str]) -> list[tuple[str, str]]:
-    sources = []
-    for name in files or ["-"]:
-        if name == "-":
-            sources.append(("<stdin>", sys.stdin.read()))
-            continue
-        try:
-            with open(name, encoding="utf-8", errors="replace") as handle:
-                sources.append((name, handle.read()))
-        except OSError as exc:
-            sys.stderr.write(f"castor: cannot read '{name}': {exc.strerror}\n")
-            sys.exit(USAGE_ERROR)
-    return sources
-
-
-def _streamed_lines(files: list[str], reader):
-    """Lines of the inputs as they arrive (for --no-cpp)."""
-    for name in files or ["-"]:
-        if name == "-":
-            reader.start_file("<stdin>")
-            while True:
-                line = sys.stdin.readline()
-                if not line:
-                    break
-                yield line
-        else:
-            reader.start_file(name)
-            with open(name, encoding="utf-8", errors="replace") as handle:
-                yield from handle
-
-
-def _run(args, settings, reporter) -> int:
-    from castor.interpreter import Interpreter
-    from castor.formats.output import Output
-    from castor.language.reader import Reader
-
-    for name in args.files:
-        if name != "-" and not os.access(name, os.R_OK):
-            reason = "no such file" if not os.path.exists(name) else "permission denied"
-            sys.stderr.write(f"castor: cannot read '{name}': {reason}\n")
-            return USAGE_ERROR
-    output = None if args.check else Output(args.output, args.format)
-
-    interpreter = Interpreter(settings, reporter, output.frame if output else None)
-    if output is not None:
-        output.start()
-    try:
-        if args.no_cpp:
-            reader = Reader(reporter, directives_allowed=False)
-            # statements run as they arrive from a pipe or a terminal; files are
-            # all there, and are parsed in batches
-            streaming = not args.files or any(f == "-" for f in args.files)
-            interpreter.run(reader.chunks(_streamed_lines(args.files, reader)),
-                            streaming=streaming)
-        else:
-            from castor.language.preprocess import preprocess
-
-            text = preprocess(_read_inputs(args.files), args.defines, args.undefines,
-                              args.include_dirs, reporter)
-            reader = Reader(reporter, directives_allowed=True)
-            interpreter.run(reader.chunks(text.splitlines()), streaming=False)
-    except TooManyErrors:
-        pass
-    if output is not None and not output.finish(reporter.errors > 0):
-        reporter.note(f"castor: {args.output} not written: there were errors and no frame")
-    return 1 if reporter.errors else 0
-
-
 def main(argv=None) -> int:
     parser, args = _arguments(sys.argv[1:] if argv is None else argv)
     reporter = Reporter(quiet=args.quiet)
     from castor.interpreter import Settings
+    from castor.jobs import Spec
+    from castor.run import UsageError, run
 
-    from castor.formats import FORMATS
-
-    settings = Settings(overrides=_overrides(parser, args.sets), tolerance=args.tolerance,
-                        max_polygons=args.max_polygons, check_only=args.check, stats=args.stats,
-                        merge_polygons=not FORMATS[args.format].triangles_only)
+    settings = Settings(overrides=_overrides(parser, args.sets), tolerance=args.tolerance)
+    spec = Spec(format=args.format, target=args.output, max_polygons=args.max_polygons,
+                stats=args.stats, summary=args.summary is not None, size=args.size,
+                view=args.view, eye=args.eye, look=args.look, sun=args.sun,
+                samples=args.samples, edges=args.edges, section=args.section, scale=args.scale)
     result: list = []
 
     def work():
         try:
-            result.append(_run(args, settings, reporter))
+            result.append(run(args, settings, spec, reporter))
+        except UsageError as exc:
+            sys.stderr.write(f"castor: {exc}\n")
+            result.append(USAGE_ERROR)
         except BaseException as exc:  # handed to the main thread below
             result.append(exc)
 

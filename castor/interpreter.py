@@ -1,25 +1,26 @@
-"""Execute statements in order: define parameters and objects, write frames.
+"""Execute statements in order: define parameters and objects, hand each frame on.
 
 Parameter definitions are evaluated at once; objects keep their expressions
 and are evaluated at each '>' command with the values then in force (late
-binding). An error skips its statement and castor goes on, so that every
-frame without an error is still written.
+binding): each frame becomes an evaluated CSG tree (castor.csg.evaluate)
+handed to ``submit``, which facetizes and writes it here or elsewhere. An
+error skips its statement and castor goes on, so that every frame without an
+error is still made.
 """
 
 from __future__ import annotations
 
 import itertools
 import math
-import threading
-import time
 from dataclasses import dataclass, field
 from typing import Callable, Iterable
 
 from castor.diagnostics import CastorError, Reporter, TooManyErrors
-from castor.language.expressions import evaluate
+from castor.language.expressions import UndefinedParameter, evaluate
 from castor.language.parse import Parser, SkippedDefinition
 from castor.language.reader import Chunk
 from castor.language.scene import Facetize, ObjectDef, ParamDef, Tables
+from castor.options import DEFAULT_TOLERANCE
 
 
 # statements parsed by one call to the parser when the input is not streamed
@@ -30,38 +31,25 @@ BATCH = 500
 class Settings:
     overrides: dict[str, float] = field(default_factory=dict)  # --set NAME=value
     tolerance: float | None = None
-    max_polygons: int = 20_000_000
-    check_only: bool = False
-    stats: bool = False
-    merge_polygons: bool = True  # False when the output format holds triangles only
 
 
 class Interpreter:
     """Holds the symbol tables and runs statements against them."""
 
-    def __init__(self, settings: Settings, reporter: Reporter, emit_frame: Callable | None):
+    def __init__(self, settings: Settings, reporter: Reporter, submit: Callable | None):
+        from castor.csg.evaluate import Evaluator
+
         self.settings = settings
         self.reporter = reporter
-        self.emit_frame = emit_frame
+        self.submit = submit  # takes each frame's tree; None for --check
         self.tables = Tables()
-        self.tables.parameters.update({"PI": math.pi, "TOLERANCE": 0.01})
+        self.tables.parameters.update({"PI": math.pi, "TOLERANCE": DEFAULT_TOLERANCE})
         if settings.tolerance is not None:
             self.tables.parameters["TOLERANCE"] = settings.tolerance
         self.tables.parameters.update(settings.overrides)
         self.parser = Parser(self.tables)
-        self._facetizer = None
+        self.evaluator = Evaluator()
         self.frames_attempted = 0
-        self.frames_written = 0
-
-    @property
-    def facetizer(self):
-        if self._facetizer is None:
-            # imported here: numpy and manifold3d are only needed once a frame is made
-            from castor.mesh.facetize import Facetizer
-
-            self._facetizer = Facetizer(self.settings.max_polygons, self.settings.check_only,
-                                        self.settings.merge_polygons)
-        return self._facetizer
 
     def run(self, chunks: Iterable[Chunk], streaming: bool = True) -> None:
         """Execute every statement; stops early only after too many errors.
@@ -104,7 +92,14 @@ class Interpreter:
             return  # --set wins over the scene's assignments, as openscad -D does
         if name == "TOLERANCE" and self.settings.tolerance is not None:
             return
-        self.tables.parameters[name] = evaluate(statement.expr, self.tables.parameters)
+        try:
+            self.tables.parameters[name] = evaluate(statement.expr, self.tables.parameters)
+        except UndefinedParameter as exc:
+            exc.message += (f"; parameter definitions are evaluated at once, where they stand, "
+                            f"so a repetition's variable such as '>[{exc.name} = ...]' has no "
+                            f"value here: write the expression inside the object that uses "
+                            f"it, or as a macro (#define {name} (...))")
+            raise
 
     def _define_object(self, statement: ObjectDef) -> None:
         name = statement.name
@@ -116,95 +111,47 @@ class Interpreter:
         self.tables.broken.discard(name)
 
     def _facetize(self, statement: Facetize) -> None:
-        from castor.mesh.facetize import repeat_values
+        """One frame, or one for each value of ``>[T = ...]``; an error found in
+        several of its frames is reported once, with the frames it concerns."""
+        from castor.csg.evaluate import FrameErrors, repeat_values
 
         where = f"{statement.location.file}:{statement.location.line}"
-        env = dict(self.tables.parameters)
         if statement.repeat is None:
-            self._frame(statement, env, where)
-            return
-        values = repeat_values(statement.repeat, env)
+            values = [None]
+        else:
+            values = repeat_values(statement.repeat, dict(self.tables.parameters))
+        failures: dict[tuple, tuple[CastorError, list[int]]] = {}
         for value in values:
             env = dict(self.tables.parameters)
-            env[statement.repeat.param] = value
+            if statement.repeat is not None:
+                env[statement.repeat.param] = value
+            self.frames_attempted += 1
+            number = self.frames_attempted
             try:
-                self._frame(statement, env, where)
-            except CastorError as exc:
-                self.reporter.error(exc)
-
-    def _frame(self, statement: Facetize, env: dict, where: str) -> None:
-        self.frames_attempted += 1
-        number = self.frames_attempted
-        with Progress(f"frame {number} {where}", self.reporter.stream):
-            frame = self.facetizer.frame(statement.objects, env, number, where, statement.location)
-        if self.settings.check_only:
-            return
-        if frame.polygon_count == 0:
-            self.reporter.warning(f"frame {number} is empty: its objects have no volume",
-                                  statement.location)
-        if self.emit_frame is not None:
-            self.emit_frame(frame, statement.location)
-        self.frames_written += 1
-        if self.settings.stats:
-            s = self.facetizer.frame_stats(frame)
-            self.reporter.note(
-                f"castor: frame {number} {where}: {_count(s.primitives, 'primitive')}, "
-                f"{_count(s.booleans, 'boolean operation')}, {_count(s.polygons, 'polygon')}, "
-                f"{_count(s.vertices, 'vertex', 'vertices')}, Euler characteristic {s.euler}, "
-                f"{s.seconds:.3f} s")
+                scene = self.evaluator.frame(statement.objects, env, number, where,
+                                             statement.location)
+            except FrameErrors as group:
+                for error in group.errors:
+                    failures.setdefault((error.message, error.location), (error, []))[1].append(number)
+                continue
+            except CastorError as error:
+                failures.setdefault((error.message, error.location), (error, []))[1].append(number)
+                continue
+            if self.submit is not None:
+                self.submit(scene)
+        for error, numbers in failures.values():
+            if len(values) > 1:
+                error.message += f" (in {frames_text(numbers)})"
+            self.reporter.error(error)
 
 
-class Progress:
-    """A line on the terminal while a frame takes more than a second.
-
-    Only when standard error is a terminal: never in a pipeline's logs. The
-    line is cleared when the frame is done.
-    """
-
-    DELAY = 1.0
-
-    def __init__(self, what: str, stream):
-        self.what = what
-        self.stream = stream
-        self.shown = False
-        self.done = threading.Event()
-        self.thread = None
-
-    def __enter__(self):
-        try:
-            terminal = self.stream.isatty()
-        except (AttributeError, ValueError):
-            terminal = False
-        if terminal:
-            self.thread = threading.Thread(target=self._run, daemon=True)
-            self.thread.start()
-        return self
-
-    def _run(self):
-        started = time.monotonic()
-        if self.done.wait(self.DELAY):
-            return
-        spinner = "|/-\\"
-        tick = 0
-        while not self.done.wait(0.25):
-            tick += 1
-            self.stream.write(f"\rcastor: {self.what}: facetizing {spinner[tick % 4]} "
-                              f"{time.monotonic() - started:.0f} s ")
-            self.stream.flush()
-            self.shown = True
-
-    def __exit__(self, *exc):
-        self.done.set()
-        if self.thread is not None:
-            self.thread.join()
-            if self.shown:
-                self.stream.write("\r\033[K")
-                self.stream.flush()
-        return False
+def frames_text(numbers: list[int]) -> str:
+    """'frame 3', 'frames 1 to 11', 'frames 1, 3, 7'."""
+    if len(numbers) == 1:
+        return f"frame {numbers[0]}"
+    if numbers == list(range(numbers[0], numbers[-1] + 1)):
+        return f"frames {numbers[0]} to {numbers[-1]}"
+    return "frames " + ", ".join(str(n) for n in numbers)
 
 
-def _count(n: int, one: str, many: str | None = None) -> str:
-    return f"{n} {one if n == 1 else (many or one + 's')}"
-
-
-__all__ = ["Interpreter", "Settings", "TooManyErrors"]
+__all__ = ["Interpreter", "Settings", "TooManyErrors", "frames_text"]

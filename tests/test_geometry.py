@@ -209,7 +209,7 @@ def test_polygon_limit_stops_an_exploding_graph():
     status, out, err = run("--no-cpp", stdin="\n".join(lines) + "\n")
     assert status == 1
     # refused from an estimate, before anything is built
-    assert ("error: the frame would need about 1,099,511,627,776 polygons, more than "
+    assert ("error: the frame would need about 1,204,738,326,528 polygons, more than "
             "--max-polygons 20,000,000") in err
     assert parse_stream(out) == []
     # a smaller explosion passes the estimate and is stopped while it is built

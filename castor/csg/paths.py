@@ -12,6 +12,8 @@ def join(segments) -> str:
     """Segments from the root down, as text: a boolean step after anything gets a dot."""
     out = []
     for segment in segments:
+        if not segment:
+            continue
         if out and segment[0] in "UID":
             out.append(".")
         out.append(segment)
@@ -56,13 +58,17 @@ class Trail:
     def down(self, segment: str) -> "Trail":
         return Trail(self, segment)
 
-    def __str__(self) -> str:
+    def steps(self) -> str:
+        """The way down as path text ('' at the root)."""
         segments = []
         node = self
         while node is not None and node.segment:
             segments.append(node.segment)
             node = node.parent
-        return join(reversed(segments)) or "the object"
+        return join(reversed(segments))
+
+    def __str__(self) -> str:
+        return self.steps() or "the object"
 
 
 ROOT = Trail()

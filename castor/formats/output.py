@@ -52,6 +52,20 @@ def write_atomically(path: str, data: bytes) -> None:
         raise
 
 
+def encode(frame: Frame, name: str, target: str | None = None) -> tuple[bytes, dict[str, bytes]]:
+    """The frame in format ``name``, and the files that go beside it (by path)."""
+    patterned = target is not None and has_pattern(target)
+    if name == "cps" and not patterned:  # a part of one stream, not a file of its own
+        from castor.formats.cps import format_frame
+
+        return format_frame(frame).encode("utf-8"), {}
+    if patterned:
+        target = target % frame.number
+    data = _render(frame, name, target)
+    companions = getattr(writer(name), "companions", None)
+    return data, (companions(frame, target) if companions and target else {})
+
+
 def _render(frame: Frame, name: str, path: str | None = None) -> bytes:
     module = writer(name)
     binary = FORMATS[name].binary
@@ -90,37 +104,38 @@ class Output:
             sys.stdout.write(HEADER)
             sys.stdout.flush()
 
-    def frame(self, frame: Frame, location: Location) -> None:
+    def put(self, number: int, data: bytes, companions: dict[str, bytes],
+            location: Location) -> None:
+        """Write one frame's encoded bytes where they go."""
         self.frames += 1
-        if self.format == "cps" and not (self.path and has_pattern(self.path)):
-            from castor.formats.cps import format_frame
-
-            text = format_frame(frame)
+        patterned = bool(self.path and has_pattern(self.path))
+        if self.format == "cps" and not patterned:
+            text = data.decode("utf-8")
             if self.path is None:
                 sys.stdout.write(text)
                 sys.stdout.flush()
             else:
                 self.stream_parts.append(text)
             return
-        if self.frames > 1 and not (self.path and has_pattern(self.path)):
+        if self.frames > 1 and not patterned:
             where = self.path or "standard output"
             stem, suffix = os.path.splitext(self.path or f"scene{FORMATS[self.format].suffix}")
             raise OutputError(
-                f"{self.format} output holds one frame, and this is frame {frame.number} for "
+                f"{self.format} output holds one frame, and this is frame {number} for "
                 f"{where}; give a pattern such as -o {stem}-%03d{suffix} for one file per frame",
                 location)
-        target = None
-        if self.path is not None:
-            target = self.path % frame.number if has_pattern(self.path) else self.path
-        data = _render(frame, self.format, target)
-        if target is None:
+        if self.path is None:
             sys.stdout.buffer.write(data)
             sys.stdout.buffer.flush()
             return
-        module = writer(self.format)
-        for companion, content in getattr(module, "companions", lambda f, p: {})(frame, target).items():
+        for companion, content in companions.items():
             write_atomically(companion, content)
-        write_atomically(target, data)
+        write_atomically(self.target(number), data)
+
+    def target(self, number: int) -> str | None:
+        if self.path is None:
+            return None
+        return self.path % number if has_pattern(self.path) else self.path
 
     def finish(self, had_errors: bool) -> bool:
         """Put a single cps file in place; False when it was left out."""

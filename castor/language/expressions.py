@@ -130,6 +130,14 @@ def _binary(op: str, a: float, b: float, location: Location) -> float:
     return _finite(r, location, f"the result of '{op}'")
 
 
+class UndefinedParameter(EvaluationError):
+    """A parameter read where it has no value."""
+
+    def __init__(self, name: str, location: Location):
+        super().__init__(f"parameter '{name}' is not defined", location)
+        self.name = name
+
+
 def evaluate(expr: Expr, env: Mapping[str, float]) -> float:
     """The value of ``expr`` with the parameter values of ``env``."""
     kind = type(expr)
@@ -139,7 +147,7 @@ def evaluate(expr: Expr, env: Mapping[str, float]) -> float:
         try:
             return env[expr.name]
         except KeyError:
-            raise EvaluationError(f"parameter '{expr.name}' is not defined", expr.location) from None
+            raise UndefinedParameter(expr.name, expr.location) from None
     if kind is Binary:
         return _binary(expr.op, evaluate(expr.left, env), evaluate(expr.right, env), expr.location)
     if kind is Unary:

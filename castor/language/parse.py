@@ -20,36 +20,12 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
 from castor.diagnostics import CastorError, CastorSyntaxError, EvaluationError, LimitError, SceneError
 from castor.language.expressions import FUNCTIONS, arity_message, evaluate
 from castor.language.reader import Chunk
+from castor.language.vocabulary import PRIMITIVES, TRANSFORMS
 from castor.language.scene import (EMPTY, Binary, Boolean, Call, Facetize, Named, Number, ObjectDef, Param,
                     ParamDef, Primitive, Repeat, Step, Tables, Transformed, Unary)
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
 MAX_DEPTH = 100_000
-
-# primitive -> (minimum argument count, maximum or None, description of the form)
-PRIMITIVES: dict[str, tuple[int, int | None, str]] = {
-    "cu": (3, 3, "R, G, B"),
-    "sp": (3, 3, "R, G, B"),
-    "cy": (3, 3, "R, G, B"),
-    "co": (3, 3, "R, G, B"),
-    "to": (4, 4, "R, G, B, K"),
-    "pr": (4, 4, "R, G, B, N"),
-    "py": (4, 4, "R, G, B, N"),
-    "ex": (9, None, "R, G, B, x1, y1, x2, y2, x3, y3, ..."),
-    "rv": (9, None, "R, G, B, r1, z1, r2, z2, r3, z3, ..."),
-}
-
-# transformation -> allowed argument counts and description
-TRANSFORMS: dict[str, tuple[tuple[int, ...], str]] = {
-    "t": ((3,), "X, Y, Z"),
-    "rx": ((1,), "A"),
-    "ry": ((1,), "A"),
-    "rz": ((1,), "A"),
-    "r": ((4,), "X, Y, Z, A"),
-    "h": ((1, 3), "K or KX, KY, KZ"),
-    "m": ((12,), "a, b, c, d, e, f, g, h, i, j, k, l"),
-    "f": ((1,), "T"),
-}
 
 _WORDS = {
     "PARAM": "a parameter name",
@@ -182,7 +158,7 @@ class Builder:
                 f"unknown transformation '{token}'{_known('@', kind, TRANSFORMS)}",
                 location))
         else:
-            counts, form = TRANSFORMS[kind]
+            counts, form = TRANSFORMS[kind].counts, TRANSFORMS[kind].form
             if len(args) not in counts:
                 wanted = " or ".join(str(c) for c in counts)
                 self.faults.append(SceneError(
@@ -199,7 +175,11 @@ class Builder:
             self.faults.append(SceneError(
                 f"unknown primitive '{token}'{_known('!', kind, PRIMITIVES)}", location))
         else:
-            low, high, form = PRIMITIVES[kind]
+            declared = PRIMITIVES[kind]
+            low, form = declared.count, declared.form
+            high = None if declared.pairs else low
+            if declared.pairs:
+                low += 6  # at least three coordinate pairs
             n = len(args)
             if n < low or (high is not None and n > high):
                 wanted = str(low) if low == high else f"at least {low}"

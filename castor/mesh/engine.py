@@ -64,8 +64,9 @@ class Solid:
         return Solid(self.parts, {i: Origin(o.steps.under(prefix), o.colour)
                                   for i, o in self.origins.items()})
 
-    def transformed(self, matrix: np.ndarray) -> "Solid":
-        m = np.ascontiguousarray(matrix[:3, :])
+    def transformed(self, matrix) -> "Solid":
+        """Moved by an affine map: a 3x4 matrix, or its 12 numbers row by row."""
+        m = np.asarray(matrix, dtype=np.float64).reshape(-1, 4)[:3]
         return Solid(tuple(part.transform(m) for part in self.parts), self.origins)
 
 

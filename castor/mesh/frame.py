@@ -30,6 +30,7 @@ class FrameObject:
     indices: np.ndarray  # vertex numbers, counter-clockwise seen from outside
     origin_of: np.ndarray  # (P,) index into origins
     origins: list[Origin]
+    name: str = ""  # the '>' command's object: its name, or objectK
 
     @property
     def polygon_count(self) -> int:
@@ -52,3 +53,32 @@ class Frame:
     @property
     def polygon_count(self) -> int:
         return sum(o.polygon_count for o in self.objects)
+
+
+def compact(pieces, origin_table, name: str = "") -> FrameObject:
+    """One object from its parts' polygons: vertices and origins compacted to
+    those the polygons use."""
+    if not pieces:
+        return FrameObject(np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64),
+                           np.zeros(0, np.int64), [], name)
+    if len(pieces) == 1:
+        vertices, merged = pieces[0]
+        offsets, indices, origin_ids = merged.offsets, merged.indices, merged.origin_ids
+    else:
+        vertex_base = np.cumsum([0] + [len(v) for v, _ in pieces[:-1]])
+        index_base = np.cumsum([0] + [len(m.indices) for _, m in pieces[:-1]])
+        vertices = np.concatenate([v for v, _ in pieces])
+        indices = np.concatenate([m.indices + b for (_, m), b in zip(pieces, vertex_base)])
+        offsets = np.concatenate([np.zeros(1, np.int64)]
+                                 + [m.offsets[1:] + b for (_, m), b in zip(pieces, index_base)])
+        origin_ids = np.concatenate([m.origin_ids for _, m in pieces])
+    used = np.zeros(len(vertices), bool)
+    used[indices] = True
+    if not used.all():  # vertices left inside merged polygons
+        renumber = np.cumsum(used) - 1
+        indices = renumber[indices]
+        vertices = vertices[used]
+    ids, origin_of = np.unique(origin_ids, return_inverse=True)
+    origins = [origin_table[int(i)] for i in ids]
+    return FrameObject(np.ascontiguousarray(vertices), offsets, indices.astype(np.int64),
+                       origin_of.ravel().astype(np.int64), origins, name)

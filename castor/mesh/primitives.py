@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from castor.diagnostics import GeometryError, Location
+from castor.language.outline import polygon, profile, signed_area
 
 MIN_SEGMENTS = 8
 
@@ -191,70 +191,12 @@ def torus(k: float, around: int, tube: int) -> Mesh:
     return _quads(vertices.reshape(-1, 3), quads.reshape(-1, 4), 0)
 
 
-def _check_simple(points: np.ndarray, what: str, location: Location, path: object) -> None:
-    """Refuse repeated vertices, self-intersection and zero area."""
-    n = len(points)
-    nxt = np.roll(points, -1, axis=0)
-    if np.any(np.all(points == nxt, axis=1)):
-        raise GeometryError(f"the {what} of {path} repeats a vertex", location)
-    a, b = points, nxt
-    d = b - a
-    for i in range(n):
-        p, r = a[i], d[i]
-        # edges that do not share a vertex with edge i
-        others = np.array([j for j in range(n) if j != i and j != (i + 1) % n and (j + 1) % n != i])
-        if len(others) == 0:
-            continue
-        q, s = a[others], d[others]
-        denom = r[0] * s[:, 1] - r[1] * s[:, 0]
-        qp = q - p
-        t_num = qp[:, 0] * s[:, 1] - qp[:, 1] * s[:, 0]
-        u_num = qp[:, 0] * r[1] - qp[:, 1] * r[0]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = t_num / denom
-            u = u_num / denom
-        crossing = (denom != 0) & (t >= 0) & (t <= 1) & (u >= 0) & (u <= 1)
-        # parallel edges on one line that overlap
-        collinear = (denom == 0) & (t_num == 0)
-        if np.any(collinear):
-            rr = float(r @ r)
-            t0 = (qp[collinear] @ r) / rr
-            t1 = ((qp[collinear] + s[collinear]) @ r) / rr
-            overlap = (np.maximum(t0, t1) >= 0) & (np.minimum(t0, t1) <= 1)
-            crossing[np.flatnonzero(collinear)[overlap]] = True
-        if np.any(crossing):
-            raise GeometryError(f"the {what} of {path} intersects itself (edge {i + 1} crosses "
-                                f"edge {int(others[np.argmax(crossing)]) + 1})", location)
-        # adjacent edges folding back onto each other
-        r_next = d[(i + 1) % n]
-        if r[0] * r_next[1] - r[1] * r_next[0] == 0 and float(r @ r_next) < 0:
-            raise GeometryError(f"the {what} of {path} folds back on itself at vertex "
-                                f"{(i + 1) % n + 1}", location)
-    if _signed_area(points) == 0:
-        raise GeometryError(f"the {what} of {path} has zero area", location)
-
-
-def _signed_area(points: np.ndarray) -> float:
-    x, y = points[:, 0], points[:, 1]
-    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
-
-
-def _polygon(values: tuple, what: str, location: Location, path: object) -> np.ndarray:
-    points = np.array(values, dtype=np.float64).reshape(-1, 2)
-    if len(points) > 3 and np.all(points[0] == points[-1]):
-        points = points[:-1]  # a closing vertex repeating the first is allowed
-    if len(points) < 3:
-        raise GeometryError(f"the {what} of {path} needs at least 3 vertices", location)
-    _check_simple(points, what, location, path)
-    return points
-
-
-def extrusion(values: tuple, location: Location, path: object) -> Mesh:
+def extrusion(values: tuple) -> Mesh:
     """The simple polygon (x1, y1, ...) in z = 0 swept to z = 1."""
     from manifold3d import triangulate
 
-    points = _polygon(values, "polygon", location, path)
-    if _signed_area(points) < 0:
+    points = polygon(values, "polygon", None, "")
+    if signed_area(points) < 0:
         points = points[::-1].copy()
     n = len(points)
     cap = np.asarray(triangulate([points]), dtype=np.int64)
@@ -267,14 +209,14 @@ def extrusion(values: tuple, location: Location, path: object) -> Mesh:
                  [np.zeros(len(cap), np.int64), np.ones(len(cap), np.int64), side.faces])
 
 
-def revolution(values: tuple, segments: int, location: Location, path: object) -> Mesh:
+def revolution(values: tuple, segments: int) -> Mesh:
     """The simple profile (r1, z1, ...) turned a full circle about the z axis."""
-    profile = _profile(values, location, path)
-    if _signed_area(profile) < 0:
-        profile = profile[::-1].copy()
+    outline = profile(values, None, "")
+    if signed_area(outline) < 0:
+        outline = outline[::-1].copy()
     n = segments
-    m = len(profile)
-    on_axis = profile[:, 0] == 0
+    m = len(outline)
+    on_axis = outline[:, 0] == 0
     # vertex numbers: one per profile point on the axis, n per point off it
     first = np.zeros(m, np.int64)
     count = np.where(on_axis, 1, n)
@@ -283,7 +225,7 @@ def revolution(values: tuple, segments: int, location: Location, path: object) -
     cos, sin = np.cos(angles), np.sin(angles)
     sin[0] = 0.0
     blocks = []
-    for (r, z), axis in zip(profile, on_axis):
+    for (r, z), axis in zip(outline, on_axis):
         if axis:
             blocks.append([[0.0, 0.0, z]])
         else:
@@ -324,40 +266,9 @@ def signed_volume(vertices: np.ndarray, triangles: np.ndarray) -> float:
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
 
-def validate(kind: str, shape: tuple, location: Location, path: object) -> None:
-    """Refuse arguments that give no valid solid, without building anything."""
-    if kind == "to":
-        k = shape[0]
-        if not 0 < k < 1:
-            raise GeometryError(f"the tube radius K of {path} must lie strictly between 0 and 1, "
-                                f"not {k:g}", location)
-    elif kind in ("pr", "py"):
-        n = shape[0]
-        if n != int(n) or n < 3:
-            raise GeometryError(f"the number of sides N of {path} must be a whole number >= 3, "
-                                f"not {n:g}", location)
-        if n > 10_000_000:
-            raise GeometryError(f"the number of sides N of {path} is too large ({n:g})", location)
-    elif kind == "ex":
-        _polygon(shape, "polygon", location, path)
-    elif kind == "rv":
-        _profile(shape, location, path)
-
-
-def _profile(values: tuple, location: Location, path: object) -> np.ndarray:
-    profile = _polygon(values, "profile", location, path)
-    if np.any(profile[:, 0] < 0):
-        i = int(np.argmax(profile[:, 0] < 0))
-        raise GeometryError(f"the profile of {path} has r < 0 at vertex {i + 1} "
-                            f"(r = {profile[i, 0]:g}); a profile lies in the half-plane r >= 0",
-                            location)
-    return profile
-
-
-def build(kind: str, shape: tuple, tolerance: float, location: Location, path: object) -> Mesh:
-    """The mesh of primitive ``kind`` with its non-colour arguments ``shape``."""
-    if kind in ("to", "pr", "py"):
-        validate(kind, shape, location, path)
+def build(kind: str, shape: tuple, tolerance: float) -> Mesh:
+    """The mesh of primitive ``kind`` with its non-colour arguments ``shape``,
+    already checked (castor.language.vocabulary) by the evaluator."""
     if kind == "cu":
         return cube()
     if kind == "sp":
@@ -371,8 +282,8 @@ def build(kind: str, shape: tuple, tolerance: float, location: Location, path: o
     if kind in ("pr", "py"):
         return prism(int(shape[0])) if kind == "pr" else pyramid(int(shape[0]))
     if kind == "ex":
-        return extrusion(shape, location, path)
+        return extrusion(shape)
     if kind == "rv":
         radius = max(shape[0::2])
-        return revolution(shape, circle_segments(radius, tolerance), location, path)
+        return revolution(shape, circle_segments(radius, tolerance))
     raise AssertionError(kind)

@@ -1,0 +1,257 @@
+"""Instantiate the scene graph at one frame's parameter values: the evaluated CSG tree.
+
+One walk of the DAG evaluates every expression, repetition, colour and
+matrix with the parameters in force, checks every primitive, and gives a
+``tree.Frame`` of plain data. A named object becomes one ``Shared`` subtree
+for each set of values of the parameters it reads and facet tolerance, made
+once and used from every place that refers to it: 400 references to one tree
+are one subtree. Every error of the walk is collected with its location, so
+that a frame with two faults reports both.
+"""
+
+from __future__ import annotations
+
+import math
+from contextlib import contextmanager
+from typing import MutableMapping
+
+from castor.csg import tree
+from castor.csg.paths import ROOT, Trail
+from castor.csg.transforms import step_matrix
+from castor.diagnostics import CastorError, EvaluationError, GeometryError, LimitError, Location
+from castor.language.expressions import evaluate, format_number
+from castor.language.scene import Boolean, Named, Node, Primitive, Repeat, Transformed
+from castor.language.vocabulary import PRIMITIVES
+from castor.options import DEFAULT_TOLERANCE
+
+MAX_REPEAT = 1_000_000
+# Beyond this, double precision leaves too few digits for exact booleans.
+MAX_COORDINATE = 1e12
+_MISSING = object()
+# shared subtrees remembered across frames (late binding makes most frames alike)
+_MEMO_LIMIT = 100_000
+
+
+class FrameErrors(CastorError):
+    """Every error found while evaluating one frame, in the order found."""
+
+    def __init__(self, errors: list[CastorError]):
+        super().__init__(errors[0].message, errors[0].location)
+        self.errors = errors
+
+
+def repeat_values(repeat: Repeat, env) -> list[float]:
+    """The values A, A+S, ... not past B (LANGUAGE.md §6)."""
+    start = evaluate(repeat.start, env)
+    stop = evaluate(repeat.stop, env)
+    step = evaluate(repeat.step, env) if repeat.step is not None else 1.0
+    if step == 0:
+        location = repeat.step.location if repeat.step is not None else repeat.location
+        raise EvaluationError("the step of a repetition is zero; it would never end", location)
+    span = (stop - start) / step
+    if span < -1e-9:
+        return []
+    count = math.floor(span + 1e-9) + 1 if span < 1e18 else math.inf
+    if count > MAX_REPEAT:
+        raise LimitError(f"the repetition [{repeat.param} = {format_number(start)}, "
+                         f"{format_number(stop)}, {format_number(step)}] gives "
+                         f"{count if count < math.inf else 'too many'} values; "
+                         f"at most {MAX_REPEAT} are allowed", repeat.location)
+    return [start + i * step for i in range(count)]
+
+
+@contextmanager
+def restored(env, name: str):
+    """A repetition's parameter gets its previous value (or none) back afterwards."""
+    saved = env.get(name, _MISSING)
+    try:
+        yield
+    finally:
+        if saved is _MISSING:
+            env.pop(name, None)
+        else:
+            env[name] = saved
+
+
+def quantize(tolerance: float) -> float:
+    """Round a tolerance down to a power of 2^(1/4), so that near-equal scales
+    share one shared subtree and one facetization."""
+    if tolerance <= 0 or not math.isfinite(tolerance):
+        return tolerance
+    # the slack makes it idempotent: a quantized tolerance quantizes to itself
+    return 2.0 ** (math.floor(math.log2(tolerance) * 4 + 1e-9) / 4)
+
+
+def _matrix(m) -> tree.Matrix:
+    return tuple(float(x) for x in m[:3, :].ravel())
+
+
+class Evaluator:
+    """Walks the scene graph into evaluated trees, frame after frame.
+
+    Shared subtrees are remembered by (named node, values of the parameters it
+    reads, tolerance), so a named object that reads nothing that changed is the
+    same subtree, with the same key, in the next frame too.
+    """
+
+    def __init__(self):
+        self.memo: dict[tuple, tuple[Named, tree.Shared | None]] = {}
+        self.errors: list[CastorError] = []
+        self._seen_errors: set[tuple] = set()
+
+    def frame(self, objects: tuple[Node, ...], env: MutableMapping[str, float], number: int,
+              where: str, location: Location) -> tree.Frame:
+        """The evaluated tree of one '>' command; raises FrameErrors with every
+        error found."""
+        self.errors = []
+        self._seen_errors = set()
+        tolerance = env.get("TOLERANCE", DEFAULT_TOLERANCE)
+        if not (tolerance > 0 and math.isfinite(tolerance)):
+            raise EvaluationError(f"TOLERANCE must be a positive number, not "
+                                  f"{format_number(tolerance)}", location)
+        if len(self.memo) > _MEMO_LIMIT:
+            self.memo.clear()
+        made = []
+        for k, node in enumerate(objects, 1):
+            if type(node) is Named:
+                name = node.name
+            else:
+                name = f"object{k}"
+            root = self._node(node, env, tree.IDENTITY, 1.0, tolerance, ROOT, ROOT)
+            made.append(tree.Object(name, root))
+        if self.errors:
+            raise FrameErrors(self.errors)
+        return tree.Frame(number, where, location, tuple(made))
+
+    def _fail(self, error: CastorError) -> None:
+        key = (error.message, error.location)
+        if key not in self._seen_errors:
+            self._seen_errors.add(key)
+            self.errors.append(error)
+
+    # --- one node: its tree, or None when it is empty or failed
+    def _node(self, node: Node, env, matrix: tree.Matrix, stretch: float, tolerance: float,
+              trail: Trail, rel: Trail):
+        kind = type(node)
+        try:
+            if kind is Named:
+                return self._named(node, env, matrix, stretch, tolerance, trail, rel)
+            if kind is Transformed:
+                return self._transformed(node, env, matrix, stretch, tolerance, trail, rel)
+            if kind is Boolean:
+                return self._boolean(node, env, matrix, stretch, tolerance, trail, rel)
+            return self._primitive(node, env, matrix, stretch, tolerance, trail, rel)
+        except FrameErrors as group:
+            for error in group.errors:
+                self._fail(error)
+        except CastorError as error:
+            self._fail(error)
+        return None
+
+    def _named(self, node: Named, env, matrix, stretch, tolerance, trail, rel):
+        local = quantize(tolerance / stretch)
+        key = (id(node), tuple(env.get(p, _MISSING) for p in sorted(node.params)), local)
+        remembered = self.memo.get(key)
+        if remembered is not None and remembered[0] is node:
+            shared = remembered[1]
+        else:
+            before = len(self.errors)
+            child = self._node(node.child, env, tree.IDENTITY, 1.0, local,
+                               trail.down(f"({node.name})"), ROOT)
+            if len(self.errors) > before:
+                shared = None
+                child = None
+            else:
+                shared = tree.Shared(node.name, child, tree.content_key(node.name, child),
+                                     node.location)
+            if len(self.errors) == before:
+                self.memo[key] = (node, shared)
+        if shared is None or shared.child is None:
+            return None
+        return tree.Use(matrix, rel.steps(), shared)
+
+    def _transformed(self, node: Transformed, env, matrix, stretch, tolerance, trail, rel):
+        import numpy as np
+
+        local = np.eye(4)
+        moved = False
+        for step in node.steps:
+            values = [evaluate(a, env) for a in step.args]
+            if step.kind == "f":
+                if not (values[0] > 0):
+                    raise GeometryError(f"the facet tolerance of '@f' must be positive, not "
+                                        f"{format_number(values[0])}", step.location)
+                # in scene units; inside a named object used at a scale, in its units
+                tolerance = values[0]
+                continue
+            m, factor = step_matrix(step.kind, values, step.location, trail)
+            local = local @ m
+            stretch *= factor
+            moved = True
+        if moved:
+            if not np.all(np.abs(local) <= MAX_COORDINATE):
+                raise GeometryError(f"the transformations of {trail} reach beyond "
+                                    f"{MAX_COORDINATE:g}, the largest coordinate castor handles",
+                                    node.location)
+            matrix = tree.compose(matrix, _matrix(local))
+        return self._node(node.child, env, matrix, stretch, tolerance, trail, rel)
+
+    def _boolean(self, node: Boolean, env, matrix, stretch, tolerance, trail, rel):
+        op = node.op
+        operands = []
+        if node.repeat is None:
+            for k, child in enumerate(node.operands, 1):
+                step = f"{op}{k}"
+                operands.append(self._node(child, env, matrix, stretch, tolerance,
+                                           trail.down(step), rel.down(step)))
+        else:
+            with restored(env, node.repeat.param):
+                for k, value in enumerate(repeat_values(node.repeat, env), 1):
+                    env[node.repeat.param] = value
+                    step = f"{op}{k}"
+                    operands.append(self._node(node.operands[0], env, matrix, stretch,
+                                               tolerance, trail.down(step), rel.down(step)))
+        if op == "D":
+            if not operands or operands[0] is None:
+                return None
+            if len(operands) < 2 or operands[1] is None:
+                return operands[0]
+        elif op == "I" and (not operands or any(o is None for o in operands)):
+            return None
+        operands = [o for o in operands if o is not None]
+        if not operands:
+            return None
+        if len(operands) == 1 and op != "D":
+            return operands[0]
+        return tree.Boolean(op, tuple(operands), node.location)
+
+    def _primitive(self, node: Primitive, env, matrix, stretch, tolerance, trail, rel):
+        here = trail.down(f"!{node.kind}")
+        values = [evaluate(a, env) for a in node.args]
+        colour = tuple(values[:3])
+        for name, c, arg in zip(("red", "green", "blue"), colour, node.args):
+            if not 0.0 <= c <= 1.0:
+                hint = (f"; if it is a 0..255 value, write {format_number(c)}/255"
+                        if 1 < c <= 255 else "")
+                raise GeometryError(f"colour component {name} = {format_number(c)} of {here} is "
+                                    f"outside 0..1{hint}", arg.location)
+        shape = tuple(values[3:])
+        declared = PRIMITIVES[node.kind]
+        if declared.check is not None:
+            declared.check(shape, node.location, here)
+        _check_reach(matrix, shape, node, here)
+        path = rel.down(f"!{node.kind}").steps()
+        return tree.Primitive(node.kind, shape, colour, matrix, quantize(tolerance / stretch),
+                              path, node.location)
+
+
+def _check_reach(matrix: tree.Matrix, shape: tuple, node: Primitive, here: Trail) -> None:
+    """Refuse a primitive whose corners reach beyond MAX_COORDINATE."""
+    extent = 2.0
+    if node.kind in ("ex", "rv") and shape:
+        extent = max(extent, max(abs(v) for v in shape))
+    for row in range(3):
+        a, b, c, t = matrix[4 * row: 4 * row + 4]
+        if (abs(a) + abs(b) + abs(c)) * extent + abs(t) > MAX_COORDINATE:
+            raise GeometryError(f"{here} reaches beyond {MAX_COORDINATE:g}, "
+                                "the largest coordinate castor handles", node.location)

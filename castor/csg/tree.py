@@ -1,0 +1,226 @@
+"""The evaluated CSG tree: the scene of one frame as plain, immutable, picklable data.
+
+At each '>' (and each value of ``>[T = ...]``) the evaluator instantiates the
+scene graph with the parameter values in force and gives one ``Frame``: its
+objects, each the root of a tree of
+
+- ``Primitive`` leaves: the kind, the evaluated shape arguments, the colour,
+  the affine matrix from the primitive's unit space (the product of the
+  transformations above it, up to the nearest shared subtree), the facet
+  tolerance in the primitive's own units, and its path;
+- ``Boolean`` nodes: the operator and the operands;
+- ``Shared`` nodes: the subtree of a named object, made once for each set of
+  parameter values and tolerance it reads and referenced from every place that
+  uses it, with a canonical ``key`` computed from its content (never ``id()``),
+  so that a facetizer in any process builds it once per key;
+- ``Use`` nodes: one use of a shared subtree, with the matrix that places it
+  and the path from the enclosing shared subtree down to it.
+
+Paths are relative to the nearest shared subtree above: a leaf's path holds
+the boolean steps down to it (``U1.D2!cu``; the k-th operand of a boolean is
+``U2``, ``I1``, ``D2``), a ``Use`` holds the steps down to the shared subtree
+it places, and the subtree adds ``(name)``. ``leaves`` writes whole paths.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import struct
+from dataclasses import dataclass, field
+from typing import Iterator, Union
+
+from castor.diagnostics import Location
+
+# A 3x4 affine matrix, row by row: (a, b, c, tx, d, e, f, ty, g, h, i, tz)
+Matrix = tuple[float, ...]
+IDENTITY: Matrix = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0)
+
+
+@dataclass(frozen=True, slots=True)
+class Primitive:
+    kind: str  # "cu", "sp", ... (castor.language.vocabulary.PRIMITIVES)
+    shape: tuple[float, ...]  # the arguments after the colour
+    colour: tuple[float, float, float]
+    matrix: Matrix
+    tolerance: float  # facet tolerance in the primitive's own units
+    path: str  # from the nearest shared subtree down: "U2!cy"
+    location: Location = field(compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Boolean:
+    op: str  # "U", "I" or "D"
+    operands: tuple["Node", ...]
+    location: Location = field(compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Shared:
+    """A named object's subtree, one object for each key however often it is used."""
+
+    name: str
+    child: "Node | None"  # None: empty
+    key: str  # a digest of the name and the content
+    location: Location = field(compare=False)
+
+    def __hash__(self) -> int:
+        return hash(self.key)
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, Shared) and other.key == self.key
+
+
+@dataclass(frozen=True, slots=True)
+class Use:
+    matrix: Matrix
+    path: str  # the boolean steps from the enclosing shared subtree: "U2"
+    shared: Shared
+
+
+Node = Union[Primitive, Boolean, Use]
+
+
+@dataclass(frozen=True, slots=True)
+class Object:
+    """One object of a '>' command: a name (that of its named object, or
+    ``objectK``) and its tree (None when it is empty)."""
+
+    name: str
+    root: Node | None
+
+
+@dataclass(frozen=True, slots=True)
+class Frame:
+    """The scene of one frame: what a facetizer, a ray tracer or a drawing needs."""
+
+    number: int
+    where: str  # FILE:LINE of the '>' command
+    location: Location
+    objects: tuple[Object, ...]
+
+    def shared(self) -> dict[str, Shared]:
+        """Every shared subtree of the frame, by key."""
+        found: dict[str, Shared] = {}
+        for obj in self.objects:
+            if obj.root is not None:
+                _collect_shared(obj.root, found)
+        return found
+
+
+def _collect_shared(node: Node, found: dict[str, Shared]) -> None:
+    stack = [node]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, Use):
+            shared = node.shared
+            if shared.key in found:
+                continue
+            found[shared.key] = shared
+            if shared.child is not None:
+                stack.append(shared.child)
+        elif isinstance(node, Boolean):
+            stack.extend(node.operands)
+
+
+def leaves(node: Node, matrix: Matrix = IDENTITY, prefix: str = "") -> Iterator[tuple[Primitive, Matrix, str]]:
+    """Every primitive under ``node`` with its matrix to the scene and its full
+    path from ``node``, shared subtrees expanded (as many times as they are used)."""
+    from castor.csg.paths import join
+
+    stack = [(node, matrix, prefix)]
+    while stack:
+        node, m, p = stack.pop()
+        if isinstance(node, Primitive):
+            yield node, compose(m, node.matrix), join((p, node.path))
+        elif isinstance(node, Boolean):
+            stack.extend((operand, m, p) for operand in reversed(node.operands))
+        elif isinstance(node, Use) and node.shared.child is not None:
+            stack.append((node.shared.child, compose(m, node.matrix),
+                          join((p, node.path, f"({node.shared.name})"))))
+
+
+def compose(a: Matrix, b: Matrix) -> Matrix:
+    """The matrix of applying ``b`` then ``a``."""
+    if b is IDENTITY or b == IDENTITY:
+        return a
+    if a is IDENTITY or a == IDENTITY:
+        return b
+    a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11 = a
+    b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11 = b
+    return (a0 * b0 + a1 * b4 + a2 * b8, a0 * b1 + a1 * b5 + a2 * b9,
+            a0 * b2 + a1 * b6 + a2 * b10, a0 * b3 + a1 * b7 + a2 * b11 + a3,
+            a4 * b0 + a5 * b4 + a6 * b8, a4 * b1 + a5 * b5 + a6 * b9,
+            a4 * b2 + a5 * b6 + a6 * b10, a4 * b3 + a5 * b7 + a6 * b11 + a7,
+            a8 * b0 + a9 * b4 + a10 * b8, a8 * b1 + a9 * b5 + a10 * b9,
+            a8 * b2 + a9 * b6 + a10 * b10, a8 * b3 + a9 * b7 + a10 * b11 + a11)
+
+
+def content_key(name: str, child: Node | None) -> str:
+    """The canonical key of a shared subtree: a digest of its name and content,
+    the same in every process (shared subtrees below count by their own keys)."""
+    digest = hashlib.blake2b(digest_size=16)
+    digest.update(name.encode())
+    if child is not None:
+        _feed(digest, child)
+    return digest.hexdigest()
+
+
+_PACK = struct.Struct("<12d").pack
+
+
+def _feed(digest, node: Node) -> None:
+    stack = [node]
+    update = digest.update
+    while stack:
+        node = stack.pop()
+        kind = type(node)
+        if kind is Primitive:
+            update(b"P" + node.kind.encode() + node.path.encode() + b"\0")
+            update(struct.pack(f"<{len(node.shape) + 4}d", *node.shape, *node.colour,
+                               node.tolerance))
+            update(_PACK(*node.matrix))
+        elif kind is Boolean:
+            update(f"B{node.op}{len(node.operands)}".encode())
+            stack.extend(reversed(node.operands))
+        else:  # a Use: its place, and the shared subtree by its own key
+            update(b"S" + node.path.encode() + b"\0" + node.shared.key.encode())
+            update(_PACK(*node.matrix))
+
+
+def dump(frame: Frame) -> str:
+    """The tree as indented text, shared subtrees written once: for tests and
+    for reading what a frame is made of."""
+    lines: list[str] = [f"frame {frame.number} {frame.where}"]
+    written: set[str] = set()
+
+    def number(x: float) -> str:
+        return repr(x) if x != int(x) or abs(x) >= 1e15 else str(int(x))
+
+    def walk(node: Node, depth: int, label: str) -> None:
+        pad = "  " * depth
+        if isinstance(node, Primitive):
+            m = "" if node.matrix == IDENTITY else " @m(" + ", ".join(map(number, node.matrix)) + ")"
+            shape = "" if not node.shape else ", " + ", ".join(map(number, node.shape))
+            colour = ", ".join(map(number, node.colour))
+            lines.append(f"{pad}{label}{node.path}{m} !{node.kind}({colour}{shape}) t={node.tolerance:g}")
+        elif isinstance(node, Boolean):
+            lines.append(f"{pad}{label}${node.op}")
+            for operand in node.operands:
+                walk(operand, depth + 1, "")
+        else:
+            shared = node.shared
+            m = "" if node.matrix == IDENTITY else " @m(" + ", ".join(map(number, node.matrix)) + ")"
+            head = f"{pad}{label}{node.path}({shared.name}){m} #{shared.key[:8]}"
+            if shared.key in written:
+                lines.append(head + " (as above)")
+                return
+            written.add(shared.key)
+            lines.append(head)
+            if shared.child is not None:
+                walk(shared.child, depth + 1, "")
+
+    for obj in frame.objects:
+        lines.append(f"object {obj.name}")
+        if obj.root is not None:
+            walk(obj.root, 1, "")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,150 @@
+"""One frame's work, done in this process, another process, or on a Dask cluster.
+
+The interpreter hands each frame's evaluated CSG tree over as a ``Job``: plain,
+picklable data with the output wanted. ``make`` turns it into a ``Result``
+(the bytes to write, the messages to print, the figures of --stats) in
+whatever process runs it; the driver (castor.run) writes results in frame
+order, so the output is the same byte for byte however the frames were made.
+Each process keeps one facetizer, whose caches of shared subtrees (by key)
+and primitive shapes serve every frame it makes.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+from castor.csg import tree
+from castor.diagnostics import CastorError, Location
+
+
+@dataclass(frozen=True)
+class Spec:
+    """What to make of each frame: the format and the options that shape it."""
+
+    format: str = "cps"
+    target: str | None = None  # -o PATH (a pattern is filled in per frame)
+    max_polygons: int = 20_000_000
+    stats: bool = False
+    summary: bool = False
+    keep_mesh: bool = False  # hand the mesh frame back (the live preview wants it)
+    size: tuple[int, int] = (800, 600)
+    view: object = None  # castor.options.View
+    eye: tuple | None = None
+    look: tuple | None = None
+    sun: tuple | None = (135.0, 50.0)
+    samples: int = 4
+    edges: bool = False
+    section: object = None  # castor.options.Section
+    scale: float = 100.0
+
+
+@dataclass(frozen=True)
+class Job:
+    scene: tree.Frame
+    spec: Spec
+
+
+@dataclass
+class Result:
+    number: int
+    location: Location
+    data: bytes | None = None  # the frame in its format (None: nothing to write)
+    companions: dict[str, bytes] = field(default_factory=dict)  # files beside it (.mtl)
+    errors: list[CastorError] = field(default_factory=list)
+    warnings: list[tuple[str, Location | None]] = field(default_factory=list)
+    stats: str | None = None
+    summary: dict | None = None
+    picture: object = None  # an image array, for an animation gathered by the driver
+    mesh: object = None  # the mesh frame, when the spec keeps it
+
+
+_facetizers: dict[tuple, object] = {}
+
+
+def _facetizer(spec: Spec, merge: bool):
+    from castor.mesh.facetize import Facetizer
+
+    key = (spec.max_polygons, merge)
+    facetizer = _facetizers.get(key)
+    if facetizer is None:
+        facetizer = _facetizers[key] = Facetizer(spec.max_polygons, merge)
+    return facetizer
+
+
+def make(job: Job) -> Result:
+    """The frame's output, and what is to be said about it; never raises for
+    an error of the scene (it is in the result)."""
+    scene, spec = job.scene, job.spec
+    result = Result(scene.number, scene.location)
+    try:
+        _make(scene, spec, result)
+    except CastorError as exc:
+        result.errors.append(exc)
+        result.data = None
+    except MemoryError:
+        from castor.diagnostics import LimitError
+
+        result.errors.append(LimitError("out of memory for this frame; simplify the scene, "
+                                        "raise the tolerance or lower --max-polygons",
+                                        scene.location))
+        result.data = None
+    return result
+
+
+def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
+    from castor.formats import FORMATS
+
+    kind = FORMATS[spec.format].kind
+    if kind == "picture":
+        from castor.pictures import picture
+
+        started = time.perf_counter()
+        image = picture(scene, spec)
+        if FORMATS[spec.format].all_frames:
+            result.picture = image
+        else:
+            from castor.formats.png import export_picture
+
+            result.data = export_picture(image)
+        if spec.stats:
+            result.stats = (f"castor: frame {scene.number} {scene.where}: picture "
+                            f"{spec.size[0]}x{spec.size[1]}, {spec.samples} samples per pixel, "
+                            f"{time.perf_counter() - started:.3f} s")
+        return
+    facetizer = _facetizer(spec, merge=not FORMATS[spec.format].triangles_only)
+    frame = facetizer.frame(scene)
+    if frame.polygon_count == 0:
+        result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
+                                scene.location))
+    if kind == "drawing":
+        from castor.drawings import drawing
+
+        result.data = drawing(scene, frame, spec)
+    else:
+        from castor.formats.output import encode
+
+        result.data, result.companions = encode(frame, spec.format, spec.target)
+    if spec.keep_mesh:
+        result.mesh = frame
+    if spec.stats:
+        result.stats = stats_line(frame, facetizer.stats)
+    if spec.summary:
+        from castor.quantities import frame_summary
+
+        result.summary = frame_summary(frame)
+
+
+def stats_line(frame, stats) -> str:
+    """The --stats line of a frame."""
+    polygons = frame.polygon_count
+    vertices = sum(len(o.vertices) for o in frame.objects)
+    euler = sum(len(o.vertices) - o.edge_count() + o.polygon_count for o in frame.objects)
+    return (f"castor: frame {frame.number} {frame.where}: {_count(stats.primitives, 'primitive')}, "
+            f"{_count(stats.booleans, 'boolean operation')}, {_count(polygons, 'polygon')}, "
+            f"{_count(vertices, 'vertex', 'vertices')}, Euler characteristic {euler}, "
+            f"{stats.seconds:.3f} s")
+
+
+def _count(n: int, one: str, many: str | None = None) -> str:
+    return f"{n} {one if n == 1 else (many or one + 's')}"

@@ -1,0 +1,281 @@
+"""The driver: read the scene, interpret it, have its frames made, write them in order.
+
+Frames are made by ``castor.jobs.make`` here (``--jobs 1``), in worker
+processes (``--jobs N``) or on a Dask cluster (``--scheduler``). Whatever
+makes them, the ``Sequencer`` writes each frame and every message in the
+order a one-process run writes them: the interpreter's messages wait behind
+the frames submitted before them, and a frame is written as soon as it and
+every frame before it are done.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import threading
+from collections import deque
+
+from castor.diagnostics import CastorError, LimitError, Reporter, TooManyErrors
+from castor.jobs import Job, Result, Spec, make
+
+USAGE_ERROR = 2
+
+
+class UsageError(Exception):
+    """A usage error found after the options were parsed (exit status 2)."""
+
+
+class Sequencer:
+    """Frames and messages out in order, however the frames are made."""
+
+    def __init__(self, reporter: Reporter, output, spec: Spec, executor=None, window: int = 1):
+        self.reporter = reporter
+        self.output = output
+        self.spec = spec
+        self.executor = executor
+        self.window = window  # frames in flight at most
+        self.stderr = reporter.stream
+        self.pending: deque = deque()  # message text, or a future of a Result
+        self.in_flight = 0
+        self.lock = threading.RLock()
+        self.ready = threading.Condition(self.lock)
+        self.stopped = False
+        self.summaries: list[dict] = []
+        self.pictures: list = []
+        self.frames: list = []  # mesh frames, when the spec keeps them
+        reporter.stream = self  # the interpreter's messages queue behind pending frames
+
+    # --- the reporter writes here
+    def write(self, text: str) -> None:
+        with self.lock:
+            if self.pending:
+                self.pending.append(text)
+            else:
+                self.stderr.write(text)
+
+    def flush(self) -> None:
+        with self.lock:
+            if not self.pending:
+                self.stderr.flush()
+
+    # --- frames
+    def submit(self, scene) -> None:
+        if self.stopped:
+            raise TooManyErrors()
+        job = Job(scene, self.spec)
+        if self.executor is None:
+            from castor.progress import Progress
+
+            with Progress(f"frame {scene.number} {scene.where}", self.stderr):
+                result = make(job)
+            with self.lock:
+                self._handle(result)
+            return
+        with self.lock:
+            while self.in_flight >= self.window:
+                self.ready.wait()
+            self.in_flight += 1
+            future = self.executor.submit(make, job)
+            future.castor_scene = scene
+            self.pending.append(future)
+        future.add_done_callback(self._done)
+
+    def _done(self, future) -> None:
+        with self.lock:
+            self.in_flight -= 1
+            self.drain()
+            self.ready.notify_all()
+
+    def drain(self) -> None:
+        """Write what is ready at the head of the queue."""
+        with self.lock:
+            while self.pending:
+                head = self.pending[0]
+                if isinstance(head, str):
+                    self.pending.popleft()
+                    self.stderr.write(head)
+                    continue
+                if not head.done():
+                    break
+                self.pending.popleft()
+                self._handle(_outcome(head))
+            try:
+                self.stderr.flush()
+            except (BrokenPipeError, ValueError):
+                pass
+
+    def finish(self) -> None:
+        """Wait for every frame in flight and write the rest."""
+        with self.lock:
+            while self.pending:
+                head = self.pending[0]
+                if isinstance(head, str) or head.done():
+                    self.drain()
+                    continue
+                self.ready.wait(0.5)
+                self.drain()
+        self.reporter.stream = self.stderr
+
+    def _handle(self, result: Result) -> None:
+        try:
+            for message, location in result.warnings:
+                self.reporter.warning(message, location)
+            for error in result.errors:
+                self.reporter.error(error)
+            if result.data is not None and self.output is not None:
+                try:
+                    self.output.put(result.number, result.data, result.companions,
+                                    result.location)
+                except CastorError as exc:
+                    self.reporter.error(exc)
+            if result.picture is not None:
+                self.pictures.append(result.picture)
+            if result.mesh is not None:
+                self.frames.append(result.mesh)
+            if result.summary is not None:
+                self.summaries.append(result.summary)
+            if result.stats is not None:
+                self.reporter.note(result.stats)
+        except TooManyErrors:
+            self.stopped = True
+
+
+def _outcome(future) -> Result:
+    """A future's result; a frame whose process failed is reported, not raised."""
+    scene = future.castor_scene
+    try:
+        return future.result()
+    except BrokenPipeError:
+        raise
+    except Exception as exc:  # a worker that died, a cluster that went away
+        result = Result(scene.number, scene.location)
+        result.errors.append(LimitError(f"frame {scene.number} could not be made: "
+                                        f"{type(exc).__name__}: {exc}", scene.location))
+        return result
+
+
+def executor_for(jobs: int, scheduler: str | None):
+    """The executor for --jobs / --scheduler (None: make frames in this process)."""
+    if scheduler is not None:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise UsageError("error: --scheduler needs Dask's distributed package: "
+                             "pip install 'castor[cluster]'") from None
+        try:
+            client = Client(scheduler, timeout="10s", set_as_default=False)
+        except (OSError, TimeoutError, ValueError, TypeError) as exc:
+            raise UsageError(f"error: cannot reach the Dask scheduler at '{scheduler}': {exc}") from None
+        return client.get_executor(pure=False), client.ncores and sum(client.ncores().values())
+    if jobs == 0:
+        jobs = os.cpu_count() or 1
+    if jobs <= 1:
+        return None, 1
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    context = multiprocessing.get_context("forkserver")
+    context.set_forkserver_preload(["castor.jobs", "castor.mesh.facetize"])
+    return ProcessPoolExecutor(max_workers=jobs, mp_context=context), jobs
+
+
+def run(args, settings, spec: Spec, reporter: Reporter) -> int:
+    """Read, interpret and write: the whole run after the options were parsed."""
+    from castor.formats import FORMATS
+    from castor.formats.output import Output
+    from castor.interpreter import Interpreter
+    from castor.language.reader import Reader
+
+    for name in args.files:
+        if name != "-" and not os.access(name, os.R_OK):
+            reason = "no such file" if not os.path.exists(name) else "permission denied"
+            raise UsageError(f"cannot read '{name}': {reason}")
+    chosen = FORMATS[spec.format]
+    output = None  # --check writes nothing; an animation is written once, at the end
+    if not args.check and not (chosen.kind == "picture" and chosen.all_frames):
+        output = Output(args.output, spec.format)
+    executor, workers = (None, 1) if args.check else executor_for(args.jobs, args.scheduler)
+    sequencer = Sequencer(reporter, output, spec, executor, window=2 * max(1, workers or 1))
+    interpreter = Interpreter(settings, reporter, None if args.check else sequencer.submit)
+    if output is not None:
+        output.start()
+    try:
+        try:
+            if args.no_cpp:
+                reader = Reader(reporter, directives_allowed=False)
+                # statements run as they arrive from a pipe or a terminal; files are
+                # all there, and are parsed in batches
+                streaming = not args.files or any(f == "-" for f in args.files)
+                interpreter.run(reader.chunks(_streamed_lines(args.files, reader)),
+                                streaming=streaming)
+            else:
+                from castor.language.preprocess import preprocess
+
+                text = preprocess(_read_inputs(args.files), args.defines, args.undefines,
+                                  args.include_dirs, reporter)
+                reader = Reader(reporter, directives_allowed=True)
+                interpreter.run(reader.chunks(text.splitlines()), streaming=False)
+        except TooManyErrors:
+            pass
+        try:
+            sequencer.finish()
+        except TooManyErrors:
+            pass
+    finally:
+        if executor is not None:
+            executor.shutdown(wait=True, cancel_futures=True)
+    _finish_collected(args, spec, sequencer, reporter)
+    if output is not None and not output.finish(reporter.errors > 0):
+        reporter.note(f"castor: {args.output} not written: there were errors and no frame")
+    return 1 if reporter.errors else 0
+
+
+def _finish_collected(args, spec: Spec, sequencer: Sequencer, reporter: Reporter) -> None:
+    """What is written once for the whole run: an animation, the take-off."""
+    from castor.formats import FORMATS
+    from castor.formats.output import write_atomically
+
+    if sequencer.pictures and FORMATS[spec.format].all_frames:
+        from castor.formats.gif import export_animation
+
+        data = export_animation(sequencer.pictures)
+        if args.output is None:
+            sys.stdout.buffer.write(data)
+            sys.stdout.buffer.flush()
+        else:
+            write_atomically(args.output, data)
+    if args.summary is not None and not args.check:
+        import json
+
+        text = json.dumps({"frames": sequencer.summaries}, indent=1)
+        write_atomically(args.summary, (text + "\n").encode("utf-8"))
+
+
+def _read_inputs(files: list[str]) -> list[tuple[str, str]]:
+    sources = []
+    for name in files or ["-"]:
+        if name == "-":
+            sources.append(("<stdin>", sys.stdin.read()))
+            continue
+        try:
+            with open(name, encoding="utf-8", errors="replace") as handle:
+                sources.append((name, handle.read()))
+        except OSError as exc:
+            raise UsageError(f"cannot read '{name}': {exc.strerror}") from None
+    return sources
+
+
+def _streamed_lines(files: list[str], reader):
+    """Lines of the inputs as they arrive (for --no-cpp)."""
+    for name in files or ["-"]:
+        if name == "-":
+            reader.start_file("<stdin>")
+            while True:
+                line = sys.stdin.readline()
+                if not line:
+                    break
+                yield line
+        else:
+            reader.start_file(name)
+            with open(name, encoding="utf-8", errors="replace") as handle:
+                yield from handle
