@@ -121,7 +121,7 @@ def evaluate(job: Job, cancelled: Callable[[], bool] = lambda: False) -> Evaluat
 
     try:
         chunks = _checked(_chunks(job, reporter, included), cancelled)
-        _interpret(replace(job.settings, check_only=False, stats=False, merge_polygons=False),
+        _interpret(replace(job.settings, check_only=False, stats=False),
                    reporter, chunks, on_frame)
     except TooManyErrors:
         pass

@@ -490,7 +490,7 @@
     if (scene.stale) text = `the scene has errors: showing the last good frames`;
     else if (!scene.evaluated) text = "evaluating…";
     else if (!count) text = scene.diagnostics.length ? "no frame" : "no frame: the scene has no '>' command";
-    else text = `${count} frame${count > 1 ? "s" : ""} · ${polygons.toLocaleString("en")} polygons · ` +
+    else text = `${count} frame${count > 1 ? "s" : ""} · ${polygons.toLocaleString("en")} polygons${count > 1 ? " in all" : ""} · ` +
       `${scene.seconds.toFixed(2)} s at ${scene.finished}`;
     if (evaluating && scene.evaluated) text += " · evaluating…";
     status.textContent = text;
