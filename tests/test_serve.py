@@ -152,7 +152,8 @@ def test_a_save_sends_an_event_and_new_frames(preview, scene):
     port = port_of(preview)
     connection, stream = open_events(port)
     first = read_event(stream)
-    assert first == {"version": 1, "evaluating": False}
+    assert first == {"server": first["server"], "version": 1, "evaluating": False}
+    assert first["server"] == get(port, "/scene.json")[2]["server"]
     saved = time.monotonic()
     save(scene, BOX.format(x=5))
     while (news := read_event(stream))["version"] == 1 or news["evaluating"]:
@@ -246,6 +247,18 @@ def test_an_overtaken_evaluation_stops(scene):
     assert len(evaluate(job).frames) == 1
     with pytest.raises(Overtaken):
         evaluate(job, cancelled=lambda: True)
+    # overtaken after its first frame: the second is not made
+    save(scene, "boite = @h(1, 1, 1) !cu(1, 0, 0);\n>[X = 1, 9] @h(X, 1, 1) !cu(1, 0, 0);\n")
+    asked = []
+
+    def cancelled():
+        asked.append(1)
+        return len(asked) > 3
+
+    with pytest.raises(Overtaken):
+        evaluate(job, cancelled)
+    assert len(asked) == 4  # two statements, two frames
+    assert len(evaluate(job).frames) == 9
 
 
 @pytest.mark.parametrize("target", [

@@ -17,6 +17,7 @@ from __future__ import annotations
 import errno
 import json
 import re
+import secrets
 import signal
 import socket
 import socketserver
@@ -67,9 +68,10 @@ class Snapshot:
     finished: float = 0.0  # time.time() at the end of the evaluation
     files: tuple[str, ...] = ()
 
-    def as_json(self, evaluating: bool) -> bytes:
+    def as_json(self, server: str, evaluating: bool) -> bytes:
         return json.dumps({
-            "version": self.version, "evaluating": evaluating, "evaluated": self.evaluated,
+            "server": server, "version": self.version, "evaluating": evaluating,
+            "evaluated": self.evaluated,
             "stale": self.stale, "seconds": round(self.seconds, 4),
             "finished": time.strftime("%H:%M:%S", time.localtime(self.finished))
                         if self.finished else None,
@@ -85,6 +87,9 @@ class Preview:
     def __init__(self, job: Job, report=None):
         self.job = job
         self.report = report  # called with each Evaluation (to print on stderr)
+        # versions count from 1 again when castor is started again: a page that
+        # outlived a server knows by this name that the versions are new ones
+        self.name = secrets.token_hex(6)
         self.snapshot = Snapshot(files=job.files)
         self.evaluating = True
         self.state = threading.Condition()
@@ -192,7 +197,7 @@ class _Handler(BaseHTTPRequestHandler):
         elif path == "/scene.json":
             with preview.state:
                 snapshot, evaluating = preview.snapshot, preview.evaluating
-            self._send(200, snapshot.as_json(evaluating), "application/json", head)
+            self._send(200, snapshot.as_json(preview.name, evaluating), "application/json", head)
         elif path == "/events" and not head:
             self._events()
         elif match := _FRAME.fullmatch(path):
@@ -253,7 +258,8 @@ class _Handler(BaseHTTPRequestHandler):
                                        or preview.stop.is_set(), HEARTBEAT_SECONDS)
                 key = preview.state_key()
             if key != sent:
-                data = json.dumps({"version": key[0], "evaluating": key[1]})
+                data = json.dumps({"server": preview.name, "version": key[0],
+                                   "evaluating": key[1]})
                 self.wfile.write(f"event: scene\ndata: {data}\n\n".encode())
                 sent = key
             else:

@@ -18,6 +18,7 @@
   };
 
   const state = {
+    server: null, // the name of the castor --serve that answers
     version: -1, // of the scene.json shown
     scene: null,
     frames: [], // {meta, mesh}
@@ -518,6 +519,7 @@
     const answer = await fetch("/scene.json", { cache: "no-store" });
     if (!answer.ok) return;
     const scene = await answer.json();
+    if (state.server !== null && scene.server !== state.server) return; // an event will say
     if (scene.version <= state.version) return;
     const key = scene.frames.map((f) => f.url).join(" ");
     let frames = state.frames;
@@ -561,6 +563,12 @@
   const events = new EventSource("/events");
   events.addEventListener("scene", (e) => {
     const news = JSON.parse(e.data);
+    if (news.server !== state.server) {
+      // castor was started again: its versions and frames count from 1 again
+      state.server = news.server;
+      state.version = -1;
+      state.framesKey = "";
+    }
     if (news.version !== state.version) load();
     else showStatus(state.scene, news.evaluating);
   });
