@@ -123,6 +123,8 @@ def evaluate(job: Job, cancelled: Callable[[], bool] = lambda: False) -> Evaluat
         chunks = _checked(_chunks(job, reporter, included), cancelled)
         _interpret(replace(job.settings, check_only=False, stats=False),
                    reporter, chunks, on_frame)
+    except Overtaken:
+        raise
     except TooManyErrors:
         pass
     except Exception:
