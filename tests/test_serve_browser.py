@@ -173,6 +173,22 @@ def test_pointing_at_a_blue_reveal_names_its_primitive(page):
     assert page.inner_text("#pointed-where") == "frame 1 · house.cas:77"
 
 
+def test_a_face_turned_to_the_viewer_shows_its_own_colour(page):
+    page.click("#view-front")
+    page.wait_for_timeout(200)
+    image = picture(page, "front")
+    render = np.round(np.array([0.93, 0.90, 0.82]) * 255)  # ENDUIT, the walls' colour
+    full = np.all(np.abs(image - render) <= 2, axis=2)
+    assert full.sum() > 20000  # the south wall, at full strength
+    page.click("#view-perspective")
+    page.wait_for_timeout(200)
+    turned = picture(page, "perspective")
+    walls = np.all(np.abs(turned / turned.max(axis=2, keepdims=True).clip(1)
+                          - render / render.max()) < 0.03, axis=2) & (turned.max(axis=2) > 60)
+    assert walls.sum() > 20000  # turned away, the walls are darker but of the same hue
+    assert np.all(np.abs(turned - render) <= 2, axis=2).sum() < 0.01 * walls.sum()
+
+
 def test_the_section_plane_shows_a_plan(page):
     page.click("#view-top")
     page.wait_for_timeout(100)
