@@ -186,7 +186,8 @@
         normals[i + 3 * k] = nx; normals[i + 3 * k + 1] = ny; normals[i + 3 * k + 2] = nz;
         colours[i + 3 * k] = colour[0]; colours[i + 3 * k + 1] = colour[1]; colours[i + 3 * k + 2] = colour[2];
         const j = t * 12 + 4 * k;
-        picks[j] = id & 255; picks[j + 1] = (id >> 8) & 255; picks[j + 2] = (id >> 16) & 255; picks[j + 3] = 255;
+        picks[j] = id & 255; picks[j + 1] = (id >> 8) & 255; picks[j + 2] = (id >> 16) & 255;
+        picks[j + 3] = (id >>> 24) & 255;
       }
     }
     const upload = (data) => {
@@ -312,7 +313,8 @@
     const py = Math.min(height - 1, Math.max(0, height - 1 - Math.floor(y * ratio)));
     gl.readPixels(px, py, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    return pixel[3] ? pixel[0] + (pixel[1] << 8) + (pixel[2] << 16) - 1 : -1;
+    // the number of the triangle plus one, in four bytes; 0 where none was drawn
+    return pixel[0] + pixel[1] * 256 + pixel[2] * 65536 + pixel[3] * 16777216 - 1;
   }
 
   // Say what is under the pointer: the path of its primitive, its colour and
