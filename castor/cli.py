@@ -176,6 +176,10 @@ def main(argv=None) -> int:
     gc.set_threshold(100_000, 50, 100)
     # Deeply nested scenes recurse deeply: run on a thread with a large stack.
     sys.setrecursionlimit(_RECURSION_LIMIT)
+    if args.serve:
+        from castor.serve.server import serve
+
+        return serve(args, settings)
     threading.stack_size(_STACK_BYTES)
     thread = threading.Thread(target=work, name="castor", daemon=True)
     thread.start()

@@ -35,7 +35,7 @@ class IncludeTooDeep(Exception):
     pass
 
 
-def _make_preprocessor(reporter: Reporter):
+def _make_preprocessor(reporter: Reporter, included: list[str] | None = None):
     import pcpp
 
     class Preprocessor(pcpp.Preprocessor):
@@ -62,7 +62,10 @@ def _make_preprocessor(reporter: Reporter):
         def on_file_open(self, is_system_include, includepath):
             if len(self.temp_path) > MAX_INCLUDE_DEPTH:
                 raise IncludeTooDeep(includepath)
-            return super().on_file_open(is_system_include, includepath)
+            opened = super().on_file_open(is_system_include, includepath)
+            if included is not None:  # for the live preview, which watches them
+                included.append(includepath)
+            return opened
 
         def on_directive_handle(self, directive, toks, ifpassthru, precedingtoks):
             self.lastdirective = directive
@@ -100,13 +103,16 @@ _DIRECTIVE = re.compile(r"^[ \t]*#", re.M)
 
 
 def preprocess(sources: list[tuple[str, str]], defines: list[str], undefines: list[str],
-               include_dirs: list[str], reporter: Reporter) -> str:
-    """Run the sources, in order, through one preprocessor; return its output."""
+               include_dirs: list[str], reporter: Reporter,
+               included: list[str] | None = None) -> str:
+    """Run the sources, in order, through one preprocessor; return its output.
+
+    ``included``, when given, receives the path of every file that #include opened."""
     if not defines and not any(_DIRECTIVE.search(text) or "\\\n" in text for _, text in sources):
         # No directive and no -D: cpp would change nothing (castor keeps the
         # comments), so skip the pure-Python pass and mark each file's start.
         return "".join(f'#line 1 "{_escape(_shown(name))}"\n{text}\n' for name, text in sources)
-    p = _make_preprocessor(reporter)
+    p = _make_preprocessor(reporter, included)
     for directory in include_dirs:
         p.add_path(directory)
     for definition in defines:
