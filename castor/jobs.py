@@ -22,7 +22,7 @@ from castor.diagnostics import CastorError, Location
 class Spec:
     """What to make of each frame: the format and the options that shape it."""
 
-    format: str = "cps"
+    format: str | None = "cps"  # None: the mesh frame only, in this process
     target: str | None = None  # -o PATH (a pattern is filled in per frame)
     max_polygons: int = 20_000_000
     stats: bool = False
@@ -95,13 +95,14 @@ def make(job: Job) -> Result:
 def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
     from castor.formats import FORMATS
 
-    kind = FORMATS[spec.format].kind
+    chosen = FORMATS.get(spec.format)
+    kind = chosen.kind if chosen is not None else "mesh"
     if kind == "picture":
         from castor.pictures import picture
 
         started = time.perf_counter()
         image = picture(scene, spec)
-        if FORMATS[spec.format].all_frames:
+        if chosen.all_frames:
             result.picture = image
         else:
             from castor.formats.png import export_picture
@@ -112,7 +113,7 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
                             f"{spec.size[0]}x{spec.size[1]}, {spec.samples} samples per pixel, "
                             f"{time.perf_counter() - started:.3f} s")
         return
-    facetizer = _facetizer(spec, merge=not FORMATS[spec.format].triangles_only)
+    facetizer = _facetizer(spec, merge=chosen is None or not chosen.triangles_only)
     frame = facetizer.frame(scene)
     if frame.polygon_count == 0:
         result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
@@ -121,7 +122,7 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
         from castor.drawings import drawing
 
         result.data = drawing(scene, frame, spec)
-    else:
+    elif chosen is not None:
         from castor.formats.output import encode
 
         result.data, result.companions = encode(frame, spec.format, spec.target)

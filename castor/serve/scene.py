@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import io
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Callable
 
 from castor.diagnostics import CastorError, Location, Reporter, TooManyErrors
@@ -121,8 +121,7 @@ def evaluate(job: Job, cancelled: Callable[[], bool] = lambda: False) -> Evaluat
 
     try:
         chunks = _checked(_chunks(job, reporter, included), cancelled)
-        _interpret(replace(job.settings, check_only=False, stats=False),
-                   reporter, chunks, on_frame)
+        _interpret(job.settings, reporter, chunks, on_frame, cancelled)
     except Overtaken:
         raise
     except TooManyErrors:
@@ -137,12 +136,28 @@ def evaluate(job: Job, cancelled: Callable[[], bool] = lambda: False) -> Evaluat
                       time.perf_counter() - started, reporter.stream.getvalue())
 
 
-def _interpret(settings, reporter: Reporter, chunks, on_frame: Callable) -> None:
-    """The one place that knows the interpreter's interface."""
+def _interpret(settings, reporter: Reporter, chunks, on_frame: Callable,
+               cancelled: Callable[[], bool]) -> None:
+    """The one place that knows the interpreter's interface: each frame's tree is
+    made into its mesh here, in this process, whose facetizer keeps the shared
+    subtrees of one save for the next."""
     from castor.interpreter import Interpreter
+    from castor.jobs import Job, Spec, make
 
-    Interpreter(settings, reporter, lambda frame, location: on_frame(frame)).run(
-        chunks, streaming=False)
+    spec = Spec(format=None, keep_mesh=True)
+
+    def submit(scene) -> None:
+        if cancelled():  # before the work of facetizing
+            raise Overtaken()
+        result = make(Job(scene, spec))
+        for message, location in result.warnings:
+            reporter.warning(message, location)
+        for error in result.errors:
+            reporter.error(error)
+        if result.mesh is not None:
+            on_frame(result.mesh)
+
+    Interpreter(settings, reporter, submit).run(chunks, streaming=False)
 
 
 def _chunks(job: Job, reporter: _Collector, included: list[str]):
