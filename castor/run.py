@@ -279,3 +279,25 @@ def _streamed_lines(files: list[str], reader):
             reader.start_file(name)
             with open(name, encoding="utf-8", errors="replace") as handle:
                 yield from handle
+
+
+def evaluated_frames(text: str, name: str = "<scene>", settings=None) -> tuple[list, str]:
+    """The evaluated CSG trees of a scene's frames, and what castor said (the
+    diagnostics' text): the scene as data, for tests and for tools."""
+    import io
+
+    from castor.interpreter import Interpreter, Settings
+    from castor.language.preprocess import preprocess
+    from castor.language.reader import Reader
+
+    stream = io.StringIO()
+    reporter = Reporter(stream=stream)
+    trees: list = []
+    interpreter = Interpreter(settings or Settings(), reporter, trees.append)
+    try:
+        source = preprocess([(name, text)], [], [], [], reporter)
+        interpreter.run(Reader(reporter, directives_allowed=True).chunks(source.splitlines()),
+                        streaming=False)
+    except TooManyErrors:
+        pass
+    return trees, stream.getvalue()

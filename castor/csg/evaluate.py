@@ -129,6 +129,17 @@ class Evaluator:
             self._seen_errors.add(key)
             self.errors.append(error)
 
+    def _values(self, args, env) -> list[float] | None:
+        """The arguments' values; None, with every error recorded, if any fails."""
+        values, failed = [], False
+        for arg in args:
+            try:
+                values.append(evaluate(arg, env))
+            except CastorError as error:
+                self._fail(error)
+                failed = True
+        return None if failed else values
+
     # --- one node: its tree, or None when it is empty or failed
     def _node(self, node: Node, env, matrix: tree.Matrix, stretch: float, tolerance: float,
               trail: Trail, rel: Trail):
@@ -175,8 +186,12 @@ class Evaluator:
 
         local = np.eye(4)
         moved = False
+        failed = False
         for step in node.steps:
-            values = [evaluate(a, env) for a in step.args]
+            values = self._values(step.args, env)
+            if values is None:
+                failed = True
+                continue
             if step.kind == "f":
                 if not (values[0] > 0):
                     raise GeometryError(f"the facet tolerance of '@f' must be positive, not "
@@ -188,6 +203,8 @@ class Evaluator:
             local = local @ m
             stretch *= factor
             moved = True
+        if failed:
+            return None
         if moved:
             if not np.all(np.abs(local) <= MAX_COORDINATE):
                 raise GeometryError(f"the transformations of {trail} reach beyond "
@@ -227,7 +244,9 @@ class Evaluator:
 
     def _primitive(self, node: Primitive, env, matrix, stretch, tolerance, trail, rel):
         here = trail.down(f"!{node.kind}")
-        values = [evaluate(a, env) for a in node.args]
+        values = self._values(node.args, env)
+        if values is None:
+            return None
         colour = tuple(values[:3])
         for name, c, arg in zip(("red", "green", "blue"), colour, node.args):
             if not 0.0 <= c <= 1.0:

@@ -55,27 +55,38 @@ def _axis_rotation(axis: int, degrees: float) -> np.ndarray:
     return m
 
 
+def _scaling(values, location, path):
+    factors = values * 3 if len(values) == 1 else values
+    for axis, k in zip("xyz", factors):
+        if k == 0:
+            raise GeometryError(
+                f"zero scale factor for {axis} in '@h' (flattens {path} to nothing); "
+                "use a small positive factor, or leave the object out", location)
+    return np.diag([*factors, 1.0]), max(abs(k) for k in factors)
+
+
+def _affine(values, location, path):
+    m = np.eye(4)
+    m[:3, :] = np.array(values, dtype=float).reshape(3, 4)
+    linear = m[:3, :3]
+    if abs(np.linalg.det(linear)) <= 1e-12 * max(1.0, float(np.abs(linear).max()) ** 3):
+        raise GeometryError(f"the matrix of '@m' is not invertible (it flattens {path})", location)
+    return m, float(np.linalg.norm(linear, 2))
+
+
+# transformation (castor.language.vocabulary.TRANSFORMS) -> its matrix and stretch;
+# '@f' has none: it sets the facet tolerance, which the evaluator handles
+MATRICES = {
+    "t": lambda values, location, path: (translation(*values), 1.0),
+    "rx": lambda values, location, path: (_axis_rotation(0, values[0]), 1.0),
+    "ry": lambda values, location, path: (_axis_rotation(1, values[0]), 1.0),
+    "rz": lambda values, location, path: (_axis_rotation(2, values[0]), 1.0),
+    "r": lambda values, location, path: (rotation(tuple(values[:3]), values[3], location), 1.0),
+    "h": _scaling,
+    "m": _affine,
+}
+
+
 def step_matrix(kind: str, values: list[float], location: Location, path: object) -> tuple[np.ndarray, float]:
     """The matrix and stretch factor of one transformation step."""
-    if kind == "t":
-        return translation(*values), 1.0
-    if kind in ("rx", "ry", "rz"):
-        return _axis_rotation("xyz".index(kind[1]), values[0]), 1.0
-    if kind == "r":
-        return rotation(tuple(values[:3]), values[3], location), 1.0
-    if kind == "h":
-        factors = values * 3 if len(values) == 1 else values
-        for axis, k in zip("xyz", factors):
-            if k == 0:
-                raise GeometryError(
-                    f"zero scale factor for {axis} in '@h' (flattens {path} to nothing); "
-                    "use a small positive factor, or leave the object out", location)
-        return np.diag([*factors, 1.0]), max(abs(k) for k in factors)
-    if kind == "m":
-        m = np.eye(4)
-        m[:3, :] = np.array(values, dtype=float).reshape(3, 4)
-        linear = m[:3, :3]
-        if abs(np.linalg.det(linear)) <= 1e-12 * max(1.0, float(np.abs(linear).max()) ** 3):
-            raise GeometryError(f"the matrix of '@m' is not invertible (it flattens {path})", location)
-        return m, float(np.linalg.norm(linear, 2))
-    raise AssertionError(kind)
+    return MATRICES[kind](values, location, path)

@@ -18,7 +18,7 @@ is under the angle δ/√2, so δ = √2·acos(1 − t/r).
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import Callable, NamedTuple
 
 import numpy as np
 
@@ -73,22 +73,7 @@ def torus_segments(k: float, tolerance: float) -> tuple[int, int]:
 
 def estimate_triangles(kind: str, shape: tuple, tolerance: float) -> int:
     """Triangles a primitive will have, computed before building it."""
-    if kind == "sp":
-        around, rings = sphere_segments(tolerance)
-        return 2 * around * rings
-    if kind in ("cy", "co"):
-        return 4 * circle_segments(1.0, tolerance)
-    if kind == "to":
-        a, b = torus_segments(shape[0], tolerance)
-        return 2 * a * b
-    if kind in ("pr", "py"):
-        return 4 * int(shape[0])
-    if kind == "ex":
-        return 4 * (len(shape) // 2)
-    if kind == "rv":
-        radius = max(shape[0::2]) if shape else 0.0
-        return 2 * (len(shape) // 2) * circle_segments(radius, tolerance)
-    return 12
+    return BUILDERS[kind].triangles(shape, tolerance)
 
 
 def _ring(n: int, radius: float, z: float) -> np.ndarray:
@@ -266,24 +251,38 @@ def signed_volume(vertices: np.ndarray, triangles: np.ndarray) -> float:
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
 
+class Builder(NamedTuple):
+    """How a primitive of castor.language.vocabulary.PRIMITIVES becomes triangles:
+    ``mesh(shape, tolerance)`` builds it, ``triangles(shape, tolerance)`` says
+    how many it will have without building it."""
+
+    mesh: Callable[[tuple, float], Mesh]
+    triangles: Callable[[tuple, float], int]
+
+
+def _revolution_segments(shape: tuple, tolerance: float) -> int:
+    return circle_segments(max(shape[0::2]) if shape else 0.0, tolerance)
+
+
+BUILDERS: dict[str, Builder] = {
+    "cu": Builder(lambda shape, t: cube(), lambda shape, t: 12),
+    "sp": Builder(lambda shape, t: sphere(*sphere_segments(t)),
+                  lambda shape, t: 2 * math.prod(sphere_segments(t))),
+    "cy": Builder(lambda shape, t: prism(circle_segments(1.0, t)),
+                  lambda shape, t: 4 * circle_segments(1.0, t)),
+    "co": Builder(lambda shape, t: pyramid(circle_segments(1.0, t)),
+                  lambda shape, t: 4 * circle_segments(1.0, t)),
+    "to": Builder(lambda shape, t: torus(shape[0], *torus_segments(shape[0], t)),
+                  lambda shape, t: 2 * math.prod(torus_segments(shape[0], t))),
+    "pr": Builder(lambda shape, t: prism(int(shape[0])), lambda shape, t: 4 * int(shape[0])),
+    "py": Builder(lambda shape, t: pyramid(int(shape[0])), lambda shape, t: 4 * int(shape[0])),
+    "ex": Builder(lambda shape, t: extrusion(shape), lambda shape, t: 4 * (len(shape) // 2)),
+    "rv": Builder(lambda shape, t: revolution(shape, _revolution_segments(shape, t)),
+                  lambda shape, t: 2 * (len(shape) // 2) * _revolution_segments(shape, t)),
+}
+
+
 def build(kind: str, shape: tuple, tolerance: float) -> Mesh:
     """The mesh of primitive ``kind`` with its non-colour arguments ``shape``,
     already checked (castor.language.vocabulary) by the evaluator."""
-    if kind == "cu":
-        return cube()
-    if kind == "sp":
-        return sphere(*sphere_segments(tolerance))
-    if kind == "cy":
-        return prism(circle_segments(1.0, tolerance))
-    if kind == "co":
-        return pyramid(circle_segments(1.0, tolerance))
-    if kind == "to":
-        return torus(shape[0], *torus_segments(shape[0], tolerance))
-    if kind in ("pr", "py"):
-        return prism(int(shape[0])) if kind == "pr" else pyramid(int(shape[0]))
-    if kind == "ex":
-        return extrusion(shape)
-    if kind == "rv":
-        radius = max(shape[0::2])
-        return revolution(shape, circle_segments(radius, tolerance))
-    raise AssertionError(kind)
+    return BUILDERS[kind].mesh(shape, tolerance)
