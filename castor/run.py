@@ -166,7 +166,9 @@ def executor_for(jobs: int, scheduler: str | None):
             client = Client(scheduler, timeout="10s", set_as_default=False)
         except (OSError, TimeoutError, ValueError, TypeError) as exc:
             raise UsageError(f"error: cannot reach the Dask scheduler at '{scheduler}': {exc}") from None
-        return client.get_executor(pure=False), client.ncores and sum(client.ncores().values())
+        executor = client.get_executor(pure=False)
+        executor.castor_client = client  # closed with the executor, at the end of the run
+        return executor, max(1, sum(client.ncores().values()))
     if jobs == 0:
         jobs = os.cpu_count() or 1
     if jobs <= 1:
@@ -223,7 +225,10 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
             pass
     finally:
         if executor is not None:
-            executor.shutdown(wait=True, cancel_futures=True)
+            executor.shutdown(wait=True)  # workers end before castor does: none outlives it
+            client = getattr(executor, "castor_client", None)
+            if client is not None:
+                client.close()
     _finish_collected(args, spec, sequencer, reporter)
     if output is not None and not output.finish(reporter.errors > 0):
         reporter.note(f"castor: {args.output} not written: there were errors and no frame")

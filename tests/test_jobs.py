@@ -1,0 +1,82 @@
+"""Frames made in other processes (--jobs) or on a Dask cluster (--scheduler)
+are written exactly as one process writes them."""
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from meshcheck import run
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = sorted((ROOT / "examples").glob("*.cas"))
+
+WITH_ERRORS = """L = 1;
+a = @h(L, 1, 1) !cu(1, 0, 0);
+> a;
+> @t(X, 0, 0) a;
+L = 2;
+>[T = 0, 1, 0.5] @t(T, 0, 0) a, @t(0, 3, 0) !sp(0, 0, 1);
+> @h(0, 1, 1) a;
+> $I(a, @t(5, 0, 0) a);
+"""
+
+
+def _outputs(*args, stdin=None):
+    """castor's status, output and messages, less the seconds of --stats lines."""
+    status, out, err = run(*args, stdin=stdin)
+    return status, out, re.sub(r", \d+\.\d+ s$", ", (seconds)", err, flags=re.M)
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.name)
+def test_two_jobs_write_what_one_writes(path):
+    assert _outputs("--jobs", "2", str(path)) == _outputs(str(path))
+
+
+def test_two_jobs_with_errors_say_and_write_the_same_in_the_same_order():
+    one = _outputs("--no-cpp", "--stats", stdin=WITH_ERRORS)
+    two = _outputs("--no-cpp", "--stats", "--jobs", "2", stdin=WITH_ERRORS)
+    assert one[0] == 1 and one == two
+    assert "frame 2 <stdin>:4" not in one[1]  # the failed frame leaves its gap
+
+
+def test_per_frame_files_from_two_jobs(tmp_path):
+    _outputs("--jobs", "2", "-o", str(tmp_path / "a-%02d.stl"), str(ROOT / "examples" / "door.cas"))
+    _outputs("-o", str(tmp_path / "b-%02d.stl"), str(ROOT / "examples" / "door.cas"))
+    a = sorted(tmp_path.glob("a-*.stl"))
+    b = sorted(tmp_path.glob("b-*.stl"))
+    assert len(a) == 9 and [p.read_bytes() for p in a] == [p.read_bytes() for p in b]
+
+
+def test_streamed_frames_come_out_as_they_are_made_with_two_jobs():
+    castor = subprocess.Popen([sys.executable, "-m", "castor", "--no-cpp", "--jobs", "2"],
+                              stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE)
+    castor.stdin.write(b"a = !cu(1, 0, 0);\n> a;\n")
+    castor.stdin.flush()
+    lines = [castor.stdout.readline() for _ in range(3)]
+    assert lines[1].startswith(b"frame 1 ")
+    castor.stdin.close()
+    castor.wait(timeout=60)
+    assert castor.returncode == 0
+
+
+def test_a_dask_cluster_writes_what_one_process_writes():
+    distributed = pytest.importorskip("distributed", reason="Dask's distributed is not installed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        for path in [ROOT / "examples" / "door.cas", ROOT / "examples" / "house.cas"]:
+            assert (_outputs("--scheduler", cluster.scheduler_address, str(path))
+                    == _outputs(str(path)))
+        with_errors = _outputs("--no-cpp", "--scheduler", cluster.scheduler_address,
+                               stdin=WITH_ERRORS)
+        assert with_errors == _outputs("--no-cpp", stdin=WITH_ERRORS)
+
+
+def test_an_unreachable_scheduler_is_a_usage_error():
+    pytest.importorskip("distributed", reason="Dask's distributed is not installed")
+    status, out, err = run("--scheduler", "tcp://127.0.0.1:9", str(ROOT / "examples" / "car.cas"))
+    assert status == 2
+    assert "castor: error: cannot reach the Dask scheduler at 'tcp://127.0.0.1:9'" in err
