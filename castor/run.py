@@ -40,6 +40,7 @@ class Sequencer:
         self.lock = threading.RLock()
         self.ready = threading.Condition(self.lock)
         self.stopped = False
+        self.handling = False  # a frame's own messages go out with it, not behind the queue
         self.summaries: list[dict] = []
         self.pictures: list = []
         self.frames: list = []  # mesh frames, when the spec keeps them
@@ -48,14 +49,14 @@ class Sequencer:
     # --- the reporter writes here
     def write(self, text: str) -> None:
         with self.lock:
-            if self.pending:
+            if self.pending and not self.handling:
                 self.pending.append(text)
             else:
                 self.stderr.write(text)
 
     def flush(self) -> None:
         with self.lock:
-            if not self.pending:
+            if not self.pending or self.handling:
                 self.stderr.flush()
 
     # --- frames
@@ -117,6 +118,7 @@ class Sequencer:
         self.reporter.stream = self.stderr
 
     def _handle(self, result: Result) -> None:
+        self.handling = True
         try:
             for message, location in result.warnings:
                 self.reporter.warning(message, location)
@@ -138,6 +140,8 @@ class Sequencer:
                 self.reporter.note(result.stats)
         except TooManyErrors:
             self.stopped = True
+        finally:
+            self.handling = False
 
 
 def _outcome(future) -> Result:
