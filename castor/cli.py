@@ -15,7 +15,7 @@ import threading
 
 from castor import __version__
 from castor.diagnostics import CastorError, Reporter, TooManyErrors
-from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
+from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
                             DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
                             parse_point, parse_scale, parse_section, parse_size, parse_sun,
                             parse_view)
@@ -54,7 +54,7 @@ def _arguments(argv):
     p.add_argument("-s", "--set", dest="sets", action="append", default=[], metavar="NAME=EXPR",
                    help="give parameter NAME this value; the scene's assignments to it are ignored")
     p.add_argument("-t", "--tolerance", type=float, metavar="T",
-                   help="facet tolerance in scene units (default 0.01)")
+                   help=f"facet tolerance in scene units (default {DEFAULT_TOLERANCE})")
     p.add_argument("--check", action="store_true", help="read and evaluate everything, write nothing")
     p.add_argument("--stats", action="store_true", help="one line of figures per frame on stderr")
     p.add_argument("--summary", metavar="PATH", help="write a quantity take-off (JSON) to PATH")

@@ -16,6 +16,8 @@ from dataclasses import dataclass, field
 
 from castor.csg import tree
 from castor.diagnostics import CastorError, Location
+from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_SAMPLES, DEFAULT_SCALE, DEFAULT_SIZE,
+                            DEFAULT_SUN)
 
 
 @dataclass(frozen=True)
@@ -24,19 +26,19 @@ class Spec:
 
     format: str | None = "cps"  # None: the mesh frame only, in this process
     target: str | None = None  # -o PATH (a pattern is filled in per frame)
-    max_polygons: int = 20_000_000
+    max_polygons: int = DEFAULT_MAX_POLYGONS
     stats: bool = False
     summary: bool = False
     keep_mesh: bool = False  # hand the mesh frame back (the live preview wants it)
-    size: tuple[int, int] = (800, 600)
+    size: tuple[int, int] = DEFAULT_SIZE
     view: object = None  # castor.options.View
     eye: tuple | None = None
     look: tuple | None = None
-    sun: tuple | None = (135.0, 50.0)
-    samples: int = 4
+    sun: tuple | None = DEFAULT_SUN
+    samples: int = DEFAULT_SAMPLES
     edges: bool = False
     section: object = None  # castor.options.Section
-    scale: float = 100.0
+    scale: float = DEFAULT_SCALE
 
 
 @dataclass(frozen=True)

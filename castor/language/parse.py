@@ -11,6 +11,7 @@ together; lark's exceptions are translated into messages in the user's words.
 from __future__ import annotations
 
 import math
+import threading
 from functools import lru_cache
 from typing import Iterator
 
@@ -308,14 +309,16 @@ class Builder:
             return Number(0.0, node.location)
 
 
-_shared: tuple[Lark, Builder] | None = None
+_local = threading.local()
 
 
 def _lark_and_builder(tables: Tables) -> tuple[Lark, Builder]:
-    """One LALR parser per process (building it is the slow part of start-up);
-    lark caches its tables in the temporary directory between runs."""
-    global _shared
-    if _shared is None:
+    """One LALR parser for each thread (building it is the slow part of
+    start-up; lark caches its tables in the temporary directory between runs).
+    Its builder is handed each Parser's tables before each parse, so that
+    parsers made one after another, or in other threads, never mix up scenes."""
+    shared = getattr(_local, "shared", None)
+    if shared is None:
         builder = Builder(tables)
         try:
             lark = Lark(grammar_text(), parser="lalr", lexer="contextual",
@@ -325,28 +328,34 @@ def _lark_and_builder(tables: Tables) -> tuple[Lark, Builder]:
             lark = Lark(grammar_text(), parser="lalr", lexer="contextual",
                         start=["statement", "program"], transformer=builder,
                         maybe_placeholders=True)
-        _shared = (lark, builder)
-    lark, builder = _shared
-    builder.tables = tables
-    return lark, builder
+        shared = _local.shared = (lark, builder)
+    return shared
 
 
 class Parser:
     """Parses statement chunks; yields statements and the errors found."""
 
     def __init__(self, tables: Tables):
-        self.lark, self.builder = _lark_and_builder(tables)
+        self.tables = tables
+
+    def _ready(self):
+        """This thread's parser, its builder working on this Parser's tables."""
+        lark, builder = _lark_and_builder(self.tables)
+        builder.tables = self.tables
+        self.builder = builder
+        return lark
 
     def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | Facetize | CastorError"]:
         """Parse one chunk. A missing ';' is reported, the statement is taken as if it
         were there, and parsing resumes with the next line."""
+        lark = self._ready()
         pending = [chunk]
         while pending:
             chunk = pending.pop(0)
             self.builder.chunk = chunk
             self.builder.faults = []
             try:
-                statement = self.lark.parse(chunk.text, start="statement")
+                statement = lark.parse(chunk.text, start="statement")
             except LimitError as exc:
                 yield exc
                 continue
@@ -386,11 +395,12 @@ class Parser:
                 for item in self._deliver(statement, faults):
                     execute(item)
 
+            lark = self._ready()
             self.builder.chunk = _combined(batch)
             self.builder.faults = []
             self.builder.on_statement = on_statement
             try:
-                self.lark.parse(self.builder.chunk.text, start="program")
+                lark.parse(self.builder.chunk.text, start="program")
                 return
             except (UnexpectedInput, LimitError, RecursionError):
                 pass  # the chunk where it failed is parsed again below, alone
