@@ -315,3 +315,8 @@ def _part_triangles(part: manifold3d.Manifold) -> Triangles:
     rank = np.searchsorted(np.unique(run_ids), run_ids)
     faces = (np.repeat(rank, counts) << 32) | (np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF)
     return Triangles(vertices, tris, origin_ids, faces)
+
+
+def triangulate(outline: np.ndarray) -> np.ndarray:
+    """Triangles (T, 3) of a simple polygon (N, 2), counter-clockwise."""
+    return np.asarray(manifold3d.triangulate([outline]), dtype=np.int64)

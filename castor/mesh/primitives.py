@@ -178,13 +178,13 @@ def torus(k: float, around: int, tube: int) -> Mesh:
 
 def extrusion(values: tuple) -> Mesh:
     """The simple polygon (x1, y1, ...) in z = 0 swept to z = 1."""
-    from manifold3d import triangulate
+    from castor.mesh.engine import triangulate
 
     points = polygon(values, "polygon", None, "")
     if signed_area(points) < 0:
         points = points[::-1].copy()
     n = len(points)
-    cap = np.asarray(triangulate([points]), dtype=np.int64)
+    cap = triangulate(points)
     vertices = np.concatenate([np.column_stack([points, np.zeros(n)]),
                                np.column_stack([points, np.ones(n)])])
     j = np.arange(n)
