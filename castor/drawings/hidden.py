@@ -162,6 +162,8 @@ def _visible_pieces(count, edge, t0, t1, tol):
 def seen_lines(objects, view, depth: float | None) -> list[np.ndarray]:
     """For each object, (L, 2, 2): the seen segments of its edges on the page
     (metres), beyond the section plane at ``depth`` if there is one."""
+    if not objects:
+        return []
     basis = view.basis()
     all_p0, all_p1, owner, tris_all, planes = [], [], [], [], []
     for k, obj in enumerate(objects):
