@@ -1,0 +1,80 @@
+"""What a drawing is made of, and the six directions it can be seen from."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import NamedTuple
+
+import numpy as np
+
+
+class View(NamedTuple):
+    """An orthographic direction: the page's right and up, and the direction
+    towards the viewer (right x up = towards), all unit vectors of the scene."""
+
+    name: str
+    right: tuple[float, float, float]
+    up: tuple[float, float, float]
+    towards: tuple[float, float, float]
+
+    def basis(self) -> np.ndarray:
+        """(3, 3): rows right, up, towards; a point p is seen at basis @ p."""
+        return np.array([self.right, self.up, self.towards], dtype=np.float64)
+
+    def plane_depth(self, section) -> float | None:
+        """The depth (along ``towards``) of the section plane, or None."""
+        if section is None:
+            return None
+        axis = "xyz".index(section.axis)
+        return float(self.towards[axis]) * section.value
+
+
+VIEWS = {v.name: v for v in (
+    View("top", (1, 0, 0), (0, 1, 0), (0, 0, 1)),
+    View("bottom", (1, 0, 0), (0, -1, 0), (0, 0, -1)),
+    View("front", (1, 0, 0), (0, 0, 1), (0, -1, 0)),
+    View("back", (-1, 0, 0), (0, 0, 1), (0, 1, 0)),
+    View("left", (0, -1, 0), (0, 0, 1), (-1, 0, 0)),
+    View("right", (0, 1, 0), (0, 0, 1), (1, 0, 0)),
+)}
+
+# a section is seen from above (z, a plan) or looking towards +x or +y
+SECTION_VIEWS = {"z": "top", "x": "left", "y": "front"}
+
+
+def view_for(section, view) -> View:
+    """The direction a drawing is seen from: the section's own, else the
+    orthographic --view, else the front (a perspective --view, the default
+    included, gives the front elevation: a drawing is never in perspective)."""
+    if section is not None:
+        return VIEWS[SECTION_VIEWS[section.axis]]
+    name = getattr(view, "name", None)
+    return VIEWS[name] if name in VIEWS else VIEWS["front"]
+
+
+@dataclass
+class Layer:
+    """One object of the frame as drawn: its cut regions (closed loops of
+    page points, outer boundaries counter-clockwise, holes clockwise) and the
+    segments of its edges that are seen, all in metres on the page."""
+
+    name: str
+    cuts: list[np.ndarray] = field(default_factory=list)  # each (n, 2)
+    lines: np.ndarray = field(default_factory=lambda: np.zeros((0, 2, 2)))  # (L, 2, 2)
+
+
+@dataclass
+class Drawing:
+    layers: list[Layer]
+    view: View
+    scale: float  # the N of 1:N
+
+    def box(self) -> np.ndarray:
+        """(2, 2): the lower-left and upper-right corners of what is drawn, in metres."""
+        points = [l.lines.reshape(-1, 2) for l in self.layers]
+        points += [c for l in self.layers for c in l.cuts]
+        points = [p for p in points if len(p)]
+        if not points:
+            return np.zeros((2, 2))
+        allp = np.concatenate(points)
+        return np.array([allp.min(axis=0), allp.max(axis=0)])

@@ -1,0 +1,254 @@
+"""Drawings: plans, sections and elevations, read back as a reader would."""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from meshcheck import run
+
+SVG = "{http://www.w3.org/2000/svg}"
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+# a room of 4 x 3 m, walls 0.2 m thick, a door 0.9 m wide in the south wall,
+# standing on a floor slab 0.5 m wider all round; one object
+ROOM = """
+murs = $D(@h(4, 3, 2.5) !cu(0.9, 0.9, 0.8),
+          $U(@t(0.2, 0.2, -1) @h(3.6, 2.6, 5) !cu(0.9, 0.9, 0.8),
+             @t(1, -0.5, 0) @h(0.9, 1, 2.1) !cu(0.2, 0.4, 0.8)));
+sol = @t(-0.5, -0.5, -0.1) @h(5, 4, 0.1) !cu(0.5, 0.5, 0.5);
+piece = $U(murs, sol);
+> piece;
+"""
+
+# two boxes seen from the front (looking towards +y): 'devant' hides part of 'derriere'
+TWO_BOXES = """
+devant = @h(2, 1, 1) !cu(1, 0, 0);
+derriere = @t(1, 3, 0) @h(2, 1, 2) !cu(0, 0, 1);
+> devant, derriere;
+"""
+
+
+def _path_points(d: str) -> list[list[tuple[float, float]]]:
+    """The subpaths of an SVG path made of M, L and Z, as lists of points."""
+    subpaths = []
+    for command, numbers in re.findall(r"([MLZ])([^MLZ]*)", d):
+        values = [float(v) for v in numbers.replace(",", " ").split()]
+        points = list(zip(values[0::2], values[1::2]))
+        if command == "M":
+            subpaths.append(points)
+        elif command == "L":
+            subpaths[-1].extend(points)
+    return subpaths
+
+
+class Drawn:
+    """An SVG drawing read back: its cut loops and seen segments per group, in
+    scene metres on the page (x right, y up), knowing the scale and the
+    drawing's lower-left corner in metres."""
+
+    def __init__(self, svg: bytes, scale: float, corner: tuple[float, float]):
+        root = ET.fromstring(svg)
+        self.width_mm = float(root.get("width").removesuffix("mm"))
+        self.height_mm = float(root.get("height").removesuffix("mm"))
+        assert root.get("viewBox") == f"0 0 {root.get('width')[:-2]} {root.get('height')[:-2]}"
+        metres = scale / 1000
+        x0, y0 = corner
+        self.cuts, self.lines = {}, {}
+        for group in root.iter(SVG + "g"):
+            name = group.get("id")
+            self.cuts[name], self.lines[name] = [], []
+            for path in group.iter(SVG + "path"):
+                for sub in _path_points(path.get("d")):
+                    p = np.array(sub)
+                    p = np.column_stack([(p[:, 0] - 10) * metres + x0,
+                                         (self.height_mm - 10 - p[:, 1]) * metres + y0])
+                    if path.get("class") == "cut":
+                        self.cuts[name].append(p)
+                    else:
+                        self.lines[name].append(p)
+
+    def cut_area(self, name: str) -> float:
+        total = 0.0
+        for loop in self.cuts[name]:
+            x, y = loop[:, 0], loop[:, 1]
+            total += np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) / 2
+        return total
+
+    def in_poche(self, name: str, x: float, y: float) -> bool:
+        inside = False
+        for loop in self.cuts[name]:
+            a, b = loop, np.roll(loop, -1, axis=0)
+            crosses = (a[:, 1] > y) != (b[:, 1] > y)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                at = a[:, 0] + (y - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
+            inside ^= bool(np.sum(crosses & (at > x)) % 2)
+        return inside
+
+    def has_line(self, name: str, p, q, tol=1e-3) -> bool:
+        """Whether a seen segment goes from p to q (either way)."""
+        p, q = np.array(p), np.array(q)
+        for s in self.lines[name]:
+            a, b = s[0], s[-1]
+            if (np.allclose(a, p, atol=tol) and np.allclose(b, q, atol=tol)) or \
+               (np.allclose(a, q, atol=tol) and np.allclose(b, p, atol=tol)):
+                return True
+        return False
+
+    def covered(self, name: str, p, q, tol=1e-3) -> float:
+        """The length of the segment p→q covered by seen lines lying along it."""
+        p, q = np.array(p, float), np.array(q, float)
+        d = q - p
+        length = np.linalg.norm(d)
+        u = d / length
+        pieces = []
+        for s in self.lines[name]:
+            a, b = s[0] - p, s[-1] - p
+            if abs(u[0] * a[1] - u[1] * a[0]) < tol and abs(u[0] * b[1] - u[1] * b[0]) < tol:
+                t = sorted((a @ u, b @ u))
+                pieces.append((max(t[0], 0), min(t[1], length)))
+        covered, reach = 0.0, 0.0
+        for lo, hi in sorted(pieces):
+            lo = max(lo, reach)
+            if hi > lo:
+                covered += hi - lo
+                reach = hi
+        return covered
+
+
+def _draw(tmp_path, scene: str, *options, name="d.svg") -> bytes:
+    (tmp_path / "s.cas").write_text(scene)
+    out = tmp_path / name
+    run(*options, "-o", str(out), str(tmp_path / "s.cas"), check_status=0)
+    return b"" if "%" in name else out.read_bytes()
+
+
+def test_plan_of_a_room_with_a_door(tmp_path):
+    svg = _draw(tmp_path, ROOM, "--section", "z=1.2")
+    drawn = Drawn(svg, 100, (-0.5, -0.5))  # the floor slab is the drawing's extent
+    # printed size: 5 x 4 m at 1:100 is 50 x 40 mm, plus 10 mm margins
+    assert (drawn.width_mm, drawn.height_mm) == (70, 60)
+    walls = 4 * 3 - 3.6 * 2.6 - 0.9 * 0.2
+    assert drawn.cut_area("piece") == pytest.approx(walls, abs=1e-4)
+    assert drawn.in_poche("piece", 0.5, 0.1)  # the south wall
+    assert not drawn.in_poche("piece", 1.45, 0.1)  # the door's opening: a gap
+    assert not drawn.in_poche("piece", 2, 1.5)  # the room
+    # the floor, below the plane, is seen: its outline and the threshold
+    assert drawn.has_line("piece", (-0.5, -0.5), (4.5, -0.5))
+    assert drawn.has_line("piece", (-0.5, -0.5), (-0.5, 3.5))
+    # the floor runs on through the door: no line across the opening
+    assert drawn.covered("piece", (1, 0.1), (1.9, 0.1)) == 0
+    # nothing inside the room but the floor: no line crosses it
+    assert drawn.covered("piece", (0.2, 1.5), (3.8, 1.5)) == 0
+
+
+def test_vertical_section_cuts_the_floor_and_the_walls(tmp_path):
+    # x = 1.5 through the door, seen looking towards +x: y goes to the left
+    svg = _draw(tmp_path, ROOM, "--section", "x=1.5")
+    drawn = Drawn(svg, 100, (-3.5, -0.1))  # page x is -y: the slab spans -3.5 .. 0.5
+    section = 4 * 0.1 + 2 * 0.2 * 2.5 - 0.2 * 2.1  # floor, north and south walls, less the door
+    assert drawn.cut_area("piece") == pytest.approx(section, abs=1e-4)
+    assert not drawn.in_poche("piece", -0.1, 1.0)  # through the door
+    assert drawn.in_poche("piece", -0.1, 2.3)  # the wall over the door
+
+
+def test_elevation_hides_what_is_behind(tmp_path):
+    svg = _draw(tmp_path, TWO_BOXES, "--view", "front")
+    drawn = Drawn(svg, 100, (0, 0))
+    assert not drawn.cuts["devant"] and not drawn.cuts["derriere"]
+    # the front box: its outline, whole
+    assert drawn.covered("devant", (0, 0), (2, 0)) == pytest.approx(2)
+    assert drawn.covered("devant", (2, 0), (2, 1)) == pytest.approx(1)
+    # the box behind: its top and right side seen whole
+    assert drawn.covered("derriere", (1, 2), (3, 2)) == pytest.approx(2)
+    assert drawn.covered("derriere", (3, 0), (3, 2)) == pytest.approx(2)
+    # its left side seen only above the front box, its bottom only beside it
+    assert drawn.covered("derriere", (1, 0), (1, 2)) == pytest.approx(1)
+    assert drawn.has_line("derriere", (1, 1), (1, 2))
+    assert drawn.covered("derriere", (1, 0), (3, 0)) == pytest.approx(1)
+    assert drawn.has_line("derriere", (2, 0), (3, 0))
+    # nothing of it where the front box covers it
+    assert drawn.covered("derriere", (1, 0.5), (2, 0.5)) == 0
+
+
+def test_curved_surfaces_are_drawn_by_their_silhouettes(tmp_path):
+    svg = _draw(tmp_path, "tube = @h(0.5, 0.5, 2) !cy(0.5, 0.5, 0.5);\n> tube;\n", "--view", "front")
+    drawn = Drawn(svg, 100, (-0.5, 0))
+    # a cylinder seen from the side: a rectangle, not a line per facet
+    vertical = [s for s in drawn.lines["tube"] if abs(s[0, 0] - s[-1, 0]) < 1e-6]
+    assert len(vertical) == 2
+    assert drawn.covered("tube", (-0.5, 0), (-0.5, 2), tol=0.01) == pytest.approx(2, abs=0.01)
+    assert drawn.covered("tube", (0.5, 0), (0.5, 2), tol=0.01) == pytest.approx(2, abs=0.01)
+    assert drawn.covered("tube", (0, 0), (0, 2), tol=0.4) == 0
+    assert drawn.covered("tube", (-0.5, 0), (0.5, 0)) == pytest.approx(1, abs=0.01)
+    assert drawn.covered("tube", (-0.5, 2), (0.5, 2)) == pytest.approx(1, abs=0.01)
+
+
+def test_scale_sets_the_printed_size(tmp_path):
+    svg = _draw(tmp_path, TWO_BOXES, "--view", "front", "--scale", "1:50")
+    drawn = Drawn(svg, 50, (0, 0))
+    assert (drawn.width_mm, drawn.height_mm) == (3 * 20 + 20, 2 * 20 + 20)
+
+
+def test_dxf_in_metres_with_a_layer_per_object(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    _draw(tmp_path, ROOM + "lampe = @t(2, 1.5, 0) @h(0.3, 0.3, 1.5) !cu(1, 1, 0);\n> lampe;\n",
+          "--section", "z=1.2", name="p%d.dxf")
+    doc = ezdxf.readfile(tmp_path / "p1.dxf")
+    auditor = doc.audit()
+    assert not auditor.has_errors
+    layers = {layer.dxf.name for layer in doc.layers}
+    assert {"piece"} <= layers
+    hatches = doc.modelspace().query("HATCH")
+    assert {h.dxf.layer for h in hatches} == {"piece"}
+    outline = [p for p in doc.modelspace().query("LWPOLYLINE") if p.dxf.layer == "piece"]
+    area = 0.0
+    for polyline in outline:
+        points = np.array([p[:2] for p in polyline.get_points()])
+        x, y = points[:, 0], points[:, 1]
+        area += np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) / 2
+    assert area == pytest.approx(4 * 3 - 3.6 * 2.6 - 0.9 * 0.2, abs=1e-6)
+    xs = [c for line in doc.modelspace().query("LINE") for c in (line.dxf.start.x, line.dxf.end.x)]
+    assert min(xs) == pytest.approx(-0.5) and max(xs) == pytest.approx(4.5)  # metres
+    # the second frame's object, another file
+    doc2 = ezdxf.readfile(tmp_path / "p2.dxf")
+    assert {h.dxf.layer for h in doc2.modelspace().query("HATCH")} == {"lampe"}
+
+
+EXAMPLE_DRAWINGS = [
+    (name, drawing)
+    for name in ("bus_shelter", "car", "door", "house", "staircase")
+    for drawing in (("--section", "z=1.2"), ("--view", "front"), ("--section", "x=1"))
+]
+
+
+@pytest.mark.skipif(shutil.which("rsvg-convert") is None, reason="rsvg-convert is not installed")
+@pytest.mark.parametrize("name,drawing", EXAMPLE_DRAWINGS)
+def test_every_example_drawn_and_read_back(tmp_path, name, drawing):
+    ezdxf = pytest.importorskip("ezdxf")
+    from PIL import Image
+
+    source = EXAMPLES / f"{name}.cas"
+    defines = ["-D", "ONE_FRAME"] if name in ("bus_shelter", "door") else []
+    if name == "door":
+        defines += ["--set", "T=0.5"]
+    svg = tmp_path / "d.svg"
+    run(*defines, *drawing, "-o", str(svg), str(source), check_status=0, cwd=EXAMPLES)
+    ET.fromstring(svg.read_bytes())
+    png = tmp_path / "d.png"
+    subprocess.run(["rsvg-convert", "-w", "600", "-b", "white", str(svg), "-o", str(png)],
+                   check=True, capture_output=True)
+    pixels = np.asarray(Image.open(png).convert("L"))
+    assert (pixels < 128).mean() > 0.002  # something is drawn
+    assert (pixels > 200).mean() > 0.3  # on a white page
+    dxf = tmp_path / "d.dxf"
+    run(*defines, *drawing, "-o", str(dxf), str(source), check_status=0, cwd=EXAMPLES)
+    doc = ezdxf.readfile(dxf)
+    assert not doc.audit().has_errors
+    assert len(doc.modelspace()) > 0
