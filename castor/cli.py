@@ -112,10 +112,22 @@ def _arguments(argv):
         p.error("--eye and --look go together")
     if args.eye is not None and args.eye == args.look:
         p.error("--eye and --look must be different points")
-    if args.format is None:
-        from castor.formats import format_for_suffix
+    from castor.formats import format_for_suffix
+    from castor.formats.output import available, destination_problem, suffix_message
 
-        args.format = (format_for_suffix(args.output) if args.output else None) or "cps"
+    if args.format is None:
+        args.format = format_for_suffix(args.output) if args.output else "cps"
+        if args.format is None:
+            p.error(suffix_message(args.output))
+    if not available(args.format):
+        p.error(f"the {args.format} format is not part of this castor yet")
+    for path, option in ((args.output, "-o"), (args.summary, "--summary")):
+        if path is not None and path != "-":
+            problem = destination_problem(path)
+            if problem is not None and option == "--summary":
+                problem = problem.replace("-o ", "--summary ")
+            if problem is not None:
+                p.error(problem)
     return p, args
 
 
@@ -132,21 +144,43 @@ def _overrides(parser, sets: list[str]) -> dict[str, float]:
         name, sep, expr = item.partition("=")
         name = name.strip()
         if not sep or not re.fullmatch(r"[A-Z][A-Za-z0-9_]*", name):
+            hint = ""
+            if sep and re.fullmatch(r"[a-z][A-Za-z0-9_]*", name):
+                hint = f" ('{name}' names an object; parameters start with an uppercase letter)"
             parser.error(f"--set takes NAME=EXPR with a parameter NAME (an uppercase first "
-                         f"letter), not '{item}'")
+                         f"letter), not {item!r}{hint}")
+        if ";" in expr:
+            parser.error(f"--set {item!r}: one parameter for each --set; write "
+                         + " ".join(f"--set '{part.strip()}'" for part in item.split(";")
+                                    if part.strip()))
         tables = Tables(parameters={"PI": math.pi, "TOLERANCE": 0.01, **values})
-        chunk = Chunk(f"{name} = {expr};", (("<command line>", 1),), 0)
-        results = list(Parser(tables).parse(chunk))
-        problems = [r for r in results if isinstance(r, CastorError)]
+        # the ';' on a line of its own: a '//' comment in EXPR cannot swallow it
+        chunk = Chunk(f"{name} = {expr}\n;", (("<command line>", 1), ("<command line>", 1)), 0)
         try:
+            results = list(Parser(tables).parse(chunk))
+            problems = [r for r in results if isinstance(r, CastorError)]
             if problems:
                 raise problems[0]
             statement = results[0]
-            assert isinstance(statement, ParamDef)
+            if not isinstance(statement, ParamDef):
+                raise CastorError("expected NAME=EXPR")
             values[name] = evaluate(statement.expr, tables.parameters)
         except CastorError as exc:
             parser.error(f"--set {item}: {exc.message}")
+        except RecursionError:
+            parser.error(f"--set {name}=...: the expression is nested too deeply")
     return values
+
+
+def _warn_unused_overrides(overrides, interpreter, reporter) -> None:
+    """A --set NAME that the scene never assigns nor uses is most likely a typo."""
+    from castor.language.parse import suggestion
+
+    names = interpreter.parser.parameter_names()
+    for name in overrides:
+        if name not in names:
+            reporter.warning(f"--set {name}: the scene neither assigns nor uses a parameter "
+                             f"'{name}'{suggestion(name, names - set(overrides))}")
 
 
 def _read_inputs(files: list[str]) -> list[tuple[str, str]]:
@@ -180,19 +214,34 @@ def _streamed_lines(files: list[str], reader):
                 yield from handle
 
 
-def _run(args, settings, reporter) -> int:
-    from castor.interpreter import Interpreter
+def _run(args, parser, reporter) -> int:
+    from castor.interpreter import Interpreter, Settings
+    from castor.formats import FORMATS
     from castor.formats.output import Output
     from castor.language.reader import Reader
 
+    overrides = _overrides(parser, args.sets)
+    settings = Settings(overrides=overrides, tolerance=args.tolerance,
+                        max_polygons=args.max_polygons, check_only=args.check, stats=args.stats,
+                        merge_polygons=not FORMATS[args.format].triangles_only)
     for name in args.files:
         if name != "-" and not os.access(name, os.R_OK):
             reason = "no such file" if not os.path.exists(name) else "permission denied"
             sys.stderr.write(f"castor: cannot read '{name}': {reason}\n")
             return USAGE_ERROR
     output = None if args.check else Output(args.output, args.format)
+    emit = output.frame if output else None
+    summary = None
+    if args.summary is not None and output is not None:
+        from castor.quantities import Summary
 
-    interpreter = Interpreter(settings, reporter, output.frame if output else None)
+        summary = Summary()
+
+        def emit(frame, location):
+            summary.add(frame)
+            output.frame(frame, location)
+
+    interpreter = Interpreter(settings, reporter, emit)
     if output is not None:
         output.start()
     try:
@@ -212,26 +261,28 @@ def _run(args, settings, reporter) -> int:
             interpreter.run(reader.chunks(text.splitlines()), streaming=False)
     except TooManyErrors:
         pass
+    _warn_unused_overrides(overrides, interpreter, reporter)
     if output is not None and not output.finish(reporter.errors > 0):
         reporter.note(f"castor: {args.output} not written: there were errors and no frame")
+    if summary is not None:
+        from castor.formats.output import write_atomically
+
+        write_atomically(args.summary, summary.text().encode("utf-8"))
     return 1 if reporter.errors else 0
+
+
+# Exit status of a process ended by SIGPIPE, as the shell reports it for cat.
+PIPE_CLOSED = 128 + 13
 
 
 def main(argv=None) -> int:
     parser, args = _arguments(sys.argv[1:] if argv is None else argv)
     reporter = Reporter(quiet=args.quiet)
-    from castor.interpreter import Settings
-
-    from castor.formats import FORMATS
-
-    settings = Settings(overrides=_overrides(parser, args.sets), tolerance=args.tolerance,
-                        max_polygons=args.max_polygons, check_only=args.check, stats=args.stats,
-                        merge_polygons=not FORMATS[args.format].triangles_only)
     result: list = []
 
     def work():
         try:
-            result.append(_run(args, settings, reporter))
+            result.append(_run(args, parser, reporter))
         except BaseException as exc:  # handed to the main thread below
             result.append(exc)
 
@@ -251,9 +302,20 @@ def main(argv=None) -> int:
     outcome = result[0] if result else 1
     if isinstance(outcome, BrokenPipeError):
         _quiet_stdout()
-        return 1
+        return PIPE_CLOSED
     if isinstance(outcome, SystemExit):
         return outcome.code if isinstance(outcome.code, int) else 1
+    from castor.formats.output import Unwritable
+
+    if isinstance(outcome, Unwritable):
+        sys.stderr.write(f"castor: error: {outcome}\n")
+        return USAGE_ERROR
+    if isinstance(outcome, OSError) and outcome.errno is not None:
+        # standard output itself failed (a full disk behind a redirection)
+        sys.stderr.write(f"castor: error: cannot write to standard output: "
+                         f"{(outcome.strerror or str(outcome)).lower()}\n")
+        _quiet_stdout()
+        return USAGE_ERROR
     if isinstance(outcome, MemoryError):
         sys.stderr.write("castor: error: out of memory; simplify the scene, raise the tolerance "
                          "or lower --max-polygons\n")
@@ -270,7 +332,12 @@ def main(argv=None) -> int:
         sys.stdout.flush()
     except BrokenPipeError:
         _quiet_stdout()
-        return 1
+        return PIPE_CLOSED
+    except OSError as exc:
+        sys.stderr.write(f"castor: error: cannot write to standard output: "
+                         f"{(exc.strerror or str(exc)).lower()}\n")
+        _quiet_stdout()
+        return USAGE_ERROR
     return outcome
 
 
@@ -287,6 +354,12 @@ def entry() -> None:
             stream.flush()
         except (BrokenPipeError, ValueError, OSError):
             pass
+    if status == PIPE_CLOSED:
+        # the reader of our pipe has gone: end as cat does, by SIGPIPE
+        import signal
+
+        signal.signal(signal.SIGPIPE, signal.SIG_DFL)
+        os.kill(os.getpid(), signal.SIGPIPE)
     os._exit(status)
 
 

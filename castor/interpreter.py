@@ -146,12 +146,10 @@ class Interpreter:
             self.emit_frame(frame, statement.location)
         self.frames_written += 1
         if self.settings.stats:
-            s = self.facetizer.frame_stats(frame)
-            self.reporter.note(
-                f"castor: frame {number} {where}: {_count(s.primitives, 'primitive')}, "
-                f"{_count(s.booleans, 'boolean operation')}, {_count(s.polygons, 'polygon')}, "
-                f"{_count(s.vertices, 'vertex', 'vertices')}, Euler characteristic {s.euler}, "
-                f"{s.seconds:.3f} s")
+            from castor.quantities import stats_line
+
+            s = self.facetizer.stats
+            self.reporter.note(stats_line(frame, s.primitives, s.booleans, s.seconds))
 
 
 class Progress:

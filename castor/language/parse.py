@@ -11,6 +11,7 @@ together; lark's exceptions are translated into messages in the user's words.
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
 from typing import Iterator
 
@@ -96,6 +97,9 @@ def _suggest(name: str, choices, prefix: str = "") -> str:
     return f"; did you mean '{prefix}{close[0]}'?" if close else ""
 
 
+suggestion = _suggest
+
+
 def _known(prefix: str, name: str, choices) -> str:
     """The suggestion and the list of the known names, for an unknown primitive or
     transformation."""
@@ -141,6 +145,8 @@ class Builder:
 
     def param_def(self, children):
         name, expr = children
+        if name not in self._param_sets:  # a name the scene assigns (for --set's warning)
+            self._param_sets[str(name)] = frozenset((str(name),))
         return self._statement(ParamDef(str(name), expr, self._at(name)))
 
     def object_def(self, children):
@@ -257,6 +263,8 @@ class Builder:
 
     def repeat(self, children):
         param, start, stop = children[:3]
+        if param not in self._param_sets:
+            self._param_sets[str(param)] = frozenset((str(param),))
         step = children[3] if len(children) > 3 else None
         params = start.params | stop.params | (step.params if step is not None else EMPTY)
         return Repeat(str(param), start, stop, step, self._at(param), params)
@@ -356,11 +364,17 @@ class Parser:
 
     def __init__(self, tables: Tables):
         self.lark, self.builder = _lark_and_builder(tables)
+        self.builder._param_sets = {}
+
+    def parameter_names(self) -> set[str]:
+        """Every parameter name the statements parsed so far assign or use."""
+        return set(self.builder._param_sets)
 
     def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | Facetize | CastorError"]:
         """Parse one chunk. A missing ';' is reported, the statement is taken as if it
         were there, and parsing resumes with the next line."""
         pending = [chunk]
+        patched: set[int] = set()  # chunks given their missing ';': never patched twice
         while pending:
             chunk = pending.pop(0)
             self.builder.chunk = chunk
@@ -371,9 +385,12 @@ class Parser:
                 yield exc
                 continue
             except UnexpectedInput as exc:
-                error, retry = _syntax_error(exc, chunk)
+                error, head, rest = _syntax_error(exc, chunk)
                 yield error
-                pending[:0] = retry
+                if head is not None and id(chunk) not in patched:
+                    patched.add(id(head))
+                    rest = [head] + rest
+                pending[:0] = rest
                 continue
             except RecursionError:
                 yield LimitError("statement nested too deeply", chunk.location(1, 1))
@@ -480,9 +497,19 @@ def _describe_found(token: Token) -> str:
     return f"'{token}'"
 
 
+_COMMENT = re.compile(r"/\*(?:.|\n)*?\*/|//[^\n]*")
+
+
+def _code_before(text: str, pos: int) -> str:
+    """``text[:pos]`` without its trailing blanks and comments: where a missing
+    ';' goes (after '> a // the house', not inside the comment)."""
+    blanked = _COMMENT.sub(lambda m: re.sub(r"[^\n]", " ", m.group()), text[:pos])
+    return text[:len(blanked.rstrip())]
+
+
 def _end_before(chunk: Chunk, pos: int):
-    """The location just after the last non-blank character before ``pos``."""
-    before = chunk.text[:pos].rstrip()
+    """The location just after the last character of code before ``pos``."""
+    before = _code_before(chunk.text, pos)
     line = before.count("\n") + 1
     column = len(before) - (before.rfind("\n") + 1) + 1
     return chunk.location(line, column)
@@ -513,8 +540,9 @@ def _acceptable(exc: UnexpectedToken) -> set[str]:
     return set(exc.expected)
 
 
-def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list[Chunk]]:
-    """Translate lark's exception; also return the rest of the chunk to resume on."""
+def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, Chunk | None, list[Chunk]]:
+    """Translate lark's exception; also return the statement given its missing ';'
+    (or None) and the rest of the chunk to resume on."""
     if isinstance(exc, UnexpectedCharacters):
         char = chunk.text[exc.pos_in_stream]
         location = chunk.location(exc.line, exc.column)
@@ -534,7 +562,7 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list
             message = f"unexpected character '{char}'"
             if char == '"' or char == "'":
                 message += "; the language has no strings"
-        return CastorSyntaxError(message, location), []
+        return CastorSyntaxError(message, location), None, []
 
     if isinstance(exc, UnexpectedEOF):
         expected = set(exc.expected)
@@ -554,8 +582,9 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list
         # take the statement as if it were there.
         location = _end_before(chunk, pos)
         message = f"expected ';' at the end of the statement, found {_describe_found(token)}"
-        head = Chunk(chunk.text[:pos].rstrip() + ";", chunk.origins, chunk.first_column)
-        return CastorSyntaxError(message, location), [head] + rest
+        code = _code_before(chunk.text, pos)
+        head = Chunk(code + ";", chunk.origins[:code.count("\n") + 1], chunk.first_column)
+        return CastorSyntaxError(message, location), head, rest
 
     if token.type == "$END":
         location = _end_before(chunk, pos)
@@ -567,4 +596,4 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list
     elif "RSQB" in expected and "COMMA" in expected:
         context = " in the repetition"
     message = f"expected {_describe_expected(expected)}{context}, found {_describe_found(token)}"
-    return CastorSyntaxError(message, location), rest
+    return CastorSyntaxError(message, location), None, rest

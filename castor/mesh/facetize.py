@@ -106,7 +106,7 @@ class Facetizer:
                              "at every level of a deep chain?", location)
         total = 0
         merger = polygons.Merger()
-        for node in objects:
+        for k, node in enumerate(objects, 1):
             solid = self.solid(node, env, 1.0, tolerance, ROOT)
             pieces = []
             for batch in engine.batches(solid.parts):
@@ -119,6 +119,7 @@ class Facetizer:
                     merged = polygons.as_triangles(tri.triangles, tri.origin_ids)
                 pieces.append((tri.vertices, merged))
             frame.objects.append(_frame_object(pieces, solid.origins))
+            frame.objects[-1].name = node.name if type(node) is Named else f"object{k}"
         self.stats = FrameStats(self.primitive_count, self.counter.booleans)
         self.stats.seconds = time.perf_counter() - started
         return frame

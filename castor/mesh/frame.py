@@ -30,6 +30,7 @@ class FrameObject:
     indices: np.ndarray  # vertex numbers, counter-clockwise seen from outside
     origin_of: np.ndarray  # (P,) index into origins
     origins: list[Origin]
+    name: str | None = None  # the '>' command's object ('maison'), for the formats' names
 
     @property
     def polygon_count(self) -> int:
