@@ -94,15 +94,22 @@ def materials(frame: Frame) -> tuple[list[Material], list[np.ndarray]]:
     each of its polygons.
 
     A material is named after the innermost named object whose primitives give
-    most of the polygons of that colour (``toit``, ``fenetre``), else after the
+    most of the area of that colour (``toit``, ``fenetre``), else after the
     colour ('beige'); names are unique.
     """
+    from castor.mesh.polygons import fan_triangles
+
     keys: dict[tuple, int] = {}
-    votes: list[dict[str, int]] = []
+    votes: list[dict[str, float]] = []
     per_object = []
     for obj in frame.objects:
         origin_material = np.zeros(len(obj.origins), np.int64)
-        counts = np.bincount(obj.origin_of, minlength=len(obj.origins)) if len(obj.origins) else []
+        # votes by area, so that every format (polygons or triangles) names alike
+        tris, polygon = fan_triangles(obj.offsets, obj.indices)
+        corners = obj.vertices[tris]
+        areas = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0],
+                                        corners[:, 2] - corners[:, 0]), axis=1)
+        counts = np.bincount(obj.origin_of[polygon], weights=areas, minlength=len(obj.origins))
         for i, origin in enumerate(obj.origins):
             key = tuple(float(c) for c in origin.colour)
             if key not in keys:
@@ -112,7 +119,7 @@ def materials(frame: Frame) -> tuple[list[Material], list[np.ndarray]]:
             named = _NAMED_STEP.findall(origin.path)
             if named:
                 tally = votes[keys[key]]
-                tally[named[-1]] = tally.get(named[-1], 0) + int(counts[i])
+                tally[named[-1]] = tally.get(named[-1], 0.0) + float(counts[i])
         per_object.append(origin_material[obj.origin_of] if len(obj.origin_of)
                           else np.zeros(0, np.int64))
     table, seen = [], set()

@@ -66,7 +66,7 @@ def model(frame: Frame) -> str:
                    for x, y, z in zip(numbers[0::3], numbers[1::3], numbers[2::3]))
         out.append('    </vertices>')
         out.append('    <triangles>')
-        out.extend(f'     <triangle v1="{a}" v2="{b}" v3="{c}" p1="{m}"/>'
+        out.extend(f'     <triangle v1="{a}" v2="{b}" v3="{c}" pid="1" p1="{m}"/>'
                    for (a, b, c), m in zip(tris.tolist(), colour.tolist()))
         out.append('    </triangles>')
         out.append('   </mesh>')
