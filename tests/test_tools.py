@@ -170,3 +170,18 @@ def test_3mf_opens_in_lib3mf_with_its_colours(tmp_path):
     assert house.GetName() == "maison" and house.IsManifoldAndOriented()
     used = {p.PropertyIDs[0] for p in house.GetAllTriangleProperties()}
     assert len(used) == 6
+
+
+def test_meshlab_shows_the_ply_colours_and_a_closed_surface(tmp_path):
+    pymeshlab = pytest.importorskip("pymeshlab", reason="pymeshlab not installed")
+    run("-o", str(tmp_path / "house.ply"), str(EXAMPLES / "house.cas"), check_status=0)
+    meshes = pymeshlab.MeshSet()
+    meshes.load_new_mesh(str(tmp_path / "house.ply"))
+    mesh = meshes.current_mesh()
+    assert mesh.has_vertex_color() and mesh.has_face_color()
+    assert len(np.unique(np.round(mesh.vertex_color_matrix(), 3), axis=0)) == 6
+    # a vertex is written once per colour that meets there: joined again, it is closed
+    meshes.meshing_merge_close_vertices(threshold=pymeshlab.PercentageValue(0.0001))
+    topology = meshes.get_topological_measures()
+    assert topology["boundary_edges"] == 0 and topology["non_two_manifold_edges"] == 0
+    assert meshes.get_geometric_measures()["mesh_volume"] == pytest.approx(64.64939, rel=1e-6)

@@ -56,7 +56,7 @@ def suffix_message(path: str) -> str:
             suffixes.append(f.suffix)
     hint = ""
     if path.lower().endswith(".gltf"):
-        hint = "; castor writes glTF as one binary file: use .glb"
+        hint = " (castor writes glTF as one binary file, .glb)"
     return (f"cannot tell the format of '{path}' from its extension{hint}; use one of "
             f"{' '.join(suffixes)}, or give the format with -f NAME")
 
@@ -73,8 +73,9 @@ def destination_problem(path: str) -> str | None:
         return (f"-o {path}: a '%' that is not the frame-number pattern; write '%%' "
                 f"for a '%' in the name")
     if len(patterns) > 1:
+        suffix = os.path.splitext(path)[1] or ".stl"
         return (f"-o {path}: {len(patterns)} frame-number patterns; a path takes one, such as "
-                f"house-%03d.stl")
+                f"house-%03d{suffix}")
     target = frame_path(path, 1) if patterns else path
     if target.endswith(os.sep) or os.path.isdir(target):
         return f"-o {path}: is a directory; give a file name such as {os.path.join(path, 'scene.stl')}"

@@ -385,7 +385,7 @@ class Parser:
                 yield exc
                 continue
             except UnexpectedInput as exc:
-                error, head, rest = _syntax_error(exc, chunk)
+                error, head, rest = _syntax_error(exc, chunk, self.builder.tables)
                 yield error
                 if head is not None and id(chunk) not in patched:
                     patched.add(id(head))
@@ -540,7 +540,43 @@ def _acceptable(exc: UnexpectedToken) -> set[str]:
     return set(exc.expected)
 
 
-def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, Chunk | None, list[Chunk]]:
+_NAME_BEFORE = re.compile(r"([a-z][A-Za-z0-9_]*)\s*$")
+_DEFINES_NAME = re.compile(r"\s*([a-z][A-Za-z0-9_]*)\s*=\s*$")
+
+
+def _habit(chunk: Chunk, pos: int, token: Token, expected: set[str], tables):
+    """A message for the slips of people who write French (or other languages):
+    a lowercase parameter name, a decimal comma. (message, location) or None."""
+    before = _code_before(chunk.text, pos)
+    if token.type == "COMMA" and re.search(r"\d$", before) \
+            and re.match(r"\d", chunk.text[pos + 1:pos + 2]) and "COMMA" not in expected:
+        number = re.search(r"[\d.]+$", before).group()
+        digits = re.match(r"\d+", chunk.text[pos + 1:]).group()
+        return (f"a decimal comma? write {number}.{digits} with a point; a comma separates "
+                f"arguments", None)
+    defined = _DEFINES_NAME.fullmatch(before)
+    if defined and token.type in ("NUMBER", "PARAM", "LPAR", "ADDOP"):
+        name = defined.group(1)
+        return (f"'{name}' starts with a lowercase letter, so it names an object, and "
+                f"{_describe_found(token)} is not an object; a parameter name starts with "
+                f"an uppercase letter: {name[0].upper() + name[1:]} = ...", None)
+    used = _NAME_BEFORE.search(before)
+    if used and "LPAR" in expected and token.type != "LPAR":
+        name = used.group(1)
+        start = chunk.location(before.count("\n") + 1,
+                               used.start() - (before.rfind("\n") + 1) + 1)
+        if name in FUNCTIONS:
+            return f"the function '{name}' takes its argument in parentheses: {name}(...)", start
+        if tables is not None and name in tables.objects:
+            return (f"'{name}' is an object, not a number; parameters start with an "
+                    f"uppercase letter", start)
+        return (f"'{name}' is not a parameter: parameter names start with an uppercase "
+                f"letter ({name[0].upper() + name[1:]})", start)
+    return None
+
+
+def _syntax_error(exc: UnexpectedInput, chunk: Chunk,
+                  tables: Tables | None = None) -> tuple[CastorError, Chunk | None, list[Chunk]]:
     """Translate lark's exception; also return the statement given its missing ';'
     (or None) and the rest of the chunk to resume on."""
     if isinstance(exc, UnexpectedCharacters):
@@ -590,6 +626,10 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, Chun
         location = _end_before(chunk, pos)
     else:
         location = chunk.location(token.line, token.column)
+    habit = _habit(chunk, pos, token, expected, tables)
+    if habit is not None:
+        message, at = habit
+        return CastorSyntaxError(message, at or location), None, rest
     context = ""
     if {"COMMA", "RPAR"} <= expected:
         context = " after an argument"
