@@ -6,6 +6,7 @@ import os
 import struct
 import subprocess
 import sys
+import tempfile
 
 import pytest
 
@@ -26,9 +27,19 @@ def last_line(err):
     return err.strip().splitlines()[-1]
 
 
+def run_briefly(*args, stdin=None, cwd=None, seconds=30):
+    """Run castor with a time limit: a hang is a failure, not a stuck suite."""
+    result = subprocess.run([sys.executable, "-m", "castor", *args], input=stdin,
+                            cwd=cwd or tempfile.gettempdir(), capture_output=True, text=True,
+                            timeout=seconds)
+    assert "Traceback" not in result.stderr, result.stderr
+    return result.returncode, result.stdout, result.stderr
+
+
 def run_view(*args, stdin=None, cwd=None):
     result = subprocess.run([sys.executable, "-m", "castor.view.cli", *args], input=stdin,
-                            capture_output=True, text=True, cwd=cwd, timeout=120)
+                            capture_output=True, text=True, cwd=cwd or tempfile.gettempdir(),
+                            timeout=120)
     assert "Traceback" not in result.stderr, result.stderr
     return result.returncode, result.stdout, result.stderr
 
@@ -74,7 +85,8 @@ def test_full_disk_on_standard_output():
         pytest.skip("no /dev/full on this system")
     with open("/dev/full", "w") as full:
         result = subprocess.run([sys.executable, "-m", "castor", "--no-cpp"], input=SCENE,
-                                stdout=full, stderr=subprocess.PIPE, text=True, timeout=60)
+                                stdout=full, stderr=subprocess.PIPE, text=True, timeout=60,
+                                cwd=tempfile.gettempdir())
     assert result.returncode == 2
     assert result.stderr == "castor: error: cannot write to standard output: no space left on device\n"
 
@@ -118,7 +130,7 @@ def test_file_name_with_space_is_encoded(tmp_path):
 def test_missing_semicolon_before_a_comment_at_the_end(tmp_path):
     write(tmp_path, "s.cas", "a = !cu(1,1,1);\n> a // the house\n")
     for args in (["s.cas"], ["--no-cpp", "s.cas"]):
-        status, out, err = run(*args, cwd=tmp_path)
+        status, out, err = run_briefly(*args, cwd=tmp_path)
         assert status == 1
         assert err.splitlines() == [
             "s.cas:2:4: error: expected ';' at the end of the statement, found the end of the input",
@@ -128,7 +140,8 @@ def test_missing_semicolon_before_a_comment_at_the_end(tmp_path):
 
 
 def test_set_with_a_comment_does_not_hang():
-    status, out, err = run("--no-cpp", "--set", "X=2 //", stdin="> @h(X, 1, 1) !cu(1,1,1);\n")
+    status, out, err = run_briefly("--no-cpp", "--set", "X=2 //",
+                                   stdin="> @h(X, 1, 1) !cu(1,1,1);\n", seconds=20)
     assert status == 0, err
     assert parse_stream(out)[0].box()[1][0] == 2
 

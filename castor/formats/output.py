@@ -67,6 +67,8 @@ def destination_problem(path: str) -> str | None:
     Checked before any frame is made: a pattern is well formed (one %d, '%%'
     for a literal '%'), and the directory exists and takes new files.
     """
+    if not path.strip():
+        return "an output needs a file name, such as -o house.stl"
     conversions = [m.group() for m in _PERCENT.finditer(path) if m.group() != "%%"]
     patterns = [c for c in conversions if c != "%"]
     if patterns and len(conversions) > len(patterns):
