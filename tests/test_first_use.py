@@ -310,3 +310,28 @@ def test_summary(tmp_path):
     assert other["name"] == "object3" and other["volume"] == 1
     (two_cubes,) = second["objects"]
     assert two_cubes["shells"] == 2 and two_cubes["volume"] == 2 and two_cubes["area"] == 12
+
+
+def test_castor_view_draws_a_glb_and_an_obj_upright(tmp_path):
+    """castor-view reads +Y-up files back into the scene's z up: the same outline as
+    the polygon stream from the same camera."""
+    import numpy as np
+    from PIL import Image
+
+    scene = tmp_path / "h.cas"
+    scene.write_text(HOUSE)
+    status, stream, err = run("--no-cpp", str(scene), check_status=0)
+    (tmp_path / "h.cps").write_text(stream)
+    outlines = {}
+    for suffix in ("cps", "glb", "obj"):
+        if suffix != "cps":
+            run("--no-cpp", "-o", str(tmp_path / f"h.{suffix}"), str(scene), check_status=0)
+        status, out, err = run_view(str(tmp_path / f"h.{suffix}"), "-o",
+                                    str(tmp_path / f"{suffix}.png"), "--size", "160x120")
+        assert status == 0, err
+        pixels = np.asarray(Image.open(tmp_path / f"{suffix}.png").convert("RGB")).astype(int)
+        outlines[suffix] = np.abs(pixels - pixels[0, 0]).sum(axis=2) > 30
+    for suffix in ("glb", "obj"):
+        both = np.count_nonzero(outlines[suffix] & outlines["cps"])
+        either = np.count_nonzero(outlines[suffix] | outlines["cps"])
+        assert both / either > 0.95, suffix
