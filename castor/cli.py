@@ -176,7 +176,7 @@ def _warn_unused_overrides(overrides, interpreter, reporter) -> None:
     """A --set NAME that the scene never assigns nor uses is most likely a typo."""
     from castor.language.parse import suggestion
 
-    names = interpreter.parser.parameter_names()
+    names = interpreter.parser.parameter_names() | {"PI", "TOLERANCE"}  # always in use
     for name in overrides:
         if name not in names:
             reporter.warning(f"--set {name}: the scene neither assigns nor uses a parameter "

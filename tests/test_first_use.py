@@ -246,6 +246,11 @@ def test_define_overridden_by_the_file_is_warned(tmp_path):
         " ^"]
     status, out, err = run("-D", "ENDUIT=0.9, 0.9, 0.8", "s.cas", cwd=tmp_path, check_status=0)
     assert err == ""  # the same value: nothing to say
+    write(tmp_path, "g.cas", "#ifndef ENDUIT\n#define ENDUIT 0.9, 0.9, 0.8\n#endif\n"
+                             "> !cu(ENDUIT);\n")
+    status, out, err = run("-D", "ENDUIT=1,0,0", "g.cas", cwd=tmp_path, check_status=0)
+    assert err == ""  # the way to let -D choose
+    assert parse_stream(out)[0].colours() == {(1, 0, 0)}
 
 
 # --- 1, 3: glTF +Y up and named; OBJ named, +Y up, materials a person recognises

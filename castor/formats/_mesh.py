@@ -139,7 +139,8 @@ def straight_corners(vertices: np.ndarray, offsets: np.ndarray,
                      indices: np.ndarray) -> np.ndarray:
     """(P,) which polygons have a straight corner: a vertex in the middle of a
     straight edge, there because a neighbouring polygon ends at it."""
-    if len(indices) == 0:
+    sizes = np.diff(offsets)
+    if len(indices) == 0 or np.all(sizes == 3):
         return np.zeros(len(offsets) - 1, bool)
     starts = offsets[:-1]
     following = np.arange(1, len(indices) + 1)
@@ -151,7 +152,8 @@ def straight_corners(vertices: np.ndarray, offsets: np.ndarray,
     outgoing = p[following] - p
     turn = np.linalg.norm(np.cross(incoming, outgoing), axis=1)
     straight = turn <= _STRAIGHT * np.linalg.norm(incoming, axis=1) * np.linalg.norm(outgoing, axis=1)
-    return np.logical_or.reduceat(straight, starts) if len(starts) else np.zeros(0, bool)
+    # a triangle keeps even a flat corner: cutting it would leave a hole
+    return np.logical_or.reduceat(straight, starts) & (sizes > 3)
 
 
 def triangles(vertices: np.ndarray, offsets: np.ndarray,

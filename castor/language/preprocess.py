@@ -59,6 +59,10 @@ class SourceLines:
         return lines[number - 1] if 0 < number <= len(lines) else None
 
 
+def _spaced(text: str) -> str:
+    return " ".join(text.split())
+
+
 def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict[str, str]):
     import pcpp
 
@@ -68,6 +72,7 @@ def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict
             self.line_directive = "#line"
             self.compress = 0
             self.definitions: dict[str, Location] = {}  # macro -> where it was #defined
+            self.redefinitions: list[tuple[str, Location]] = []  # of -D macros
 
         def on_error(self, file, line, msg):
             self.return_code += 1
@@ -144,15 +149,25 @@ def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict
             if name in defines and name not in self.definitions:
                 text = "".join(t.value for t in toks).strip()
                 value = text[len(name):].strip()
-                if " ".join(value.split()) != " ".join(defines[name].split()):
-                    original = originals.line(location.file, location.line)
-                    if original is not None:
-                        reporter.source_lines[(location.file, location.line)] = original
-                    reporter.warning(
-                        f"'{name}' redefined: this #define replaces -D {name}="
-                        f"{defines[name]} of the command line; to let -D choose, write "
-                        f"#ifndef {name} ... #endif around it", location)
+                if _spaced(value) != _spaced(defines[name]):
+                    # said once the pass is over, if the #define was not in a
+                    # skipped #ifndef block (pcpp calls this hook there too)
+                    self.redefinitions.append((name, location))
             self.definitions[name] = location
+
+        def warn_redefinitions(self):
+            for name, location in self.redefinitions:
+                macro = self.macros.get(name)
+                if macro is None or _spaced("".join(t.value for t in macro.value)) == \
+                        _spaced(defines[name]):
+                    continue
+                original = originals.line(location.file, location.line)
+                if original is not None:
+                    reporter.source_lines[(location.file, location.line)] = original
+                reporter.warning(
+                    f"'{name}' redefined: this #define replaces -D {name}="
+                    f"{defines[name]} of the command line; to let -D choose, write "
+                    f"#ifndef {name} ... #endif around it", location)
 
         def on_comment(self, tok):
             return True  # keep comments: the grammar skips them, and columns stay right
@@ -203,6 +218,7 @@ def preprocess(sources: list[tuple[str, str]], defines: list[str], undefines: li
             reporter.error(PreprocessError("macros or includes nested too deeply", Location(name, 1, 1)))
             return ""
         out.write("\n")
+    p.warn_redefinitions()
     reporter.expansions = _expansion_finder(p, originals)
     return out.getvalue()
 
