@@ -134,6 +134,19 @@ def render(frame: Frame, name: str, path: str | None = None) -> bytes:
     return getattr(writer(name), FORMATS[name].exporter)(frame, path)
 
 
+def to_stdout(data: bytes) -> None:
+    """Bytes to standard output (through its text layer when it has no bytes one,
+    as under a test's redirection)."""
+    buffer = getattr(sys.stdout, "buffer", None)
+    if buffer is None:
+        sys.stdout.write(data.decode("utf-8", "surrogateescape"))
+        sys.stdout.flush()
+        return
+    sys.stdout.flush()
+    buffer.write(data)
+    buffer.flush()
+
+
 class Output:
     """Sends each finished frame to its destination in the chosen format."""
 
@@ -156,8 +169,7 @@ class Output:
         if self.format == "cps" and not pattern:
             data = render(frame, "cps")
             if self.path is None:
-                sys.stdout.buffer.write(data)
-                sys.stdout.buffer.flush()
+                to_stdout(data)
             else:
                 self.stream_parts.append(data)
             return
@@ -173,8 +185,7 @@ class Output:
             target = frame_path(self.path, frame.number) if pattern else self.path
         data = render(frame, self.format, target)
         if target is None:
-            sys.stdout.buffer.write(data)
-            sys.stdout.buffer.flush()
+            to_stdout(data)
             return
         companions = getattr(writer(self.format), "companions", None)
         if companions is not None:
