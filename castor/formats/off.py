@@ -1,11 +1,13 @@
 """Geomview OFF with a colour for each face (integers 0..255, as MeshLab writes them).
 
-Polygons with a straight corner (a vertex in the middle of a straight edge,
-where a neighbouring polygon ends) are written as triangles with true corners:
 OpenSCAD reads an OFF file straight into CGAL's exact polyhedra, whose booleans
-stop with an assertion at a face corner of 180 degrees. Polygons of more than
-four vertices are cut into convex quads, because some readers (trimesh's OFF
-loader) take nothing larger.
+stop with an assertion at a face whose vertices are not exactly on one plane
+(a rotated quad, by a rounding) or that has a corner of 180 degrees (a vertex in
+the middle of a straight edge, where a neighbouring polygon ends). So a polygon
+is written whole only where it is exactly planar, lying in a plane x, y or z =
+constant, and has no straight corner; any other is written as triangles with
+true corners. Polygons of more than four vertices are cut into convex quads,
+because some readers (trimesh's OFF loader) take nothing larger.
 """
 
 from __future__ import annotations
@@ -17,16 +19,28 @@ from castor.formats._mesh import byte_colours, combine, split_large, straight_co
 from castor.formats.cps import number_strings
 
 
+def _axis_aligned(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray) -> np.ndarray:
+    """(P,) which polygons lie in a plane x, y or z = constant: exactly planar."""
+    if len(indices) == 0:
+        return np.zeros(len(offsets) - 1, bool)
+    p = vertices[indices]
+    starts = offsets[:-1]
+    low = np.minimum.reduceat(p, starts, axis=0)
+    high = np.maximum.reduceat(p, starts, axis=0)
+    return np.any(low == high, axis=1)
+
+
 def faces(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray,
           colours: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The faces OFF readers take: (offsets, indices, colours) of convex faces of at
-    most four vertices and no straight corner."""
-    straight = straight_corners(vertices, offsets, indices)
-    if straight.any():
+    most four vertices, each exactly planar, none with a straight corner."""
+    sizes = np.diff(offsets)
+    whole = (sizes == 3) | (_axis_aligned(vertices, offsets, indices)
+                            & ~straight_corners(vertices, offsets, indices))
+    if not whole.all():
         tris, polygon = triangles(vertices, offsets, indices)
-        # triangles of the straight-cornered polygons, every other polygon whole
-        cut = straight[polygon]
-        parts = [(p, indices[offsets[p]:offsets[p + 1]]) for p in np.flatnonzero(~straight)]
+        cut = ~whole[polygon]
+        parts = [(p, indices[offsets[p]:offsets[p + 1]]) for p in np.flatnonzero(whole)]
         parts += list(zip(polygon[cut].tolist(), tris[cut]))
         parts.sort(key=lambda part: part[0])
         owner = np.array([p for p, _ in parts], np.int64)
