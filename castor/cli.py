@@ -112,6 +112,18 @@ def _arguments(argv):
         p.error("--eye and --look go together")
     if args.eye is not None and args.eye == args.look:
         p.error("--eye and --look must be different points")
+    if args.summary is not None and args.check:
+        p.error("--summary needs the frames made; leave out --check")
+    for definition in args.defines:
+        name, _, value = definition.partition("=")
+        if not re.fullmatch(r"[A-Za-z_]\w*(\([\w\s,]*\))?", name.strip()):
+            p.error(f"-D takes NAME or NAME=VALUE with a macro NAME (letters, digits and _, "
+                    f"not starting with a digit), not {definition!r}")
+        if "\n" in value or "\r" in value:
+            p.error(f"-D {name}: the value of a macro is one line, not {value!r}")
+    for name in args.undefines:
+        if not re.fullmatch(r"[A-Za-z_]\w*", name.strip()):
+            p.error(f"-U takes a macro NAME (letters, digits and _), not {name!r}")
     from castor.formats import format_for_suffix
     from castor.formats.output import available, destination_problem, suffix_message
 

@@ -66,6 +66,19 @@ def test_unwritable_outputs_are_usage_errors(tmp_path, name, message):
     assert os.listdir(tmp_path) == []
 
 
+@pytest.mark.parametrize("args, message", [
+    (["-U", ""], "castor: error: -U takes a macro NAME (letters, digits and _), not ''"),
+    (["-D", "2X=1"], "castor: error: -D takes NAME or NAME=VALUE with a macro NAME (letters, "
+                     "digits and _, not starting with a digit), not '2X=1'"),
+    (["--summary", "q.json", "--check"], "castor: error: --summary needs the frames made; "
+                                         "leave out --check"),
+])
+def test_option_usage_errors(tmp_path, args, message):
+    status, out, err = run(*args, stdin=SCENE, cwd=tmp_path)
+    assert status == 2
+    assert last_line(err) == message
+
+
 def test_png_is_refused_until_pictures_exist(tmp_path):
     status, out, err = run("--no-cpp", "-o", "x.png", stdin=SCENE, cwd=tmp_path)
     if status == 0:
