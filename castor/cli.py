@@ -134,12 +134,9 @@ def _arguments(argv):
     if not available(args.format):
         p.error(f"the {args.format} format is not part of this castor yet")
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
-        if path is not None and path != "-":
-            problem = destination_problem(path)
-            if problem is not None and option == "--summary":
-                problem = problem.replace("-o ", "--summary ")
-            if problem is not None:
-                p.error(problem)
+        problem = destination_problem(path, option) if path is not None else None
+        if problem is not None:
+            p.error(problem)
     return p, args
 
 

@@ -61,26 +61,26 @@ def suffix_message(path: str) -> str:
             f"{' '.join(suffixes)}, or give the format with -f NAME")
 
 
-def destination_problem(path: str) -> str | None:
+def destination_problem(path: str, option: str = "-o") -> str | None:
     """Why ``path`` cannot be written to, as a usage error says it, or None.
 
     Checked before any frame is made: a pattern is well formed (one %d, '%%'
     for a literal '%'), and the directory exists and takes new files.
     """
     if not path.strip():
-        return "an output needs a file name, such as -o house.stl"
+        return f"{option} needs a file name, such as {option} house.stl"
     conversions = [m.group() for m in _PERCENT.finditer(path) if m.group() != "%%"]
     patterns = [c for c in conversions if c != "%"]
     if patterns and len(conversions) > len(patterns):
-        return (f"-o {path}: a '%' that is not the frame-number pattern; write '%%' "
+        return (f"{option} {path}: a '%' that is not the frame-number pattern; write '%%' "
                 f"for a '%' in the name")
     if len(patterns) > 1:
         suffix = os.path.splitext(path)[1] or ".stl"
-        return (f"-o {path}: {len(patterns)} frame-number patterns; a path takes one, such as "
+        return (f"{option} {path}: {len(patterns)} frame-number patterns; a path takes one, such as "
                 f"house-%03d{suffix}")
     target = frame_path(path, 1) if patterns else path
     if target.endswith(os.sep) or os.path.isdir(target):
-        return f"-o {path}: is a directory; give a file name such as {os.path.join(path, 'scene.stl')}"
+        return f"{option} {path}: is a directory; give a file name such as {os.path.join(path, 'scene.stl')}"
     directory = os.path.dirname(os.path.abspath(target))
     if not os.path.isdir(directory):
         shown = os.path.dirname(target) or "."
