@@ -1,14 +1,18 @@
 """What a new user meets (issue 9): output errors, pipes, and messages that name
 the real cause. Golden text where the text is the contract (diagnostics)."""
 
+import contextlib
+import io
 import json
 import os
+import re
 import struct
 import subprocess
 import sys
 import tempfile
 
 import pytest
+from hypothesis import HealthCheck, event, given, settings, strategies as st
 
 from meshcheck import parse_stream, run
 
@@ -353,3 +357,41 @@ def test_castor_view_draws_a_glb_and_an_obj_upright(tmp_path):
         both = np.count_nonzero(outlines[suffix] & outlines["cps"])
         either = np.count_nonzero(outlines[suffix] | outlines["cps"])
         assert both / either > 0.95, suffix
+
+
+# --- positions through macros: random macro scenes, every message on the line as written
+
+def _macro_scene(data):
+    body = data.draw(st.lists(st.sampled_from(
+        ["@t(X, 0, 1)", "@h(1.2, 0.5)", "!cu(C)", "!cu(1, 1)", "nothing", "@rz(X)", "X", "C",
+         ",", "(", ")", "$U(", "!sp(C)", "1"]), min_size=1, max_size=6).map(" ".join))
+    use = data.draw(st.lists(st.sampled_from(
+        ["F(1)", "F(2, 3)", "F()", "C", "G", "!cu(C)", " ", "$U(", ")", ",", "@t(1, 2, 3)",
+         "F(F(1))", "nothing", "/* F(1) */", "// F(1)"]), min_size=1, max_size=6).map(" ".join))
+    return (f"#define C 0.5, 0.5, 0.5\n#define G F(4)\n#define F(X) {body}\n"
+            f"a = {use};\n> {use};\n")
+
+
+LOCATION = re.compile(r"^<stdin>:(\d+):(\d+): (?:error|warning|note): ", re.M)
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.data())
+def test_macro_positions_stay_on_the_line_as_written(data):
+    from castor.cli import main
+
+    scene = _macro_scene(data)
+    lines = scene.split("\n")
+    stdin, err, out = sys.stdin, io.StringIO(), io.StringIO()
+    sys.stdin = io.StringIO(scene)
+    try:
+        with contextlib.redirect_stderr(err), contextlib.redirect_stdout(out):
+            status = main(["--max-polygons", "20000"])
+    finally:
+        sys.stdin = stdin
+    text = err.getvalue()
+    assert status in (0, 1) and "internal error" not in text, (scene, text)
+    if "note: in expansion of macro" in text:
+        event("an error inside an expansion")
+    for line, column in LOCATION.findall(text):
+        assert 1 <= int(column) <= len(lines[int(line) - 1]) + 1, (scene, text)

@@ -243,9 +243,12 @@ def _expansion_finder(p, originals: SourceLines):
 
 
 def _expansions_of(line: str, original: str, p) -> list | None:
+    """The ``Expansion`` of each macro use of ``original`` in its expanded ``line``,
+    or None when the two cannot be lined up (arguments over several lines, a
+    macro redefined since): the reporter then keeps the expanded positions."""
     from castor.diagnostics import Expansion
 
-    uses = []  # (start, end) in the original
+    uses = []  # (start, end, macro) of each use in the original line
     tokens = list(_ORIGINAL_TOKEN.finditer(original))
     k = 0
     while k < len(tokens):
