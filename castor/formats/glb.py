@@ -82,7 +82,7 @@ def export(frame: Frame, path: str | None = None) -> bytes:
     if not nodes:
         for key in ("nodes", "meshes", "materials", "accessors", "bufferViews", "buffers"):
             document.pop(key)
-        document["scenes"] = [{"nodes": []}]
+        document["scenes"] = [{}]  # an empty list of nodes is not valid glTF
     text = json.dumps(document, separators=(",", ":")).encode("utf-8")
     text += b" " * (-len(text) % 4)
     binary = b"".join(blobs)
