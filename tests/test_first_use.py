@@ -97,6 +97,14 @@ def test_literal_percent_and_pattern(tmp_path):
     assert sorted(os.listdir(tmp_path)) == ["50%-1.off", "50%-2.off"]
 
 
+def test_one_stream_per_frame(tmp_path):
+    status, out, err = run("--no-cpp", "-o", "f-%d.cps", stdin=SCENE + SCENE, cwd=tmp_path)
+    assert status == 0, err
+    for n in (1, 2):
+        (frame,) = parse_stream((tmp_path / f"f-{n}.cps").read_text())
+        assert frame.number == n
+
+
 def test_full_disk_on_standard_output():
     if not os.path.exists("/dev/full"):
         pytest.skip("no /dev/full on this system")

@@ -184,6 +184,10 @@ class Output:
         if self.path is not None:
             target = frame_path(self.path, frame.number) if pattern else self.path
         data = render(frame, self.format, target)
+        if self.format == "cps":  # one stream per file: each begins with the header
+            from castor.formats.cps import HEADER
+
+            data = HEADER.encode("utf-8") + data
         if target is None:
             to_stdout(data)
             return
