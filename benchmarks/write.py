@@ -30,14 +30,14 @@ def main() -> None:
     triangles = sum(len(o.indices) - 2 * o.polygon_count for o in frame.objects)
     stream_times, stl_times = [], []
     for _ in range(RUNS):
-        with tempfile.TemporaryFile("w") as handle:
+        with tempfile.TemporaryFile("wb") as handle:
             started = time.perf_counter()
-            cps.write(frame, handle)
+            handle.write(cps.export(frame))
             handle.flush()
             stream_times.append(time.perf_counter() - started)
         with tempfile.TemporaryFile("wb") as handle:
             started = time.perf_counter()
-            stl.write(frame, handle)
+            handle.write(stl.export(frame))
             handle.flush()
             stl_times.append(time.perf_counter() - started)
     print(f"frame: {triangles} triangles in {frame.polygon_count} polygons "

@@ -112,10 +112,31 @@ def _arguments(argv):
         p.error("--eye and --look go together")
     if args.eye is not None and args.eye == args.look:
         p.error("--eye and --look must be different points")
-    if args.format is None:
-        from castor.formats import format_for_suffix
+    if args.summary is not None and args.check:
+        p.error("--summary needs the frames made; leave out --check")
+    for definition in args.defines:
+        name, _, value = definition.partition("=")
+        if not re.fullmatch(r"[A-Za-z_]\w*(\([\w\s,]*\))?", name.strip()):
+            p.error(f"-D takes NAME or NAME=VALUE with a macro NAME (letters, digits and _, "
+                    f"not starting with a digit), not {definition!r}")
+        if "\n" in value or "\r" in value:
+            p.error(f"-D {name}: the value of a macro is one line, not {value!r}")
+    for name in args.undefines:
+        if not re.fullmatch(r"[A-Za-z_]\w*", name.strip()):
+            p.error(f"-U takes a macro NAME (letters, digits and _), not {name!r}")
+    from castor.formats import format_for_suffix
+    from castor.formats.output import available, destination_problem, suffix_message
 
-        args.format = (format_for_suffix(args.output) if args.output else None) or "cps"
+    if args.format is None:
+        args.format = format_for_suffix(args.output) if args.output else "cps"
+        if args.format is None:
+            p.error(suffix_message(args.output))
+    if not available(args.format):
+        p.error(f"the {args.format} format is not part of this castor yet")
+    for path, option in ((args.output, "-o"), (args.summary, "--summary")):
+        problem = destination_problem(path, option) if path is not None else None
+        if problem is not None:
+            p.error(problem)
     return p, args
 
 
@@ -132,21 +153,36 @@ def _overrides(parser, sets: list[str]) -> dict[str, float]:
         name, sep, expr = item.partition("=")
         name = name.strip()
         if not sep or not re.fullmatch(r"[A-Z][A-Za-z0-9_]*", name):
+            hint = ""
+            if sep and re.fullmatch(r"[a-z][A-Za-z0-9_]*", name):
+                hint = f" ('{name}' names an object; parameters start with an uppercase letter)"
             parser.error(f"--set takes NAME=EXPR with a parameter NAME (an uppercase first "
-                         f"letter), not '{item}'")
+                         f"letter), not {item!r}{hint}")
+        if ";" in expr:
+            parser.error(f"--set {item!r}: one parameter for each --set; write "
+                         + " ".join(f"--set '{part.strip()}'" for part in item.split(";")
+                                    if part.strip()))
         tables = Tables(parameters={"PI": math.pi, "TOLERANCE": 0.01, **values})
-        chunk = Chunk(f"{name} = {expr};", (("<command line>", 1),), 0)
-        results = list(Parser(tables).parse(chunk))
-        problems = [r for r in results if isinstance(r, CastorError)]
+        # the ';' on a line of its own: a '//' comment in EXPR cannot swallow it
+        chunk = Chunk(f"{name} = {expr}\n;", (("<command line>", 1), ("<command line>", 1)), 0)
         try:
+            results = list(Parser(tables).parse(chunk))
+            problems = [r for r in results if isinstance(r, CastorError)]
             if problems:
                 raise problems[0]
             statement = results[0]
-            assert isinstance(statement, ParamDef)
+            if not isinstance(statement, ParamDef):
+                raise CastorError("expected NAME=EXPR")
             values[name] = evaluate(statement.expr, tables.parameters)
         except CastorError as exc:
             parser.error(f"--set {item}: {exc.message}")
+        except RecursionError:
+            parser.error(f"--set {name}=...: the expression is nested too deeply")
     return values
+
+
+# Exit status of a process ended by SIGPIPE, as the shell reports it for cat.
+PIPE_CLOSED = 128 + 13
 
 
 def main(argv=None) -> int:
@@ -192,9 +228,20 @@ def main(argv=None) -> int:
     outcome = result[0] if result else 1
     if isinstance(outcome, BrokenPipeError):
         _quiet_stdout()
-        return 1
+        return PIPE_CLOSED
     if isinstance(outcome, SystemExit):
         return outcome.code if isinstance(outcome.code, int) else 1
+    from castor.formats.output import Unwritable
+
+    if isinstance(outcome, Unwritable):
+        sys.stderr.write(f"castor: error: {outcome}\n")
+        return USAGE_ERROR
+    if isinstance(outcome, OSError) and outcome.errno is not None:
+        # standard output itself failed (a full disk behind a redirection)
+        sys.stderr.write(f"castor: error: cannot write to standard output: "
+                         f"{(outcome.strerror or str(outcome)).lower()}\n")
+        _quiet_stdout()
+        return USAGE_ERROR
     if isinstance(outcome, MemoryError):
         sys.stderr.write("castor: error: out of memory; simplify the scene, raise the tolerance "
                          "or lower --max-polygons\n")
@@ -211,7 +258,12 @@ def main(argv=None) -> int:
         sys.stdout.flush()
     except BrokenPipeError:
         _quiet_stdout()
-        return 1
+        return PIPE_CLOSED
+    except OSError as exc:
+        sys.stderr.write(f"castor: error: cannot write to standard output: "
+                         f"{(exc.strerror or str(exc)).lower()}\n")
+        _quiet_stdout()
+        return USAGE_ERROR
     return outcome
 
 
@@ -228,6 +280,12 @@ def entry() -> None:
             stream.flush()
         except (BrokenPipeError, ValueError, OSError):
             pass
+    if status == PIPE_CLOSED:
+        # the reader of our pipe has gone: end as cat does, by SIGPIPE
+        import signal
+
+        signal.signal(signal.SIGPIPE, signal.SIG_DFL)
+        os.kill(os.getpid(), signal.SIGPIPE)
     os._exit(status)
 
 

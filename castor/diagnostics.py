@@ -60,6 +60,36 @@ class LimitError(CastorError):
     """A scene that exceeds one of castor's limits (polygons, operands, depth)."""
 
 
+class Expansion(NamedTuple):
+    """A macro use on a line: its expansion's span in the expanded line, its own span
+    in the original line (0-based, end excluded), the macro and where it is defined."""
+
+    start: int
+    end: int
+    use_start: int
+    use_end: int
+    macro: str
+    defined_at: str
+
+
+class LineExpansions(NamedTuple):
+    original: str  # the line as written
+    expansions: tuple[Expansion, ...]
+
+    def locate(self, column: int) -> tuple[int, Expansion | None]:
+        """The column in the original line of an expanded line's column, and the
+        expansion it falls in (None outside every expansion)."""
+        index = column - 1
+        shift = 0
+        for e in self.expansions:
+            if index < e.start:
+                break
+            if index < e.end:
+                return e.use_start + 1, e
+            shift = e.use_end - e.end
+        return index + shift + 1, None
+
+
 class TooManyErrors(Exception):
     """Raised by the reporter once MAX_ERRORS errors have been printed."""
 
@@ -76,6 +106,9 @@ class Reporter:
         # (file, line) -> text of that line, registered by the reader so that
         # the caret line shows what was parsed, even for standard input.
         self.source_lines: dict[tuple[str, int], str] = {}
+        # set by the preprocessor: (file, line, expanded text) -> the macro uses of
+        # a line it changed (LineExpansions), or None
+        self.expansions = None
 
     def error(self, err: CastorError) -> None:
         self.errors += 1
@@ -96,13 +129,27 @@ class Reporter:
         if location is None:
             self._emit_plain(f"castor: {kind}: {message}")
             return
-        lines = [f"{location}: {kind}: {message}"]
+        note = None
         text = self.source_lines.get((location.file, location.line))
+        mapped = None
+        if self.expansions is not None:
+            mapped = self.expansions(location.file, location.line, text)
+        if mapped is not None:
+            # point at the macro's use in the line as written, as gcc does
+            column, expansion = mapped.locate(location.column)
+            location = Location(location.file, location.line, column)
+            text = mapped.original
+            if expansion is not None:
+                note = (f"{location}: note: in expansion of macro {expansion.macro}, "
+                        f"defined at {expansion.defined_at}")
+        lines = [f"{location}: {kind}: {message}"]
         if text is not None:
             text = text.rstrip("\n").expandtabs(1)
             if len(text) <= 300 and text.isprintable():
                 lines.append(f" {text}")
                 lines.append(" " + " " * max(location.column - 1, 0) + "^")
+        if note is not None:
+            lines.append(note)
         self._emit_plain("\n".join(lines))
 
     def _emit_plain(self, text: str) -> None:

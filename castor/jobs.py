@@ -130,24 +130,11 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
         result.data, result.companions = encode(frame, spec.format, spec.target)
     if spec.keep_mesh:
         result.mesh = frame
-    if spec.stats:
-        result.stats = stats_line(frame, facetizer.stats)
-    if spec.summary:
-        from castor.quantities import frame_summary
+    if spec.stats or spec.summary:
+        from castor.quantities import stats_line, summary_record
 
-        result.summary = frame_summary(frame)
-
-
-def stats_line(frame, stats) -> str:
-    """The --stats line of a frame."""
-    polygons = frame.polygon_count
-    vertices = sum(len(o.vertices) for o in frame.objects)
-    euler = sum(len(o.vertices) - o.edge_count() + o.polygon_count for o in frame.objects)
-    return (f"castor: frame {frame.number} {frame.where}: {_count(stats.primitives, 'primitive')}, "
-            f"{_count(stats.booleans, 'boolean operation')}, {_count(polygons, 'polygon')}, "
-            f"{_count(vertices, 'vertex', 'vertices')}, Euler characteristic {euler}, "
-            f"{stats.seconds:.3f} s")
-
-
-def _count(n: int, one: str, many: str | None = None) -> str:
-    return f"{n} {one if n == 1 else (many or one + 's')}"
+        stats = facetizer.stats
+        if spec.stats:
+            result.stats = stats_line(frame, stats.primitives, stats.booleans, stats.seconds)
+        if spec.summary:
+            result.summary = summary_record(frame)

@@ -41,6 +41,8 @@ class Sequencer:
         self.ready = threading.Condition(self.lock)
         self.stopped = False
         self.handling = False  # a frame's own messages go out with it, not behind the queue
+        self.owner = threading.current_thread()
+        self.failure: Exception | None = None
         self.summaries: list[dict] = []
         self.pictures: list = []
         self.frames: list = []  # mesh frames, when the spec keeps them
@@ -61,6 +63,8 @@ class Sequencer:
 
     # --- frames
     def submit(self, scene) -> None:
+        if self.failure is not None:
+            raise self.failure
         if self.stopped:
             raise TooManyErrors()
         job = Job(scene, self.spec)
@@ -116,6 +120,8 @@ class Sequencer:
                 self.ready.wait(0.5)
                 self.drain()
         self.reporter.stream = self.stderr
+        if self.failure is not None:
+            raise self.failure
 
     def _handle(self, result: Result) -> None:
         self.handling = True
@@ -139,6 +145,11 @@ class Sequencer:
             if result.stats is not None:
                 self.reporter.note(result.stats)
         except TooManyErrors:
+            self.stopped = True
+        except Exception as exc:  # an output that cannot be written, a closed pipe
+            if threading.current_thread() is self.owner:
+                raise
+            self.failure = exc  # raised again in the thread that runs the scene
             self.stopped = True
         finally:
             self.handling = False
@@ -227,6 +238,7 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
             sequencer.finish()
         except TooManyErrors:
             pass
+        _warn_unused_overrides(settings.overrides, interpreter, reporter)
     finally:
         if executor is not None:
             executor.shutdown(wait=True)  # workers end before castor does: none outlives it
@@ -237,6 +249,17 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
     if output is not None and not output.finish(reporter.errors > 0):
         reporter.note(f"castor: {args.output} not written: there were errors and no frame")
     return 1 if reporter.errors else 0
+
+
+def _warn_unused_overrides(overrides, interpreter, reporter) -> None:
+    """A --set NAME that the scene never assigns nor uses is most likely a typo."""
+    from castor.language.parse import suggestion
+
+    names = interpreter.parser.parameter_names() | {"PI", "TOLERANCE"}  # always in use
+    for name in overrides:
+        if name not in names:
+            reporter.warning(f"--set {name}: the scene neither assigns nor uses a parameter "
+                             f"'{name}'{suggestion(name, names - set(overrides))}")
 
 
 def _finish_collected(args, spec: Spec, sequencer: Sequencer, reporter: Reporter) -> None:
@@ -254,10 +277,11 @@ def _finish_collected(args, spec: Spec, sequencer: Sequencer, reporter: Reporter
         else:
             write_atomically(args.output, data)
     if args.summary is not None and not args.check:
-        import json
+        from castor.quantities import Summary
 
-        text = json.dumps({"frames": sequencer.summaries}, indent=1)
-        write_atomically(args.summary, (text + "\n").encode("utf-8"))
+        summary = Summary()
+        summary.frames.extend(sequencer.summaries)
+        write_atomically(args.summary, summary.text().encode("utf-8"))
 
 
 def _read_inputs(files: list[str]) -> list[tuple[str, str]]:

@@ -49,7 +49,9 @@ def test_format_keeps_colours(scene, name):
         nv, nf, _ = map(int, lines[1].split())
         colours = {tuple(l.split()[-3:]) for l in lines[2 + nv:2 + nv + nf]}
     elif name == "ply":
-        colours = {tuple(c) for c in trimesh.load_mesh(str(target)).visual.face_colors.tolist()}
+        # vertex colours (what Blender reads), one colour per written vertex
+        mesh = trimesh.load_mesh(str(target), process=False)
+        colours = {tuple(c) for c in mesh.visual.vertex_colors.tolist()}
     else:
         loaded = trimesh.load(str(target))
         materials = [g.visual.material for g in loaded.geometry.values()]

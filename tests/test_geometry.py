@@ -181,7 +181,7 @@ def test_stats_line():
     status, out, err = run("--no-cpp", "--stats", stdin=f"> $U(!cu({W}), @t(1, 0, 0) !cu({W}));\n")
     line = err.splitlines()[0]
     assert line.startswith("castor: frame 1 <stdin>:1: 2 primitives, 1 boolean operation, "
-                           "10 polygons, 12 vertices, Euler characteristic 2, ")
+                           "10 polygons, 12 vertices, volume 2, area 10, box 0 0 0 to 2 1 1, ")
 
 
 def test_shared_tree_is_facetized_once():

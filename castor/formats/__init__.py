@@ -22,6 +22,7 @@ class Format(NamedTuple):
     binary: bool
     triangles_only: bool  # the format holds triangles: polygon merging is skipped
     all_frames: bool = False  # one file holds every frame (the stream, a GIF)
+    exporter: str = "export"  # the module's function: (frame, path=None) -> bytes
 
 
 FORMATS: dict[str, Format] = {f.name: f for f in (
@@ -29,8 +30,9 @@ FORMATS: dict[str, Format] = {f.name: f for f in (
     Format("off", "off", ".off", "Geomview OFF with a colour per face", "mesh", False, False),
     Format("obj", "obj", ".obj", "Wavefront OBJ with a material per colour", "mesh", False, False),
     Format("stl", "stl", ".stl", "binary STL, geometry only", "mesh", True, True),
-    Format("stl-ascii", "stl", ".stl", "ASCII STL, geometry only", "mesh", False, True),
-    Format("ply", "ply", ".ply", "binary PLY with colours", "mesh", True, True),
+    Format("stl-ascii", "stl", ".stl", "ASCII STL, geometry only", "mesh", False, True,
+           exporter="export_ascii"),
+    Format("ply", "ply", ".ply", "binary PLY with vertex colours", "mesh", True, True),
     Format("glb", "glb", ".glb", "binary glTF 2.0, one node per object", "mesh", True, True),
     Format("3mf", "threemf", ".3mf", "3D Manufacturing Format, coloured, in millimetres",
            "mesh", True, True),

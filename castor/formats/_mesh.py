@@ -1,12 +1,18 @@
-"""What the mesh writers share: all objects of a frame as one vertex and face list."""
+"""What the mesh writers share: a frame's objects as vertex and face lists, triangles
+that every reader takes, and names a person recognises for objects and materials."""
 
 from __future__ import annotations
 
+import re
 from typing import NamedTuple
 
 import numpy as np
 
-from castor.mesh.frame import Frame
+from castor.mesh.frame import Frame, FrameObject
+
+# sin of the angle under which a polygon's corner counts as straight (a vertex in
+# the middle of a straight edge, which a neighbouring polygon needs)
+_STRAIGHT = 1e-9
 
 
 class Combined(NamedTuple):
@@ -17,6 +23,11 @@ class Combined(NamedTuple):
     objects: np.ndarray  # (P,) object number of each polygon
 
 
+class Material(NamedTuple):
+    name: str
+    colour: tuple[float, float, float]
+
+
 def combine(frame: Frame) -> Combined:
     vertices, offsets, indices, colours, objects = [], [np.zeros(1, np.int64)], [], [], []
     base_vertex = 0
@@ -25,8 +36,7 @@ def combine(frame: Frame) -> Combined:
         vertices.append(obj.vertices)
         indices.append(obj.indices + base_vertex)
         offsets.append(obj.offsets[1:] + base_index)
-        table = np.array([o.colour for o in obj.origins], dtype=np.float64).reshape(-1, 3)
-        colours.append(table[obj.origin_of] if len(obj.origin_of) else np.zeros((0, 3)))
+        colours.append(polygon_colours(obj))
         objects.append(np.full(obj.polygon_count, number, np.int64))
         base_vertex += len(obj.vertices)
         base_index += len(obj.indices)
@@ -37,16 +47,196 @@ def combine(frame: Frame) -> Combined:
                     np.concatenate(colours), np.concatenate(objects))
 
 
+def polygon_colours(obj: FrameObject) -> np.ndarray:
+    """(P, 3) the colour of each polygon of ``obj``."""
+    table = np.array([o.colour for o in obj.origins], dtype=np.float64).reshape(-1, 3)
+    return table[obj.origin_of] if len(obj.origin_of) else np.zeros((0, 3))
+
+
 def byte_colours(colours: np.ndarray) -> np.ndarray:
     return np.clip(np.rint(colours * 255), 0, 255).astype(np.uint8)
+
+
+def object_names(frame: Frame) -> list[str]:
+    """The name of each object: the '>' command's object, else objectK; unique."""
+    names, seen = [], set()
+    for k, obj in enumerate(frame.objects, 1):
+        name = obj.name or f"object{k}"
+        base, n = name, 1
+        while name in seen:
+            n += 1
+            name = f"{base}_{n}"
+        seen.add(name)
+        names.append(name)
+    return names
+
+
+# colours by name, for a material that no named object explains
+_COLOUR_NAMES = {
+    "white": (1, 1, 1), "light_grey": (0.75, 0.75, 0.75), "grey": (0.5, 0.5, 0.5),
+    "dark_grey": (0.25, 0.25, 0.25), "black": (0, 0, 0), "red": (0.85, 0.1, 0.1),
+    "dark_red": (0.5, 0.1, 0.1), "orange": (1, 0.55, 0.1), "yellow": (1, 0.9, 0.1),
+    "beige": (0.93, 0.88, 0.75), "brown": (0.5, 0.3, 0.15), "green": (0.15, 0.65, 0.2),
+    "dark_green": (0.1, 0.35, 0.1), "cyan": (0.1, 0.8, 0.85), "blue": (0.15, 0.3, 0.85),
+    "navy": (0.05, 0.1, 0.4), "purple": (0.5, 0.2, 0.6), "pink": (1, 0.6, 0.75),
+}
+_NAMED_STEP = re.compile(r"\(([^()]*)\)")
+
+
+def colour_name(colour) -> str:
+    """The nearest of a few colour names a person uses ('beige', 'dark_red')."""
+    c = np.asarray(colour, dtype=np.float64)
+    return min(_COLOUR_NAMES, key=lambda n: float(np.sum((np.array(_COLOUR_NAMES[n]) - c) ** 2)))
+
+
+def materials(frame: Frame) -> tuple[list[Material], list[np.ndarray]]:
+    """One material per colour of the frame, and for each object the material of
+    each of its polygons.
+
+    A material is named after the innermost named object whose primitives give
+    most of the area of that colour (``toit``, ``fenetre``), else after the
+    colour ('beige'); names are unique.
+    """
+    from castor.mesh.polygons import fan_triangles
+
+    keys: dict[tuple, int] = {}
+    votes: list[dict[str, float]] = []
+    per_object = []
+    for obj in frame.objects:
+        origin_material = np.zeros(len(obj.origins), np.int64)
+        # votes by area, so that every format (polygons or triangles) names alike
+        tris, polygon = fan_triangles(obj.offsets, obj.indices)
+        corners = obj.vertices[tris]
+        areas = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0],
+                                        corners[:, 2] - corners[:, 0]), axis=1)
+        counts = np.bincount(obj.origin_of[polygon], weights=areas, minlength=len(obj.origins))
+        for i, origin in enumerate(obj.origins):
+            key = tuple(float(c) for c in origin.colour)
+            if key not in keys:
+                keys[key] = len(keys)
+                votes.append({})
+            origin_material[i] = keys[key]
+            named = _NAMED_STEP.findall(origin.path)
+            if named:
+                tally = votes[keys[key]]
+                tally[named[-1]] = tally.get(named[-1], 0.0) + float(counts[i])
+        per_object.append(origin_material[obj.origin_of] if len(obj.origin_of)
+                          else np.zeros(0, np.int64))
+    table, seen = [], set()
+    for key, number in keys.items():
+        tally = votes[number]
+        base = max(tally, key=lambda n: (tally[n], n)) if tally else colour_name(key)
+        name, n = base, 1
+        while name in seen:
+            n += 1
+            name = f"{base}_{n}"
+        seen.add(name)
+        table.append(Material(name, key))
+    return table, per_object
+
+
+def straight_corners(vertices: np.ndarray, offsets: np.ndarray,
+                     indices: np.ndarray) -> np.ndarray:
+    """(P,) which polygons have a straight corner: a vertex in the middle of a
+    straight edge, there because a neighbouring polygon ends at it."""
+    sizes = np.diff(offsets)
+    if len(indices) == 0 or np.all(sizes == 3):
+        return np.zeros(len(offsets) - 1, bool)
+    starts = offsets[:-1]
+    following = np.arange(1, len(indices) + 1)
+    following[offsets[1:] - 1] = starts
+    previous = np.arange(-1, len(indices) - 1)
+    previous[starts] = offsets[1:] - 1
+    p = vertices[indices]
+    incoming = p - p[previous]
+    outgoing = p[following] - p
+    turn = np.linalg.norm(np.cross(incoming, outgoing), axis=1)
+    straight = turn <= _STRAIGHT * np.linalg.norm(incoming, axis=1) * np.linalg.norm(outgoing, axis=1)
+    # a triangle keeps even a flat corner: cutting it would leave a hole
+    return np.logical_or.reduceat(straight, starts) & (sizes > 3)
+
+
+def triangles(vertices: np.ndarray, offsets: np.ndarray,
+              indices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each convex polygon as triangles, none of them flat; also the polygon of
+    each triangle.
+
+    A fan would give a flat triangle wherever a polygon has a straight corner
+    (three of its vertices on one line); CGAL's exact booleans in OpenSCAD stop
+    with an assertion on such faces, and slicers flag them. Those polygons are
+    cut by clipping ears at true corners instead.
+    """
+    from castor.mesh.polygons import fan_triangles
+
+    straight = straight_corners(vertices, offsets, indices)
+    if not straight.any():
+        return fan_triangles(offsets, indices)
+    keep = ~straight
+    sizes = np.diff(offsets)
+    fan_offsets = np.zeros(int(keep.sum()) + 1, np.int64)
+    np.cumsum(sizes[keep], out=fan_offsets[1:])
+    fan_indices = indices[np.repeat(keep, sizes)]
+    tris, polygon = fan_triangles(fan_offsets, fan_indices)
+    pieces, owners = [tris], [np.flatnonzero(keep)[polygon]]
+    for p in np.flatnonzero(straight).tolist():
+        clipped = _clip_ears(vertices, indices[offsets[p]:offsets[p + 1]].tolist())
+        pieces.append(np.array(clipped, np.int64).reshape(-1, 3))
+        owners.append(np.full(len(clipped), p, np.int64))
+    tris = np.concatenate(pieces)
+    polygon = np.concatenate(owners)
+    order = np.argsort(polygon, kind="stable")
+    return tris[order], polygon[order]
+
+
+def _clip_ears(vertices: np.ndarray, ring: list[int]) -> list[tuple[int, int, int]]:
+    """Triangles of a convex polygon with straight corners, none of them flat.
+
+    An ear is clipped at a true corner, choosing one that leaves a polygon that
+    is not flat (all on one line) until three vertices remain.
+    """
+    points = vertices.tolist()
+
+    def flat(a, b, c) -> bool:
+        (ax, ay, az), (bx, by, bz), (cx, cy, cz) = points[a], points[b], points[c]
+        ux, uy, uz, wx, wy, wz = bx - ax, by - ay, bz - az, cx - bx, cy - by, cz - bz
+        cross = ((uy * wz - uz * wy) ** 2 + (uz * wx - ux * wz) ** 2
+                 + (ux * wy - uy * wx) ** 2)
+        return cross <= _STRAIGHT ** 2 * (ux * ux + uy * uy + uz * uz) * (wx * wx + wy * wy + wz * wz)
+
+    ring = list(ring)
+    out = []
+    while len(ring) > 3:
+        n = len(ring)
+        corner_flat = [flat(ring[i - 1], ring[i], ring[(i + 1) % n]) for i in range(n)]
+        true_corners = n - sum(corner_flat)
+        chosen = None
+        for i in range(n):
+            if corner_flat[i]:
+                continue
+            before, after = ring[i - 1], ring[(i + 1) % n]
+            # what is left keeps a true corner: one far from i, or one of i's
+            # neighbours, which turn when i goes
+            others = true_corners - 1 - (not corner_flat[i - 1]) - (not corner_flat[(i + 1) % n])
+            if (others > 0 or not flat(ring[i - 2], before, after)
+                    or not flat(before, after, ring[(i + 2) % n])):
+                chosen = i
+                break
+        if chosen is None:  # nothing left but a line: no area to cover
+            return out
+        out.append((ring[chosen - 1], ring[chosen], ring[(chosen + 1) % n]))
+        del ring[chosen]
+    if not flat(*ring):
+        out.append(tuple(ring))
+    return out
 
 
 def split_large(offsets: np.ndarray, indices: np.ndarray, colours: np.ndarray,
                 largest: int = 4) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Cut polygons of more than ``largest`` (4) vertices into a fan of quads.
 
-    The pieces of a convex polygon are convex and share its plane; some readers
-    (trimesh's OFF loader among them) take nothing larger than a quad.
+    The pieces of a convex polygon without straight corners are convex and share
+    its plane; some readers (trimesh's OFF loader among them) take nothing
+    larger than a quad.
     """
     sizes = np.diff(offsets)
     if np.all(sizes <= largest):
@@ -72,3 +262,12 @@ def split_large(offsets: np.ndarray, indices: np.ndarray, colours: np.ndarray,
     new_offsets = np.zeros(len(new_sizes) + 1, np.int64)
     np.cumsum(new_sizes, out=new_offsets[1:])
     return new_offsets, np.array(new_indices, np.int64), colours[np.array(new_colours, np.int64)]
+
+
+def y_up(vertices: np.ndarray) -> np.ndarray:
+    """Scene coordinates (z up) as +Y-up ones (glTF, OBJ): (x, y, z) -> (x, z, -y)."""
+    out = np.empty_like(vertices)
+    out[:, 0] = vertices[:, 0]
+    out[:, 1] = vertices[:, 2]
+    out[:, 2] = -vertices[:, 1]
+    return out + 0.0  # no -0

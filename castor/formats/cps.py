@@ -6,6 +6,8 @@ them back gives the same double; whole numbers lose their '.0'.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from castor.mesh.frame import Frame
@@ -22,9 +24,22 @@ def number_strings(values: np.ndarray) -> list[str]:
     return out
 
 
+_UNSAFE = re.compile(r"[%\x00-\x20\x7f-\x9f\s]")
+
+
+def where_field(where: str) -> str:
+    """``FILE:LINE`` with a space, '%' or control character in FILE written %XX (its
+    UTF-8 bytes), as in a URL, so that the record keeps its fields."""
+    file, sep, line = where.rpartition(":")
+    if not sep:
+        file, line = where, ""
+    file = _UNSAFE.sub(lambda m: "".join(f"%{b:02X}" for b in m.group().encode("utf-8")), file)
+    return f"{file}{sep}{line}"
+
+
 def format_frame(frame: Frame) -> str:
     """The frame's records, from 'frame N WHERE' to 'endframe N COUNT'."""
-    parts = [f"frame {frame.number} {frame.where}\n"]
+    parts = [f"frame {frame.number} {where_field(frame.where)}\n"]
     count = 0
     for obj in frame.objects:
         numbers = number_strings(obj.vertices)
@@ -47,5 +62,6 @@ def format_frame(frame: Frame) -> str:
     return "".join(parts)
 
 
-def write(frame: Frame, stream) -> None:
-    stream.write(format_frame(frame))
+def export(frame: Frame, path: str | None = None) -> bytes:
+    """The frame's records (the header, written once per stream, is ``HEADER``)."""
+    return format_frame(frame).encode("utf-8", "surrogateescape")

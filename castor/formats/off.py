@@ -1,27 +1,67 @@
 """Geomview OFF with a colour for each face (integers 0..255, as MeshLab writes them).
 
-Polygons of more than four vertices are cut into convex quads, because some
-readers (trimesh's OFF loader) take nothing larger.
+OpenSCAD reads an OFF file straight into CGAL's exact polyhedra, whose booleans
+stop with an assertion at a face whose vertices are not exactly on one plane
+(a rotated quad, by a rounding) or that has a corner of 180 degrees (a vertex in
+the middle of a straight edge, where a neighbouring polygon ends). So a polygon
+is written whole only where it is exactly planar, lying in a plane x, y or z =
+constant, and has no straight corner; any other is written as triangles with
+true corners. Polygons of more than four vertices are cut into convex quads,
+because some readers (trimesh's OFF loader) take nothing larger.
 """
 
 from __future__ import annotations
 
+import numpy as np
+
 from castor.mesh.frame import Frame
-from castor.formats._mesh import byte_colours, combine, split_large
+from castor.formats._mesh import byte_colours, combine, split_large, straight_corners, triangles
 from castor.formats.cps import number_strings
 
 
-def write(frame: Frame, stream) -> None:
+def _axis_aligned(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray) -> np.ndarray:
+    """(P,) which polygons lie in a plane x, y or z = constant: exactly planar."""
+    if len(indices) == 0:
+        return np.zeros(len(offsets) - 1, bool)
+    p = vertices[indices]
+    starts = offsets[:-1]
+    low = np.minimum.reduceat(p, starts, axis=0)
+    high = np.maximum.reduceat(p, starts, axis=0)
+    return np.any(low == high, axis=1)
+
+
+def faces(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray,
+          colours: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The faces OFF readers take: (offsets, indices, colours) of convex faces of at
+    most four vertices, each exactly planar, none with a straight corner."""
+    sizes = np.diff(offsets)
+    whole = (sizes == 3) | (_axis_aligned(vertices, offsets, indices)
+                            & ~straight_corners(vertices, offsets, indices))
+    if not whole.all():
+        tris, polygon = triangles(vertices, offsets, indices)
+        cut = ~whole[polygon]
+        parts = [(p, indices[offsets[p]:offsets[p + 1]]) for p in np.flatnonzero(whole)]
+        parts += list(zip(polygon[cut].tolist(), tris[cut]))
+        parts.sort(key=lambda part: part[0])
+        owner = np.array([p for p, _ in parts], np.int64)
+        new_sizes = np.array([len(f) for _, f in parts], np.int64)
+        offsets = np.zeros(len(parts) + 1, np.int64)
+        np.cumsum(new_sizes, out=offsets[1:])
+        indices = np.concatenate([f for _, f in parts]) if parts else np.zeros(0, np.int64)
+        colours = colours[owner]
+    return split_large(offsets, indices, colours)
+
+
+def export(frame: Frame, path: str | None = None) -> bytes:
     mesh = combine(frame)
-    offsets, indices, colours = split_large(mesh.offsets, mesh.indices, mesh.colours)
+    offsets, indices, colours = faces(mesh.vertices, mesh.offsets, mesh.indices, mesh.colours)
     numbers = number_strings(mesh.vertices)
     lines = ["OFF", f"{len(mesh.vertices)} {len(offsets) - 1} 0"]
     lines.extend(" ".join(numbers[i:i + 3]) for i in range(0, len(numbers), 3))
-    offsets = offsets.tolist()
-    indices = indices.tolist()
-    colours = byte_colours(colours).tolist()
-    for p in range(len(offsets) - 1):
-        face = indices[offsets[p]:offsets[p + 1]]
-        r, g, b = colours[p]
-        lines.append(f"{len(face)} {' '.join(map(str, face))} {r} {g} {b}")
-    stream.write("\n".join(lines) + "\n")
+    sizes = np.diff(offsets).tolist()
+    bounds = offsets.tolist()
+    words = indices.astype(str).tolist()
+    rgb = [f"{r} {g} {b}" for r, g, b in byte_colours(colours).tolist()]
+    lines.extend(f"{sizes[p]} {' '.join(words[bounds[p]:bounds[p + 1]])} {rgb[p]}"
+                 for p in range(len(sizes)))
+    return ("\n".join(lines) + "\n").encode("ascii")

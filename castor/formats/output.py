@@ -2,12 +2,14 @@
 
 Every file is written beside its final name and renamed into place when
 complete, so a reader never sees half a file and a failed run never clobbers
-an old one.
+an old one. A destination that cannot be written is a usage error: it is
+checked before any work, and a write that fails later (a full disk) stops the
+run with the same kind of message.
 """
 
 from __future__ import annotations
 
-import io
+import importlib.util
 import os
 import re
 import sys
@@ -18,14 +20,75 @@ from castor.mesh.frame import Frame
 from castor.formats import FORMATS, module as writer
 
 _PATTERN = re.compile(r"%0?\d*d")
+_PERCENT = re.compile(r"%%|%0?\d*d|%")
 
 
 class OutputError(CastorError):
     """The output cannot take this frame (a second frame for a one-frame file)."""
 
 
+class Unwritable(Exception):
+    """A destination that cannot be written: the run stops with a usage error (exit 2)."""
+
+
 def has_pattern(path: str) -> bool:
     return bool(_PATTERN.search(path))
+
+
+def frame_path(path: str, number: int) -> str:
+    """``path`` with its frame-number pattern replaced by ``number`` (and '%%' by '%')."""
+    def replace(match):
+        text = match.group()
+        return "%" if text == "%%" else text % number
+    return _PERCENT.sub(replace, path)
+
+
+def available(name: str) -> bool:
+    """Whether the module that writes format ``name`` is part of this castor."""
+    return importlib.util.find_spec(f"castor.formats.{FORMATS[name].module}") is not None
+
+
+def suffix_message(path: str) -> str:
+    """The usage error for an output whose extension names no format."""
+    suffixes = []
+    for f in FORMATS.values():
+        if f.suffix not in suffixes and available(f.name):
+            suffixes.append(f.suffix)
+    hint = ""
+    if path.lower().endswith(".gltf"):
+        hint = " (castor writes glTF as one binary file, .glb)"
+    return (f"cannot tell the format of '{path}' from its extension{hint}; use one of "
+            f"{' '.join(suffixes)}, or give the format with -f NAME")
+
+
+def destination_problem(path: str, option: str = "-o") -> str | None:
+    """Why ``path`` cannot be written to, as a usage error says it, or None.
+
+    Checked before any frame is made: a pattern is well formed (one %d, '%%'
+    for a literal '%'), and the directory exists and takes new files.
+    """
+    if not path.strip():
+        return f"{option} needs a file name, such as {option} house.stl"
+    conversions = [m.group() for m in _PERCENT.finditer(path) if m.group() != "%%"]
+    patterns = [c for c in conversions if c != "%"]
+    if patterns and len(conversions) > len(patterns):
+        return (f"{option} {path}: a '%' that is not the frame-number pattern; write '%%' "
+                f"for a '%' in the name")
+    if len(patterns) > 1:
+        suffix = os.path.splitext(path)[1] or ".stl"
+        return (f"{option} {path}: {len(patterns)} frame-number patterns; a path takes one, such as "
+                f"house-%03d{suffix}")
+    target = frame_path(path, 1) if patterns else path
+    if target.endswith(os.sep) or os.path.isdir(target):
+        return f"{option} {path}: is a directory; give a file name such as {os.path.join(path, 'scene.stl')}"
+    directory = os.path.dirname(os.path.abspath(target))
+    if not os.path.isdir(directory):
+        shown = os.path.dirname(target) or "."
+        return f"cannot write '{path}': the directory '{shown}' does not exist"
+    if not os.access(directory, os.W_OK | os.X_OK):
+        shown = os.path.dirname(target) or "."
+        return f"cannot write '{path}': the directory '{shown}' is not writable"
+    return None
 
 
 def _file_mode() -> int:
@@ -36,56 +99,67 @@ def _file_mode() -> int:
 
 
 def write_atomically(path: str, data: bytes) -> None:
-    """Write beside ``path`` and rename into place: never half a file."""
+    """Write beside ``path`` and rename into place: never half a file.
+
+    Raises ``Unwritable`` with a message in the user's words when the file
+    cannot be written (missing directory, no permission, full disk)."""
     directory = os.path.dirname(os.path.abspath(path))
-    fd, temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
+    try:
+        fd, temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
+    except OSError as exc:
+        raise Unwritable(f"cannot write '{path}': {_reason(exc)}") from None
     try:
         with os.fdopen(fd, "wb") as handle:
             handle.write(data)
         os.chmod(temporary, _file_mode())  # mkstemp makes it private; open() would not
         os.replace(temporary, path)
-    except BaseException:
+    except BaseException as exc:
         try:
             os.unlink(temporary)
         except OSError:
             pass
+        if isinstance(exc, OSError):
+            raise Unwritable(f"cannot write '{path}': {_reason(exc)}") from None
         raise
 
 
+def _reason(exc: OSError) -> str:
+    text = (exc.strerror or str(exc)).lower()
+    return text[0].lower() + text[1:] if text else "failed"
+
+
 def encode(frame: Frame, name: str, target: str | None = None) -> tuple[bytes, dict[str, bytes]]:
-    """The frame in format ``name``, and the files that go beside it (by path)."""
+    """The frame in format ``name``, and the files that go beside it (by path).
+    ``target`` is -o's path (a pattern is filled in with the frame's number)."""
     patterned = target is not None and has_pattern(target)
-    if name == "cps" and not patterned:  # a part of one stream, not a file of its own
-        from castor.formats.cps import format_frame
-
-        return format_frame(frame).encode("utf-8"), {}
     if patterned:
-        target = target % frame.number
-    data = _render(frame, name, target)
-    companions = getattr(writer(name), "companions", None)
-    return data, (companions(frame, target) if companions and target else {})
-
-
-def _render(frame: Frame, name: str, path: str | None = None) -> bytes:
-    module = writer(name)
-    binary = FORMATS[name].binary
-    if binary:
-        buffer = io.BytesIO()
-        module.write(frame, buffer)
-        return buffer.getvalue()
-    text = io.StringIO()
-    if name == "cps":
+        target = frame_path(target, frame.number)
+    data = render(frame, name, target)
+    if name == "cps" and patterned:  # a file of its own: it begins with the header
         from castor.formats.cps import HEADER
 
-        text.write(HEADER)
-        module.write(frame, text)
-    elif name == "stl-ascii":
-        module.write_ascii(frame, text)
-    elif name == "obj":
-        module.write(frame, text, path)
-    else:
-        module.write(frame, text)
-    return text.getvalue().encode("utf-8")
+        data = HEADER.encode("utf-8") + data
+    companions = getattr(writer(name), "companions", None)
+    return data, (companions(frame, target) if companions is not None and target else {})
+
+
+def render(frame: Frame, name: str, path: str | None = None) -> bytes:
+    """The bytes of ``frame`` in format ``name`` (``path``: where it is going, for
+    formats that name a companion file)."""
+    return getattr(writer(name), FORMATS[name].exporter)(frame, path)
+
+
+def to_stdout(data: bytes) -> None:
+    """Bytes to standard output (through its text layer when it has no bytes one,
+    as under a test's redirection)."""
+    buffer = getattr(sys.stdout, "buffer", None)
+    if buffer is None:
+        sys.stdout.write(data.decode("utf-8", "surrogateescape"))
+        sys.stdout.flush()
+        return
+    sys.stdout.flush()
+    buffer.write(data)
+    buffer.flush()
 
 
 class Output:
@@ -95,7 +169,7 @@ class Output:
         self.path = path
         self.format = format_name
         self.frames = 0
-        self.stream_parts: list[str] = []  # the cps stream, for a single -o file
+        self.stream_parts: list[bytes] = []  # the cps stream, for a single -o file
 
     def start(self) -> None:
         if self.path is None and self.format == "cps":
@@ -110,14 +184,12 @@ class Output:
         self.frames += 1
         patterned = bool(self.path and has_pattern(self.path))
         if self.format == "cps" and not patterned:
-            text = data.decode("utf-8")
             if self.path is None:
-                sys.stdout.write(text)
-                sys.stdout.flush()
+                to_stdout(data)
             else:
-                self.stream_parts.append(text)
+                self.stream_parts.append(data)
             return
-        if self.frames > 1 and not patterned:
+        if self.frames > 1 and not patterned and not FORMATS[self.format].all_frames:
             where = self.path or "standard output"
             stem, suffix = os.path.splitext(self.path or f"scene{FORMATS[self.format].suffix}")
             raise OutputError(
@@ -125,17 +197,11 @@ class Output:
                 f"{where}; give a pattern such as -o {stem}-%03d{suffix} for one file per frame",
                 location)
         if self.path is None:
-            sys.stdout.buffer.write(data)
-            sys.stdout.buffer.flush()
+            to_stdout(data)
             return
         for companion, content in companions.items():
             write_atomically(companion, content)
-        write_atomically(self.target(number), data)
-
-    def target(self, number: int) -> str | None:
-        if self.path is None:
-            return None
-        return self.path % number if has_pattern(self.path) else self.path
+        write_atomically(frame_path(self.path, number) if patterned else self.path, data)
 
     def finish(self, had_errors: bool) -> bool:
         """Put a single cps file in place; False when it was left out."""
@@ -145,5 +211,5 @@ class Output:
             return False
         from castor.formats.cps import HEADER
 
-        write_atomically(self.path, (HEADER + "".join(self.stream_parts)).encode("utf-8"))
+        write_atomically(self.path, HEADER.encode("utf-8") + b"".join(self.stream_parts))
         return True

@@ -5,13 +5,12 @@ from __future__ import annotations
 import numpy as np
 
 from castor.mesh.frame import Frame
-from castor.mesh.polygons import fan_triangles
-from castor.formats._mesh import combine
+from castor.formats._mesh import combine, triangles
 
 
 def _triangles(frame: Frame) -> tuple[np.ndarray, np.ndarray]:
     mesh = combine(frame)
-    tris, _ = fan_triangles(mesh.offsets, mesh.indices)
+    tris, _ = triangles(mesh.vertices, mesh.offsets, mesh.indices)
     corners = mesh.vertices[tris]  # (T, 3, 3)
     normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     lengths = np.linalg.norm(normals, axis=1, keepdims=True)
@@ -19,19 +18,17 @@ def _triangles(frame: Frame) -> tuple[np.ndarray, np.ndarray]:
     return corners, normals
 
 
-def write(frame: Frame, stream) -> None:
+def export(frame: Frame, path: str | None = None) -> bytes:
     corners, normals = _triangles(frame)
     record = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
     data = np.zeros(len(corners), dtype=record)
     data["normal"] = normals
     data["corners"] = corners
     header = b"castor binary STL".ljust(80, b" ")
-    stream.write(header)
-    stream.write(np.uint32(len(corners)).tobytes())
-    stream.write(data.tobytes())
+    return header + np.uint32(len(corners)).tobytes() + data.tobytes()
 
 
-def write_ascii(frame: Frame, stream) -> None:
+def export_ascii(frame: Frame, path: str | None = None) -> bytes:
     corners, normals = _triangles(frame)
     out = ["solid castor"]
     for n, c in zip(normals.tolist(), corners.tolist()):
@@ -40,4 +37,4 @@ def write_ascii(frame: Frame, stream) -> None:
             out.append(f"      vertex {v[0]!r} {v[1]!r} {v[2]!r}")
         out.append("    endloop\n  endfacet")
     out.append("endsolid castor")
-    stream.write("\n".join(out) + "\n")
+    return ("\n".join(out) + "\n").encode("ascii")

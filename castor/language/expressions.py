@@ -87,10 +87,13 @@ def arity_message(name: str, given: int) -> str | None:
 
 
 def format_number(x: float) -> str:
-    """A number as a person would write it: 3 rather than 3.0."""
+    """A number as a person would write it: 3 rather than 3.0, 1.2 rather than the
+    1.2000000000000002 that 0.4 * 3 computes (12 significant digits)."""
+    if not math.isfinite(x):
+        return repr(x)
     if x == int(x) and abs(x) < 1e15:
         return str(int(x))
-    return repr(x)
+    return f"{x:.12g}"
 
 
 def _finite(value: float, location: Location, what: str) -> float:

@@ -11,6 +11,7 @@ together; lark's exceptions are translated into messages in the user's words.
 from __future__ import annotations
 
 import math
+import re
 import threading
 from functools import lru_cache
 from typing import Iterator
@@ -73,6 +74,9 @@ def _suggest(name: str, choices, prefix: str = "") -> str:
     return f"; did you mean '{prefix}{close[0]}'?" if close else ""
 
 
+suggestion = _suggest
+
+
 def _known(prefix: str, name: str, choices) -> str:
     """The suggestion and the list of the known names, for an unknown primitive or
     transformation."""
@@ -118,6 +122,8 @@ class Builder:
 
     def param_def(self, children):
         name, expr = children
+        if name not in self._param_sets:  # a name the scene assigns (for --set's warning)
+            self._param_sets[str(name)] = frozenset((str(name),))
         return self._statement(ParamDef(str(name), expr, self._at(name)))
 
     def object_def(self, children):
@@ -238,6 +244,8 @@ class Builder:
 
     def repeat(self, children):
         param, start, stop = children[:3]
+        if param not in self._param_sets:
+            self._param_sets[str(param)] = frozenset((str(param),))
         step = children[3] if len(children) > 3 else None
         params = start.params | stop.params | (step.params if step is not None else EMPTY)
         return Repeat(str(param), start, stop, step, self._at(param), params)
@@ -337,19 +345,26 @@ class Parser:
 
     def __init__(self, tables: Tables):
         self.tables = tables
+        self.param_sets: dict[str, frozenset[str]] = {}
 
     def _ready(self):
         """This thread's parser, its builder working on this Parser's tables."""
         lark, builder = _lark_and_builder(self.tables)
         builder.tables = self.tables
+        builder._param_sets = self.param_sets
         self.builder = builder
         return lark
+
+    def parameter_names(self) -> set[str]:
+        """Every parameter name the statements parsed so far assign or use."""
+        return set(self.param_sets)
 
     def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | Facetize | CastorError"]:
         """Parse one chunk. A missing ';' is reported, the statement is taken as if it
         were there, and parsing resumes with the next line."""
         lark = self._ready()
         pending = [chunk]
+        patched: set[int] = set()  # chunks given their missing ';': never patched twice
         while pending:
             chunk = pending.pop(0)
             self.builder.chunk = chunk
@@ -360,9 +375,12 @@ class Parser:
                 yield exc
                 continue
             except UnexpectedInput as exc:
-                error, retry = _syntax_error(exc, chunk)
+                error, head, rest = _syntax_error(exc, chunk, self.builder.tables)
                 yield error
-                pending[:0] = retry
+                if head is not None and id(chunk) not in patched:
+                    patched.add(id(head))
+                    rest = [head] + rest
+                pending[:0] = rest
                 continue
             except RecursionError:
                 yield LimitError("statement nested too deeply", chunk.location(1, 1))
@@ -470,9 +488,19 @@ def _describe_found(token: Token) -> str:
     return f"'{token}'"
 
 
+_COMMENT = re.compile(r"/\*(?:.|\n)*?\*/|//[^\n]*")
+
+
+def _code_before(text: str, pos: int) -> str:
+    """``text[:pos]`` without its trailing blanks and comments: where a missing
+    ';' goes (after '> a // the house', not inside the comment)."""
+    blanked = _COMMENT.sub(lambda m: re.sub(r"[^\n]", " ", m.group()), text[:pos])
+    return text[:len(blanked.rstrip())]
+
+
 def _end_before(chunk: Chunk, pos: int):
-    """The location just after the last non-blank character before ``pos``."""
-    before = chunk.text[:pos].rstrip()
+    """The location just after the last character of code before ``pos``."""
+    before = _code_before(chunk.text, pos)
     line = before.count("\n") + 1
     column = len(before) - (before.rfind("\n") + 1) + 1
     return chunk.location(line, column)
@@ -503,8 +531,45 @@ def _acceptable(exc: UnexpectedToken) -> set[str]:
     return set(exc.expected)
 
 
-def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list[Chunk]]:
-    """Translate lark's exception; also return the rest of the chunk to resume on."""
+_NAME_BEFORE = re.compile(r"([a-z][A-Za-z0-9_]*)\s*$")
+_DEFINES_NAME = re.compile(r"\s*([a-z][A-Za-z0-9_]*)\s*=\s*$")
+
+
+def _habit(chunk: Chunk, pos: int, token: Token, expected: set[str], tables):
+    """A message for the slips of people who write French (or other languages):
+    a lowercase parameter name, a decimal comma. (message, location) or None."""
+    before = _code_before(chunk.text, pos)
+    if token.type == "COMMA" and re.search(r"\d$", before) \
+            and re.match(r"\d", chunk.text[pos + 1:pos + 2]) and "COMMA" not in expected:
+        number = re.search(r"[\d.]+$", before).group()
+        digits = re.match(r"\d+", chunk.text[pos + 1:]).group()
+        return (f"a decimal comma? write {number}.{digits} with a point; a comma separates "
+                f"arguments", None)
+    defined = _DEFINES_NAME.fullmatch(before)
+    if defined and token.type in ("NUMBER", "PARAM", "LPAR", "ADDOP"):
+        name = defined.group(1)
+        return (f"'{name}' starts with a lowercase letter, so it names an object, and "
+                f"{_describe_found(token)} is not an object; a parameter name starts with "
+                f"an uppercase letter: {name[0].upper() + name[1:]} = ...", None)
+    used = _NAME_BEFORE.search(before)
+    if used and "LPAR" in expected and token.type != "LPAR":
+        name = used.group(1)
+        start = chunk.location(before.count("\n") + 1,
+                               used.start() - (before.rfind("\n") + 1) + 1)
+        if name in FUNCTIONS:
+            return f"the function '{name}' takes its argument in parentheses: {name}(...)", start
+        if tables is not None and name in tables.objects:
+            return (f"'{name}' is an object, not a number; parameters start with an "
+                    f"uppercase letter", start)
+        return (f"'{name}' is not a parameter: parameter names start with an uppercase "
+                f"letter ({name[0].upper() + name[1:]})", start)
+    return None
+
+
+def _syntax_error(exc: UnexpectedInput, chunk: Chunk,
+                  tables: Tables | None = None) -> tuple[CastorError, Chunk | None, list[Chunk]]:
+    """Translate lark's exception; also return the statement given its missing ';'
+    (or None) and the rest of the chunk to resume on."""
     if isinstance(exc, UnexpectedCharacters):
         char = chunk.text[exc.pos_in_stream]
         location = chunk.location(exc.line, exc.column)
@@ -524,7 +589,7 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list
             message = f"unexpected character '{char}'"
             if char == '"' or char == "'":
                 message += "; the language has no strings"
-        return CastorSyntaxError(message, location), []
+        return CastorSyntaxError(message, location), None, []
 
     if isinstance(exc, UnexpectedEOF):
         expected = set(exc.expected)
@@ -544,17 +609,22 @@ def _syntax_error(exc: UnexpectedInput, chunk: Chunk) -> tuple[CastorError, list
         # take the statement as if it were there.
         location = _end_before(chunk, pos)
         message = f"expected ';' at the end of the statement, found {_describe_found(token)}"
-        head = Chunk(chunk.text[:pos].rstrip() + ";", chunk.origins, chunk.first_column)
-        return CastorSyntaxError(message, location), [head] + rest
+        code = _code_before(chunk.text, pos)
+        head = Chunk(code + ";", chunk.origins[:code.count("\n") + 1], chunk.first_column)
+        return CastorSyntaxError(message, location), head, rest
 
     if token.type == "$END":
         location = _end_before(chunk, pos)
     else:
         location = chunk.location(token.line, token.column)
+    habit = _habit(chunk, pos, token, expected, tables)
+    if habit is not None:
+        message, at = habit
+        return CastorSyntaxError(message, at or location), None, rest
     context = ""
     if {"COMMA", "RPAR"} <= expected:
         context = " after an argument"
     elif "RSQB" in expected and "COMMA" in expected:
         context = " in the repetition"
     message = f"expected {_describe_expected(expected)}{context}, found {_describe_found(token)}"
-    return CastorSyntaxError(message, location), rest
+    return CastorSyntaxError(message, location), None, rest

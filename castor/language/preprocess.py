@@ -35,7 +35,36 @@ class IncludeTooDeep(Exception):
     pass
 
 
-def _make_preprocessor(reporter: Reporter, included: list[str] | None = None):
+class MissingInclude(Exception):
+    """An include file that cannot be found: everything after it would only
+    cascade (its macros undefined), so the run stops there, as gcc does."""
+
+
+class SourceLines:
+    """The original text of each line of the input files, for carets and for
+    mapping positions out of macro expansions."""
+
+    def __init__(self, sources: list[tuple[str, str]]):
+        self.files = {name: text.split("\n") for name, text in sources}
+
+    def line(self, file: str, number: int) -> str | None:
+        lines = self.files.get(file)
+        if lines is None:
+            try:
+                with open(file, encoding="utf-8", errors="replace") as handle:
+                    lines = handle.read().split("\n")
+            except OSError:
+                lines = []
+            self.files[file] = lines
+        return lines[number - 1] if 0 < number <= len(lines) else None
+
+
+def _spaced(text: str) -> str:
+    return " ".join(text.split())
+
+
+def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict[str, str],
+                       included: list[str] | None = None):
     import pcpp
 
     class Preprocessor(pcpp.Preprocessor):
@@ -43,6 +72,8 @@ def _make_preprocessor(reporter: Reporter, included: list[str] | None = None):
             super().__init__()
             self.line_directive = "#line"
             self.compress = 0
+            self.definitions: dict[str, Location] = {}  # macro -> where it was #defined
+            self.redefinitions: list[tuple[str, Location]] = []  # of -D macros
 
         def on_error(self, file, line, msg):
             self.return_code += 1
@@ -52,12 +83,28 @@ def _make_preprocessor(reporter: Reporter, included: list[str] | None = None):
             token = self.lastdirective
             file = getattr(token, "source", None) or "<stdin>"
             line = getattr(token, "lineno", 0) or 0
+            text = originals.line(file, line)
+            column = 1
+            if text is not None:
+                reporter.source_lines[(file, line)] = text
+                found = text.find(includepath)
+                column = found if found > 0 else text.find("#") + 1
             if is_malformed:
                 message = f"malformed #include {includepath}; write #include \"file.cas\""
-            else:
-                message = f"cannot find include file '{includepath}'"
-            reporter.error(PreprocessError(message, Location(file, line, 1)))
-            raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+                reporter.error(PreprocessError(message, Location(file, line, column)))
+                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+            shown = []
+            for directory in ([] if is_system_include else self.temp_path) + self.path:
+                name = _shown(os.path.abspath(directory)) or "."
+                if name == os.path.abspath("").rstrip(os.sep):
+                    name = "."
+                if name not in shown:
+                    shown.append(name)
+            shown = ", ".join(shown or ["."])
+            reporter.error(PreprocessError(
+                f"cannot find include file '{includepath}' (searched: {shown}); give the "
+                f"directory that holds it with -I DIR", Location(file, line, column)))
+            raise MissingInclude(includepath)
 
         def on_file_open(self, is_system_include, includepath):
             if len(self.temp_path) > MAX_INCLUDE_DEPTH:
@@ -69,6 +116,8 @@ def _make_preprocessor(reporter: Reporter, included: list[str] | None = None):
 
         def on_directive_handle(self, directive, toks, ifpassthru, precedingtoks):
             self.lastdirective = directive
+            if directive.value == "define" and toks:
+                self._defining(directive, toks)
             what = _NEEDS.get(directive.value)
             if what and not any(tok.value.strip() for tok in toks):
                 # pcpp itself would fail on these with an IndexError
@@ -93,6 +142,37 @@ def _make_preprocessor(reporter: Reporter, included: list[str] | None = None):
                     f"unknown preprocessor directive '#{directive.value}'", location))
             return True
 
+        def _defining(self, directive, toks):
+            """Note where each macro is defined; warn when a -D macro is redefined
+            differently (cpp does too), since the file's value then wins."""
+            words = [t.value for t in toks if t.value.strip()]
+            if not words:
+                return
+            name = words[0]
+            location = Location(directive.source or "<stdin>", int(directive.lineno or 0), 1)
+            if name in defines and name not in self.definitions:
+                text = "".join(t.value for t in toks).strip()
+                value = text[len(name):].strip()
+                if _spaced(value) != _spaced(defines[name]):
+                    # said once the pass is over, if the #define was not in a
+                    # skipped #ifndef block (pcpp calls this hook there too)
+                    self.redefinitions.append((name, location))
+            self.definitions[name] = location
+
+        def warn_redefinitions(self):
+            for name, location in self.redefinitions:
+                macro = self.macros.get(name)
+                if macro is None or _spaced("".join(t.value for t in macro.value)) == \
+                        _spaced(defines[name]):
+                    continue
+                original = originals.line(location.file, location.line)
+                if original is not None:
+                    reporter.source_lines[(location.file, location.line)] = original
+                reporter.warning(
+                    f"'{name}' redefined: this #define replaces -D {name}="
+                    f"{defines[name]} of the command line; to let -D choose, write "
+                    f"#ifndef {name} ... #endif around it", location)
+
         def on_comment(self, tok):
             return True  # keep comments: the grammar skips them, and columns stay right
 
@@ -112,22 +192,29 @@ def preprocess(sources: list[tuple[str, str]], defines: list[str], undefines: li
         # No directive and no -D: cpp would change nothing (castor keeps the
         # comments), so skip the pure-Python pass and mark each file's start.
         return "".join(f'#line 1 "{_escape(_shown(name))}"\n{text}\n' for name, text in sources)
-    p = _make_preprocessor(reporter, included)
-    for directory in include_dirs:
-        p.add_path(directory)
+    originals = SourceLines(sources)
+    given = {}
     for definition in defines:
         name, _, value = definition.partition("=")
-        p.define(f"{name} {value if value else '1'}")
+        given[name.strip()] = value if value else "1"
+    p = _make_preprocessor(reporter, originals, given, included)
+    for directory in include_dirs:
+        p.add_path(directory)
+    for name, value in given.items():
+        p.define(f"{name} {value}")
     for name in undefines:
         p.undef(name)
     out = io.StringIO()
     for name, text in sources:
-        p.temp_path = []
+        # "file.cas" is looked for beside the file that includes it first, as cpp does
+        p.temp_path = [] if name == "<stdin>" else [os.path.dirname(os.path.abspath(name))]
         if text and not text.endswith("\n"):
             text += "\n"
         p.parse(text, name)
         try:
             p.write(out)
+        except MissingInclude:
+            return ""
         except IncludeTooDeep as exc:
             token = p.lastdirective
             reporter.error(PreprocessError(
@@ -138,4 +225,84 @@ def preprocess(sources: list[tuple[str, str]], defines: list[str], undefines: li
             reporter.error(PreprocessError("macros or includes nested too deeply", Location(name, 1, 1)))
             return ""
         out.write("\n")
+    p.warn_redefinitions()
+    reporter.expansions = _expansion_finder(p, originals)
     return out.getvalue()
+
+
+_ORIGINAL_TOKEN = re.compile(r'//.*|/\*.*?\*/|"(?:[^"\\]|\\.)*"|[A-Za-z_]\w*|.')
+
+
+def _expansion_finder(p, originals: SourceLines):
+    """What the reporter calls, only for a line it reports on: the macro uses of
+    that line (``LineExpansions``), or None where no macro changed it. Worked
+    out on demand: a scene of many lines pays nothing for its macros."""
+    from castor.diagnostics import LineExpansions
+
+    def find(file: str, number: int, expanded: str | None):
+        original = originals.line(file, number)
+        if original is None or expanded is None or original == expanded:
+            return None
+        mapped = _expansions_of(expanded, original, p)
+        return LineExpansions(original, tuple(mapped)) if mapped else None
+
+    return find
+
+
+def _expansions_of(line: str, original: str, p) -> list | None:
+    """The ``Expansion`` of each macro use of ``original`` in its expanded ``line``,
+    or None when the two cannot be lined up (arguments over several lines, a
+    macro redefined since): the reporter then keeps the expanded positions."""
+    from castor.diagnostics import Expansion
+
+    uses = []  # (start, end, macro) of each use in the original line
+    tokens = list(_ORIGINAL_TOKEN.finditer(original))
+    k = 0
+    while k < len(tokens):
+        token = tokens[k]
+        name = token.group()
+        macro = p.macros.get(name)
+        if macro is None or not (name[0].isalpha() or name[0] == "_"):
+            k += 1
+            continue
+        end = token.end()
+        if macro.arglist is not None:
+            rest = original[end:]
+            if not rest.lstrip().startswith("("):
+                k += 1
+                continue
+            depth, i = 0, end + len(rest) - len(rest.lstrip())
+            while i < len(original):
+                if original[i] == "(":
+                    depth += 1
+                elif original[i] == ")":
+                    depth -= 1
+                    if depth == 0:
+                        break
+                i += 1
+            else:
+                return None  # the arguments go on beyond this line
+            end = i + 1
+        uses.append((token.start(), end, name))
+        while k < len(tokens) and tokens[k].start() < end:
+            k += 1
+    out, at, previous = [], 0, 0
+    for start, end, name in uses:
+        literal = original[previous:start]
+        if not line.startswith(literal, at):
+            return None
+        at += len(literal)
+        try:
+            expansion = "".join(t.value for t in p.expand_macros(p.tokenize(original[start:end])))
+        except Exception:  # pcpp on text it did not expect: no mapping, plain positions
+            return None
+        if not line.startswith(expansion, at):
+            return None
+        defined = p.definitions.get(name)
+        out.append(Expansion(at, at + len(expansion), start, end, name,
+                             f"{defined.file}:{defined.line}" if defined else "the command line"))
+        at += len(expansion)
+        previous = end
+    if line[at:] != original[previous:]:
+        return None
+    return out

@@ -76,6 +76,11 @@ def _arguments(argv):
     lowered = args.output.lower()
     if not (lowered.endswith(".png") or lowered.endswith(".gif")):
         p.error(f"-o takes a .png or .gif file, not '{args.output}'")
+    from castor.formats.output import destination_problem
+
+    problem = destination_problem(args.output)
+    if problem is not None:
+        p.error(problem)
     return args
 
 
@@ -132,6 +137,7 @@ def _save(image, path, **options):
 
 
 def run(args) -> int:
+    from castor.formats.output import frame_path
     from castor.view.scene import ViewError
 
     pattern = bool(_PATTERN.search(args.output))
@@ -146,7 +152,7 @@ def run(args) -> int:
             if pattern and not gif:
                 # one image per frame, written as soon as the frame arrives
                 image = _image(args, picture, _camera(args, picture.points))
-                _save(image, args.output % picture.number)
+                _save(image, frame_path(args.output, picture.number))
                 continue
             pictures.append(picture)
             if not gif:
@@ -178,9 +184,14 @@ def run(args) -> int:
 
 
 def main(argv=None) -> int:
+    from castor.formats.output import Unwritable
+
     args = _arguments(sys.argv[1:] if argv is None else argv)
     try:
         return run(args)
+    except Unwritable as exc:  # a full disk, a directory gone since the start
+        sys.stderr.write(f"castor-view: error: {exc}\n")
+        return USAGE_ERROR
     except BrokenPipeError:
         return 1
     except KeyboardInterrupt:

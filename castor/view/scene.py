@@ -100,8 +100,11 @@ def read_mesh_file(path: str) -> Picture:
     if not points:
         raise ViewError(f"{path}: the file holds no faces")
     count = sum(len(c) for c in colours)
-    return Picture(1, path, np.concatenate(points), np.arange(count + 1) * 3,
-                   np.concatenate(colours))
+    points = np.concatenate(points)
+    if path.lower().endswith((".glb", ".gltf", ".obj")):
+        # +Y up in the file (as castor writes them): back to the scene's z up
+        points = np.column_stack([points[:, 0], -points[:, 2], points[:, 1]]) + 0.0
+    return Picture(1, path, points, np.arange(count + 1) * 3, np.concatenate(colours))
 
 
 def _face_colours(mesh) -> np.ndarray:

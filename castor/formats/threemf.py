@@ -1,0 +1,91 @@
+"""3D Manufacturing Format (3MF): what a slicer prints, in colour.
+
+One named object per '>' object, a base material per colour (named after what
+it colours), triangles counter-clockwise seen from outside. Units are
+millimetres with one scene unit = one metre, so a 9 m house is 9000 mm: a
+slicer shows it at its true size and scales it to the model's scale (1:100)
+in one step. The package is written with fixed dates, so that the same frame
+gives the same bytes.
+"""
+
+from __future__ import annotations
+
+import io
+import zipfile
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+
+from castor.mesh.frame import Frame
+from castor.formats._mesh import materials, object_names, triangles
+from castor.formats.cps import number_strings
+
+MILLIMETRES_PER_UNIT = 1000.0
+
+_CONTENT_TYPES = """<?xml version="1.0" encoding="UTF-8"?>
+<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">
+ <Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/>
+ <Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/>
+</Types>
+"""
+_RELATIONSHIPS = """<?xml version="1.0" encoding="UTF-8"?>
+<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">
+ <Relationship Target="/3D/3dmodel.model" Id="rel0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/>
+</Relationships>
+"""
+
+
+def model(frame: Frame) -> str:
+    """The 3D/3dmodel.model document of the package."""
+    table, material_of = materials(frame)
+    out = ['<?xml version="1.0" encoding="UTF-8"?>',
+           '<model unit="millimeter" xml:lang="en-US" '
+           'xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">',
+           ' <metadata name="Application">castor</metadata>',
+           ' <resources>']
+    if table:
+        out.append('  <basematerials id="1">')
+        for material in table:
+            rgb = "".join(f"{int(round(c * 255)):02X}" for c in material.colour)
+            out.append(f'   <base name={quoteattr(material.name)} displaycolor="#{rgb}FF"/>')
+        out.append('  </basematerials>')
+    items = []
+    for obj, name, material in zip(frame.objects, object_names(frame), material_of):
+        tris, polygon = triangles(obj.vertices, obj.offsets, obj.indices)
+        if len(tris) == 0:
+            continue
+        number = len(items) + 2
+        items.append(number)
+        colour = material[polygon]
+        out.append(f'  <object id="{number}" name={quoteattr(name)} type="model" pid="1" '
+                   f'pindex="{int(colour[0])}">')
+        out.append('   <mesh>')
+        out.append('    <vertices>')
+        numbers = number_strings(np.round(obj.vertices * MILLIMETRES_PER_UNIT, 6))
+        out.extend(f'     <vertex x="{x}" y="{y}" z="{z}"/>'
+                   for x, y, z in zip(numbers[0::3], numbers[1::3], numbers[2::3]))
+        out.append('    </vertices>')
+        out.append('    <triangles>')
+        out.extend(f'     <triangle v1="{a}" v2="{b}" v3="{c}" pid="1" p1="{m}"/>'
+                   for (a, b, c), m in zip(tris.tolist(), colour.tolist()))
+        out.append('    </triangles>')
+        out.append('   </mesh>')
+        out.append('  </object>')
+    out.append(' </resources>')
+    out.append(' <build>')
+    out.extend(f'  <item objectid="{number}"/>' for number in items)
+    out.append(' </build>')
+    out.append('</model>')
+    return "\n".join(out) + "\n"
+
+
+def export(frame: Frame, path: str | None = None) -> bytes:
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as package:
+        for name, text in (("[Content_Types].xml", _CONTENT_TYPES),
+                           ("_rels/.rels", _RELATIONSHIPS),
+                           ("3D/3dmodel.model", model(frame))):
+            info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            package.writestr(info, text.encode("utf-8"))
+    return buffer.getvalue()

@@ -1,0 +1,158 @@
+"""A quantity take-off: the figures of a frame's objects, for --stats and --summary.
+
+Pure functions from a mesh frame (castor/mesh/frame.py) to numbers an architect
+uses to price a facade or check a floor area: volume, surface area, bounding
+box, shells (separate solids), polygons, and the area of each colour. Volumes
+and areas are those of the written polygons, in scene units.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import NamedTuple
+
+import numpy as np
+
+from castor.mesh.frame import Frame, FrameObject
+
+
+class Figures(NamedTuple):
+    name: str
+    volume: float
+    area: float
+    bbox: tuple[tuple[float, float, float], tuple[float, float, float]] | None
+    shells: int
+    polygons: int
+    vertices: int
+    colours: list[tuple[tuple[float, float, float], float]]  # (rgb, area), largest first
+
+
+def _triangles(obj: FrameObject) -> tuple[np.ndarray, np.ndarray]:
+    """Each polygon as a fan of triangles (T, 3, 3), and the polygon of each."""
+    from castor.mesh.polygons import fan_triangles
+
+    tris, polygon = fan_triangles(obj.offsets, obj.indices)
+    return obj.vertices[tris], polygon
+
+
+def shell_count(obj: FrameObject) -> int:
+    """How many separate closed surfaces the object has (polygons joined by shared
+    vertices), by label propagation with pointer jumping: no Python loop over
+    vertices."""
+    used = np.unique(obj.indices)
+    if len(used) == 0:
+        return 0
+    following = np.arange(1, len(obj.indices) + 1)
+    following[obj.offsets[1:] - 1] = obj.offsets[:-1]
+    a, b = obj.indices, obj.indices[following]
+    label = np.arange(len(obj.vertices))
+    while True:
+        low = np.minimum(label[a], label[b])
+        np.minimum.at(label, label[a], low)
+        np.minimum.at(label, label[b], low)
+        while True:
+            jumped = label[label]
+            if np.array_equal(jumped, label):
+                break
+            label = jumped
+        if np.array_equal(label[a], label[b]):
+            return len(np.unique(label[used]))
+
+
+def object_figures(obj: FrameObject, name: str) -> Figures:
+    """The figures of one object."""
+    if obj.polygon_count == 0:
+        return Figures(name, 0.0, 0.0, None, 0, 0, 0, [])
+    corners, polygon = _triangles(obj)
+    centre = (obj.vertices.min(axis=0) + obj.vertices.max(axis=0)) / 2
+    a, b, c = corners[:, 0] - centre, corners[:, 1] - centre, corners[:, 2] - centre
+    volume = float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6)
+    areas = np.linalg.norm(np.cross(b - a, c - a), axis=1) / 2
+    origin_area = np.bincount(obj.origin_of[polygon], weights=areas, minlength=len(obj.origins))
+    by_colour: dict[tuple, float] = {}
+    for origin, area in zip(obj.origins, origin_area.tolist()):
+        key = tuple(float(x) for x in origin.colour)
+        by_colour[key] = by_colour.get(key, 0.0) + area
+    colours = sorted(by_colour.items(), key=lambda item: -item[1])
+    low, high = obj.vertices.min(axis=0).tolist(), obj.vertices.max(axis=0).tolist()
+    return Figures(name, volume, float(areas.sum()), (tuple(low), tuple(high)),
+                   shell_count(obj), obj.polygon_count, len(obj.vertices), colours)
+
+
+def frame_figures(frame: Frame) -> list[Figures]:
+    """The figures of each object of the frame, named as the mesh formats name them."""
+    from castor.formats._mesh import object_names
+
+    return [object_figures(obj, name) for obj, name in zip(frame.objects, object_names(frame))]
+
+
+def _g(x: float) -> str:
+    """A figure as a person reads it: 6 significant digits, no '-0'."""
+    text = f"{x:.6g}"
+    return "0" if text in ("-0", "0") else text
+
+
+def stats_line(frame: Frame, primitives: int, booleans: int, seconds: float) -> str:
+    """The --stats line of a frame (CLI.md)."""
+    figures = frame_figures(frame)
+    boxes = [f.bbox for f in figures if f.bbox is not None]
+    if boxes:
+        low = np.min([b[0] for b in boxes], axis=0)
+        high = np.max([b[1] for b in boxes], axis=0)
+        box = f"box {' '.join(map(_g, low))} to {' '.join(map(_g, high))}"
+    else:
+        box = "no box (empty)"
+    return (f"castor: frame {frame.number} {frame.where}: {_count(primitives, 'primitive')}, "
+            f"{_count(booleans, 'boolean operation')}, "
+            f"{_count(sum(f.polygons for f in figures), 'polygon')}, "
+            f"{_count(sum(f.vertices for f in figures), 'vertex', 'vertices')}, "
+            f"volume {_g(sum(f.volume for f in figures))}, "
+            f"area {_g(sum(f.area for f in figures))}, {box}, {seconds:.3f} s")
+
+
+def _count(n: int, one: str, many: str | None = None) -> str:
+    return f"{n} {one if n == 1 else (many or one + 's')}"
+
+
+def _number(x: float) -> float | int:
+    """JSON numbers without noise: 12 significant digits, whole numbers as integers."""
+    x = float(f"{x:.12g}") + 0.0
+    return int(x) if x.is_integer() and abs(x) < 1e15 else x
+
+
+def summary_record(frame: Frame) -> dict:
+    """One frame of the --summary document (OUTPUT.md, "Quantities")."""
+    objects = []
+    for f in frame_figures(frame):
+        objects.append({
+            "name": f.name,
+            "volume": _number(f.volume),
+            "area": _number(f.area),
+            "bbox": [[_number(x) for x in corner] for corner in f.bbox] if f.bbox else None,
+            "shells": f.shells,
+            "polygons": f.polygons,
+            "colours": [{"rgb": [_number(c) for c in rgb], "area": _number(area)}
+                        for rgb, area in f.colours],
+        })
+    return {"number": frame.number, "where": frame.where, "objects": objects}
+
+
+class Summary:
+    """Collects each frame's record; ``text`` is the --summary document."""
+
+    def __init__(self):
+        self.frames: list[dict] = []
+
+    def add(self, frame: Frame) -> None:
+        self.frames.append(summary_record(frame))
+
+    def text(self) -> str:
+        frames = sorted(self.frames, key=lambda record: record["number"])
+        # one line per object: readable, and still easy for grep
+        parts = []
+        for record in frames:
+            head = json.dumps({k: v for k, v in record.items() if k != "objects"})[:-1]
+            objects = ",\n   ".join(json.dumps(o) for o in record["objects"])
+            parts.append(f' {head}, "objects": [\n   {objects}]}}' if objects
+                         else f' {head}, "objects": []}}')
+        return '{"frames": [\n' + ",\n".join(parts) + "]}\n"
