@@ -7,11 +7,9 @@ surface per pixel wins (np.minimum.at). No Python loop runs per pixel.
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
-
 import numpy as np
 
+from castor.pictures.camera import Camera
 from castor.view.scene import Picture
 
 BACKGROUND = np.array([1.0, 1.0, 1.0])
@@ -19,74 +17,17 @@ EDGE_COLOUR = np.array([0.1, 0.1, 0.12])
 _BATCH_PIXELS = 3_000_000
 
 
-@dataclass
-class Camera:
-    eye: np.ndarray
-    look: np.ndarray
-    up: np.ndarray
-    fov: float  # vertical field of view, degrees
-
-    def basis(self):
-        forward = self.look - self.eye
-        forward = forward / np.linalg.norm(forward)
-        right = np.cross(forward, self.up)
-        if np.linalg.norm(right) < 1e-9:
-            right = np.cross(forward, np.array([0.0, 1.0, 0.0]))
-        right /= np.linalg.norm(right)
-        up = np.cross(right, forward)
-        return right, up, forward
-
-
-def frame_camera(points: np.ndarray, azimuth: float, elevation: float, aspect: float) -> Camera:
-    """A camera looking from (azimuth, elevation) that frames all the points,
-    as close as it can while every point stays in the picture."""
-    if len(points) == 0:
-        points = np.zeros((1, 3))
-    low, high = points.min(axis=0), points.max(axis=0)
-    centre = (low + high) / 2
-    radius = max(float(np.linalg.norm(high - low)) / 2, 1e-9)
-    a, e = math.radians(azimuth), math.radians(elevation)
-    direction = np.array([math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e)])
-    fov = 35.0
-    up = np.array([0.0, 0.0, 1.0])
-    if abs(direction[2]) > 0.999:
-        up = np.array([0.0, 1.0, 0.0])
-    camera = Camera(centre + direction * radius * 3, centre, up, fov)
-    right, true_up, forward = camera.basis()
-    # the 8 corners of the box suffice: the nearest distance at which each
-    # corner is inside the picture, for a camera looking at the centre
-    box = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
-                    for z in (low[2], high[2])])
-    tan_v = math.tan(math.radians(fov) / 2) * 0.94
-    tan_h = tan_v * aspect
-    for _ in range(3):  # fit, then move sideways to centre the picture, and fit again
-        corners = box - centre
-        across, along, depth = corners @ right, corners @ true_up, corners @ forward
-        distance = float(np.max(np.maximum(np.abs(across) / tan_h, np.abs(along) / tan_v)
-                                - depth))
-        distance = max(distance, radius * 0.5, 1e-9)
-        u, v = across / (distance + depth), along / (distance + depth)
-        centre = centre + (right * (u.max() + u.min()) / 2
-                           + true_up * (v.max() + v.min()) / 2) * distance
-    return Camera(centre - forward * distance, centre, up, fov)
-
-
 def _project(points: np.ndarray, camera: Camera, width: int, height: int):
-    right, up, forward = camera.basis()
-    rel = points - camera.eye
-    x, y, z = rel @ right, rel @ up, rel @ forward
-    scale = (height / 2) / math.tan(math.radians(camera.fov) / 2)
-    z_safe = np.where(z > 1e-9, z, 1e-9)
-    sx = width / 2 + x / z_safe * scale
-    sy = height / 2 - y / z_safe * scale
-    return np.column_stack([sx, sy]), z
+    return camera.project(points)
 
 
 def _shade(picture: Picture, camera: Camera) -> np.ndarray:
-    """Polygon colours lit from over the viewer's left shoulder."""
-    right, up, forward = camera.basis()
-    light = -forward * 0.55 + up * 0.65 - right * 0.45
-    light /= np.linalg.norm(light)
+    """Polygon colours lit as castor's pictures are (castor.pictures.shade), by
+    the default sun, without shadows."""
+    from castor.options import DEFAULT_SUN
+    from castor.pictures.camera import direction
+    from castor.pictures.shade import intensity
+
     pts = picture.points
     normals = np.zeros((picture.polygon_count, 3))
     starts = picture.offsets[:-1]
@@ -98,10 +39,15 @@ def _shade(picture: Picture, camera: Camera) -> np.ndarray:
     np.add.at(normals, polygon, cross)
     length = np.linalg.norm(normals, axis=1, keepdims=True)
     normals = np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
-    diffuse = np.clip(normals @ light, 0, 1)
-    facing = np.clip(-(normals @ forward), 0, 1)
-    intensity = 0.28 + 0.55 * diffuse + 0.17 * facing
-    return np.clip(picture.colours * intensity[:, None], 0, 1)
+    if camera.orthographic:
+        towards = np.broadcast_to(-camera.forward, normals.shape)
+    else:
+        towards = camera.eye - pts[starts]
+        towards = towards / np.maximum(np.linalg.norm(towards, axis=1, keepdims=True), 1e-300)
+    back = np.einsum("ij,ij->i", normals, towards) < 0
+    normals[back] *= -1
+    strength = intensity(normals, towards, direction(*DEFAULT_SUN), np.ones(len(normals)))
+    return np.clip(picture.colours * strength[:, None], 0, 1)
 
 
 def render(picture: Picture, camera: Camera, width: int, height: int,
