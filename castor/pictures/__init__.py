@@ -170,7 +170,10 @@ class _Tracer:
         on_ground = np.flatnonzero(~np.isfinite(t) & (dz < 0) & (tg > 0))
         if self.shadows:
             eps = 1e-6 * self.size
-            lit_hit = ~self._blocked(points + normals * eps)
+            # a face turned away from the sun is in its own shadow: no ray needed
+            towards = normals @ self.light > 0
+            lit_hit = towards.copy()
+            lit_hit[towards] = ~self._blocked(points[towards] + normals[towards] * eps)
             ground_points = origins[on_ground] + tg[on_ground, None] * directions[on_ground]
             ground_points[:, 2] += eps
             lit_ground = ~self._blocked(ground_points)

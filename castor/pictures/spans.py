@@ -327,7 +327,31 @@ def _pairs(crossings, faces, n):
     return t[:, :keep], face[:, :keep]
 
 
+_convex: dict[tuple, tuple | None] = {}
+
+
+def _convex_planes(shape):
+    """The half-spaces of an extrusion whose polygon is convex (faces numbered
+    as the walls and caps), or None."""
+    if shape not in _convex:
+        a, b = _outline(shape)
+        e = b - a
+        turns = e[:, 0] * np.roll(e[:, 1], -1) - e[:, 1] * np.roll(e[:, 0], -1)
+        planes = None
+        if np.all(turns > 0) or np.all(turns < 0):
+            sign = 1.0 if np.all(turns > 0) else -1.0  # counter-clockwise: outward (ey, -ex)
+            walls = np.column_stack([sign * e[:, 1], -sign * e[:, 0], np.zeros(len(e))])
+            normals = np.concatenate([[[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]], walls])
+            offsets = np.concatenate([[0.0, 1.0], np.einsum("ij,ij->i", walls[:, :2], a)])
+            planes = (normals, offsets)
+        _convex[shape] = planes
+    return _convex[shape]
+
+
 def _extrusion_spans(shape, o, d):
+    planes = _convex_planes(shape)
+    if planes is not None:
+        return _halfspaces(*planes, o, d)
     a, b = _outline(shape)
     e = b - a  # (m, 2)
     ox, oy, dx, dy = o[:, :1], o[:, 1:2], d[:, :1], d[:, 1:2]

@@ -391,6 +391,53 @@ def combine(op: str, parts: list):
                 return np.full((n, 0), INF), np.zeros((n, 0), np.int64)
         if len(parts) == 1:
             return parts[0]
+    if op == "U":
+        return _union(parts)
+    return _merge(op, parts)
+
+
+def _union(parts: list):
+    """A union where most rays are inside one operand at most: those rays keep
+    that operand's spans, the others are merged."""
+    n = len(parts[0][0])
+    busy = np.zeros(n, np.int32)
+    for t, _ in parts:
+        busy += np.isfinite(t[:, 0])
+    width = max(t.shape[1] for t, _ in parts)
+    out_t = np.full((n, width), INF)
+    out_face = np.zeros((n, width), np.int64)
+    single = busy == 1
+    for t, face in parts:
+        rows = np.flatnonzero(single & np.isfinite(t[:, 0]))
+        out_t[rows, :t.shape[1]] = t[rows]
+        out_face[rows, :t.shape[1]] = face[rows]
+    many = np.flatnonzero(busy > 1)
+    if len(many) == 0:
+        keep = _columns(out_t)
+        return out_t[:, :keep], out_face[:, :keep]
+    merged_t, merged_face = _merge("U", [(t[many], face[many]) for t, face in parts])
+    if merged_t.shape[1] > width:
+        grow = merged_t.shape[1] - width
+        out_t = np.concatenate([out_t, np.full((n, grow), INF)], axis=1)
+        out_face = np.concatenate([out_face, np.zeros((n, grow), np.int64)], axis=1)
+    out_t[many] = INF
+    out_t[many, :merged_t.shape[1]] = merged_t
+    out_face[many, :merged_t.shape[1]] = merged_face
+    keep = _columns(out_t)
+    return out_t[:, :keep], out_face[:, :keep]
+
+
+def _take(a: np.ndarray, order: np.ndarray) -> np.ndarray:
+    """a[i, order[i, j]] for every row i (take_along_axis without its checks)."""
+    rows, cols = a.shape
+    flat = order + (np.arange(rows) * cols)[:, None]
+    return a.ravel()[flat]
+
+
+def _merge(op: str, parts: list):
+    """The operands' entries and exits sorted along each ray, and the
+    stretches where the operator holds."""
+    n = len(parts[0][0])
     # entries before exits, so that at equal t an entry comes first (stable sort)
     entries = [p[0][:, 0::2] for p in parts]
     exits = [p[0][:, 1::2] for p in parts]
@@ -401,8 +448,8 @@ def combine(op: str, parts: list):
     half = sum(widths)
     delta = np.concatenate([np.ones(half, np.int8), -np.ones(half, np.int8)])
     order = np.argsort(t, axis=1, kind="stable")
-    t = np.take_along_axis(t, order, axis=1)
-    face = np.take_along_axis(face, order, axis=1)
+    t = _take(t, order)
+    face = _take(face, order)
     steps = delta[order]
     if op == "U":
         inside = np.cumsum(steps, axis=1, dtype=np.int32) > 0
@@ -423,7 +470,7 @@ def combine(op: str, parts: list):
     if keep == 0:
         return np.full((n, 0), INF), np.zeros((n, 0), np.int64)
     pick = np.argsort(~change, axis=1, kind="stable")[:, :keep]
-    out_t = np.take_along_axis(t, pick, axis=1)
-    out_face = np.take_along_axis(face, pick, axis=1)
+    out_t = _take(t, pick)
+    out_face = _take(face, pick)
     out_t[np.arange(keep)[None, :] >= count[:, None]] = INF
     return out_t, out_face
