@@ -20,7 +20,7 @@ from castor.pictures.trace import Projection, Scene, compile_frame
 TILE = 64  # pixels on a side of a tile of rays
 CHUNK = 16384  # rays traced at once
 
-__all__ = ["picture", "render_scene", "sample_offsets"]
+__all__ = ["animation", "picture", "render_scene", "sample_offsets"]
 
 
 def picture(frame, spec) -> np.ndarray:
@@ -29,6 +29,17 @@ def picture(frame, spec) -> np.ndarray:
     low, high = scene.box
     camera = make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)
     return render_scene(scene, camera, spec.sun, spec.samples, spec.edges)
+
+
+def animation(scenes: list, spec) -> list:
+    """The pictures of an animation's compiled frames (castor.pictures.trace.Scene),
+    all from one camera that frames every frame, so that it does not jump."""
+    boxes = [scene.box for scene in scenes if scene.root is not None] or [(np.zeros(3),) * 2]
+    low = np.min([b[0] for b in boxes], axis=0)
+    high = np.max([b[1] for b in boxes], axis=0)
+    camera = make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)
+    return [render_scene(scene, camera, spec.sun, spec.samples, spec.edges,
+                         ground=float(low[2])) for scene in scenes]
 
 
 def sample_offsets(samples: int) -> np.ndarray:
@@ -61,16 +72,20 @@ class _Samples:
         self.lit = np.ones(n, bool)
 
 
-def render_scene(scene: Scene, camera: Camera, sun, samples: int, edges: bool) -> np.ndarray:
-    """The picture of a compiled scene from ``camera``: sun ``(az, el)`` or None."""
+def render_scene(scene: Scene, camera: Camera, sun, samples: int, edges: bool,
+                 ground: float | None = None) -> np.ndarray:
+    """The picture of a compiled scene from ``camera``: sun ``(az, el)`` or None;
+    the ground at height ``ground`` (by default, the foot of the scene)."""
     width, height = camera.width, camera.height
     low, high = scene.box
+    if ground is None:
+        ground = float(low[2])
     size = float(np.linalg.norm(high - low)) or 1.0
     if sun is not None:
         light, shadows = direction(*sun), True
     else:
         light, shadows = shade.shoulder_light(camera.right, camera.up, camera.forward), False
-    tracer = _Tracer(scene, camera, light, shadows, float(low[2]), size)
+    tracer = _Tracer(scene, camera, light, shadows, ground, size)
     # one ray through each pixel's centre, tile by tile
     order = _tile_order(width, height)
     xs = (order % width) + 0.5
