@@ -181,8 +181,39 @@ def compile_frame(frame: tree.Frame) -> Scene:
             node = _compile(obj.root, np.eye(4), scene.leaves)
             if node is not None:
                 roots.append(node)
-    scene.root = _make("U", roots)
+    scene.root = _grouped(_make("U", roots))
     return scene
+
+
+GROUP = 4  # operands of a union beyond which they are grouped by place
+
+
+def _grouped(node):
+    """The tree with each large union split into nested unions of nearby
+    operands (a bounding volume hierarchy), so that a ray meets the boxes of
+    a few groups rather than of every operand."""
+    if not isinstance(node, Node):
+        return node
+    operands = [_grouped(o) for o in node.operands]
+    if node.op != "U" or len(operands) <= GROUP:
+        return Node(node.op, operands, node.low, node.high)
+    return _group(operands)
+
+
+def _group(operands: list):
+    if len(operands) == 1:
+        return operands[0]
+    lows = np.array([o.low for o in operands])
+    highs = np.array([o.high for o in operands])
+    low, high = lows.min(axis=0), highs.max(axis=0)
+    if len(operands) <= GROUP:
+        return Node("U", operands, low, high)
+    centres = (lows + highs) / 2
+    axis = int(np.argmax(centres.max(axis=0) - centres.min(axis=0)))
+    order = np.argsort(centres[:, axis], kind="stable")
+    half = len(operands) // 2
+    return Node("U", [_group([operands[i] for i in order[:half]]),
+                      _group([operands[i] for i in order[half:]])], low, high)
 
 
 def _matrix(values) -> np.ndarray:
