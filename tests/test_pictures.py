@@ -192,3 +192,46 @@ def test_png_gif_and_patterns_from_the_command_line(tmp_path):
     assert done.returncode == 0, done.stderr
     with Image.open(tmp_path / "all.gif") as image:
         assert image.format == "GIF" and image.n_frames == 3
+
+
+# --- castor-view: outlines only, anti-aliased, castor's camera ---------------
+
+FRAME_WITH_A_HOLE = "> $D(@h(4, 4, 1) !cu(0.8, 0.8, 0.8), @t(1, 1, -1) @h(2, 2, 3) !cu(0.8, 0.8, 0.8));"
+
+
+def _view(text: str, mode: str, view: View, size=(200, 200)) -> tuple[np.ndarray, object]:
+    from castor.view.render import render
+    from castor.view.scene import read_stream
+
+    stream = subprocess.run([sys.executable, "-m", "castor"], input=text.encode(),
+                            capture_output=True, check=True).stdout
+    frame = next(read_stream(iter(io.StringIO(stream.decode()).readline, "")))
+    low, high = frame.points.min(axis=0), frame.points.max(axis=0)
+    camera = make_camera(low, high, size, view)
+    return render(frame, camera, size[0], size[1], mode), camera
+
+
+@pytest.mark.parametrize("mode", ["wire", "edges"])
+def test_castor_view_draws_outlines_not_the_pieces_of_a_flat_face(mode):
+    """The top of a square frame is cut into convex polygons; seen from above,
+    only the outer and inner squares are drawn."""
+    image, camera = _view(FRAME_WITH_A_HOLE, mode, View("top", 0, 0))
+    xy = camera.project(np.array([[0.0, 0.0, 1.0], [1.0, 1.0, 1.0], [3.0, 3.0, 1.0],
+                                  [4.0, 4.0, 1.0]]))[0]
+    lines_x, lines_y = xy[:, 0], xy[:, 1]
+    dark = image.min(axis=2) < 200  # lines, anti-aliased
+    ys, xs = np.nonzero(dark)
+    assert len(xs) > 400  # the outlines are there
+    near_x = np.min(np.abs(xs[:, None] + 0.5 - lines_x[None, :]), axis=1) <= 1.5
+    near_y = np.min(np.abs(ys[:, None] + 0.5 - lines_y[None, :]), axis=1) <= 1.5
+    assert np.all(near_x | near_y)
+
+
+def test_castor_view_is_anti_aliased_and_lit_as_castor():
+    image, _ = _view("> @rz(30) @h(2, 2, 1) !cu(0.2, 0.4, 0.9);", "shaded", View("top", 0, 0))
+    blue = image[..., 2].astype(int)
+    red = image[..., 0].astype(int)
+    face = red[100, 100]
+    partial = (red > face + 10) & (red < WHITE - 10)
+    assert partial.sum() > 100  # the silhouette's pixels are blended
+    assert blue[100, 100] > 0.75 * 0.9 * 255  # a face turned to the viewer: near its colour

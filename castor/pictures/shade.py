@@ -42,7 +42,7 @@ def edges(key: np.ndarray, depth: np.ndarray, normals: np.ndarray) -> np.ndarray
     the depth jumps, a crease where the normal turns; never between two
     coplanar pieces of a face, whatever primitives they come from."""
     h, w = key.shape
-    strength = np.zeros((h, w))
+    strength = np.zeros((h, w), np.float32)
     hit = key >= 0
     for axis in (0, 1):
         a = (slice(None, -1), slice(None)) if axis == 0 else (slice(None), slice(None, -1))
