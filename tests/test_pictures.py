@@ -119,7 +119,8 @@ def test_a_cut_shows_the_cutters_colour():
     assert abs(r - g) < 8 and abs(g - b) < 8
 
 
-TABLE = "> $U(@t(0, 0, 1) @h(4, 4, 0.2) !cu(0.6, 0.6, 0.6), @t(1.9, 1.9, 0) @h(0.2, 0.2, 1) !cu(0.6, 0.6, 0.6));"
+TABLE = ("> $U(@t(0, 0, 1) @h(4, 4, 0.2) !cu(0.6, 0.6, 0.6),"
+         " @t(1.9, 1.9, 0) @h(0.2, 0.2, 1) !cu(0.6, 0.6, 0.6));")
 
 
 @pytest.mark.parametrize("sun", [(0.0, 90.0), None])
@@ -196,7 +197,8 @@ def test_png_gif_and_patterns_from_the_command_line(tmp_path):
 
 # --- castor-view: outlines only, anti-aliased, castor's camera ---------------
 
-FRAME_WITH_A_HOLE = "> $D(@h(4, 4, 1) !cu(0.8, 0.8, 0.8), @t(1, 1, -1) @h(2, 2, 3) !cu(0.8, 0.8, 0.8));"
+FRAME_WITH_A_HOLE = ("> $D(@h(4, 4, 1) !cu(0.8, 0.8, 0.8),"
+                     " @t(1, 1, -1) @h(2, 2, 3) !cu(0.8, 0.8, 0.8));")
 
 
 def _view(text: str, mode: str, view: View, size=(200, 200)) -> tuple[np.ndarray, object]:

@@ -21,7 +21,8 @@ def export_animation(images: list) -> bytes:
             canvas = Image.new("RGB", (width, height), (255, 255, 255))
             canvas.paste(p, (0, 0))
             p = canvas
-        frames.append(p.quantize(colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE))
+        frames.append(p.quantize(colors=256, method=Image.Quantize.MEDIANCUT,
+                                 dither=Image.Dither.NONE))
     buffer = io.BytesIO()
     if len(frames) == 1:
         frames[0].save(buffer, format="GIF")

@@ -135,7 +135,8 @@ def _outline_edges(picture: Picture, normals: np.ndarray) -> np.ndarray:
     single[:-1] &= pair[:-1] + 1 != pair[1:]
     pair = pair[single]
     first, second = order[pair], order[pair + 1]
-    flat = np.abs(np.einsum("ij,ij->i", normals[polygon[first]], normals[polygon[second]])) > 1 - 1e-9
+    turn = np.einsum("ij,ij->i", normals[polygon[first]], normals[polygon[second]])
+    flat = np.abs(turn) > 1 - 1e-9
     draw = np.ones(count, bool)
     draw[first[flat]] = False
     draw[second[flat]] = False
