@@ -103,22 +103,60 @@ def render_scene(scene: Scene, camera: Camera, sun, samples: int, edges: bool,
     normal[order] = centre.normal
     key, depth, lit = (a.reshape(height, width) for a in (key, depth, lit))
     normal = normal.reshape(height, width, 3)
+    # with --edges, the samples of a pixel on a k x k grid, so that the edges
+    # are found on the finer grid and come out anti-aliased
+    k = max(2, round(samples ** 0.5)) if edges and samples > 1 else 1
+    fine = _Fine(key, depth, normal, k) if k > 1 else None
     if samples > 1:
         rough = _differs(key, lit, depth, normal)
         pixels = np.flatnonzero(rough.ravel())
         pixels = pixels[np.argsort(_tile_of(pixels, width), kind="stable")]
         if len(pixels):
-            offsets = sample_offsets(samples)
+            if fine is not None:
+                offsets = [((i + 0.5) / k, (j + 0.5) / k) for j in range(k) for i in range(k)]
+            else:
+                offsets = sample_offsets(samples)
             total = np.zeros((len(pixels), 3))
             px, py = pixels % width, pixels // width
-            for dx, dy in offsets:
-                total += tracer.trace(px + dx, py + dy).colour
+            for number, (dx, dy) in enumerate(offsets):
+                seen = tracer.trace(px + dx, py + dy)
+                total += seen.colour
+                if fine is not None:
+                    fine.put(px, py, number % k, number // k, seen)
             image[pixels] = total / len(offsets)
     image = image.reshape(height, width, 3)
     if edges:
-        strength = shade.edges(key, depth, normal)
+        strength = fine.edges() if fine is not None else shade.edges(key, depth, normal)
         image = image * (1 - strength[..., None]) + shade.EDGE_COLOUR * strength[..., None]
     return np.clip(np.rint(image * 255), 0, 255).astype(np.uint8)
+
+
+class _Fine:
+    """Surface numbers, depths and normals on a grid k times finer than the
+    pixels: a pixel's centre sample everywhere, its own samples where it was
+    traced again; the edges found there are averaged back to the pixels."""
+
+    def __init__(self, key, depth, normal, k: int):
+        self.k = k
+        self.key = np.repeat(np.repeat(key, k, axis=0), k, axis=1)
+        self.depth = np.repeat(np.repeat(depth.astype(np.float32), k, axis=0), k, axis=1)
+        self.normal = np.repeat(np.repeat(normal.astype(np.float32), k, axis=0), k, axis=1)
+
+    def put(self, px, py, i: int, j: int, seen: "_Samples") -> None:
+        rows, cols = py * self.k + j, px * self.k + i
+        self.key[rows, cols] = seen.key
+        self.depth[rows, cols] = seen.depth
+        self.normal[rows, cols] = seen.normal
+
+    def edges(self) -> np.ndarray:
+        k = self.k
+        strength = shade.edges(self.key, self.depth, self.normal)
+        # lines k fine cells wide: one pixel, spread over the pixels they cross
+        for _ in range(k - 1):
+            strength[:-1] = np.maximum(strength[:-1], strength[1:])
+            strength[:, :-1] = np.maximum(strength[:, :-1], strength[:, 1:])
+        h, w = strength.shape[0] // k, strength.shape[1] // k
+        return strength.reshape(h, k, w, k).mean(axis=(1, 3))
 
 
 def _tile_of(pixels: np.ndarray, width: int) -> np.ndarray:
