@@ -103,10 +103,13 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
         from castor.pictures import picture
 
         started = time.perf_counter()
-        image = picture(scene, spec)
         if chosen.all_frames:
-            result.picture = image
+            # an animation is drawn at the end, with one camera for all its frames
+            from castor.pictures.trace import compile_frame
+
+            result.picture = compile_frame(scene)
         else:
+            image = picture(scene, spec)
             from castor.formats.png import export_picture
 
             result.data = export_picture(image)

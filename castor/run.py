@@ -270,7 +270,9 @@ def _finish_collected(args, spec: Spec, sequencer: Sequencer, reporter: Reporter
     if sequencer.pictures and FORMATS[spec.format].all_frames:
         from castor.formats.gif import export_animation
 
-        data = export_animation(sequencer.pictures)
+        from castor.pictures import animation
+
+        data = export_animation(animation(sequencer.pictures, spec))
         if args.output is None:
             sys.stdout.buffer.write(data)
             sys.stdout.buffer.flush()

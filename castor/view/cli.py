@@ -38,8 +38,9 @@ def _arguments(argv):
     p.add_argument("-o", "--output", metavar="PATH",
                    help=".png for one frame; .gif, or .png with a %%d pattern, for every frame")
     p.add_argument("--size", default="800x600", metavar="WxH", help="image size (800x600)")
-    p.add_argument("--view", default="-60,25", metavar="AZ,EL",
-                   help="camera direction in degrees: azimuth around z, elevation (-60,25)")
+    p.add_argument("--view", default="-60,25", metavar="AZ,EL|NAME",
+                   help="camera direction in degrees: azimuth around z, elevation (-60,25); "
+                        "or top, bottom, front, back, left, right (orthographic)")
     p.add_argument("--eye", metavar="X,Y,Z", help="camera position (with --look)")
     p.add_argument("--look", metavar="X,Y,Z", help="point the camera looks at (with --eye)")
     p.add_argument("--wire", action="store_true", help="wireframe (fil de fer)")
@@ -57,10 +58,12 @@ def _arguments(argv):
     if not size or not (1 <= int(size[1]) <= 16384 and 1 <= int(size[2]) <= 16384):
         p.error(f"--size takes WxH such as 800x600, not '{args.size}'")
     args.width, args.height = int(size[1]), int(size[2])
+    from castor.options import parse_view
+
     try:
-        args.azimuth, args.elevation = (float(v) for v in args.view.split(","))
-    except ValueError:
-        p.error(f"--view takes AZ,EL in degrees, such as 30,20, not '{args.view}'")
+        args.view = parse_view(args.view)
+    except ValueError as exc:
+        p.error(str(exc))
     if (args.eye is None) != (args.look is None):
         p.error("--eye and --look go together")
     if args.eye is not None:
@@ -103,17 +106,15 @@ def _pictures(args):
 
 
 def _camera(args, points):
+    """The camera of castor's pictures (castor.pictures.camera), framing the points."""
     import numpy as np
 
-    from castor.view.render import Camera, frame_camera
+    from castor.pictures.camera import make_camera
 
-    if args.eye is not None:
-        eye, look = np.array(args.eye), np.array(args.look)
-        up = np.array([0.0, 0.0, 1.0])
-        if np.linalg.norm(np.cross(look - eye, up)) < 1e-9:
-            up = np.array([0.0, 1.0, 0.0])
-        return Camera(eye, look, up, 35.0)
-    return frame_camera(points, args.azimuth, args.elevation, args.width / args.height)
+    if len(points) == 0:
+        points = np.zeros((1, 3))
+    return make_camera(points.min(axis=0), points.max(axis=0), (args.width, args.height),
+                       args.view, args.eye, args.look)
 
 
 def _image(args, picture, camera):

@@ -1,92 +1,32 @@
-"""A z-buffer renderer in numpy: flat-shaded polygons, wireframes and edges.
+"""A z-buffer renderer in numpy: lit polygons, outline edges and wireframes.
 
-Triangles are rasterized in batches: every candidate pixel of a batch's
-bounding boxes is tested at once with barycentric coordinates, and the nearest
-surface per pixel wins (np.minimum.at). No Python loop runs per pixel.
+The picture is drawn at twice its size and averaged down, so edges are
+anti-aliased. Triangles are rasterized in batches: every candidate pixel of a
+batch's bounding boxes is tested at once with barycentric coordinates, and the
+nearest surface per pixel wins (np.minimum.at); each pixel keeps the number of
+its polygon, from which its colour and normal come. No Python loop runs per
+pixel. Edges are outlines only: ``--edges`` from the changes of depth and
+normal between pixels (as castor's pictures), ``--wire`` the polygons' edges
+except those between two coplanar polygons, so a flat face cut into convex
+pieces shows no diagonals.
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
+import dataclasses
 
 import numpy as np
 
+from castor.pictures.camera import Camera
 from castor.view.scene import Picture
 
 BACKGROUND = np.array([1.0, 1.0, 1.0])
-EDGE_COLOUR = np.array([0.1, 0.1, 0.12])
-_BATCH_PIXELS = 3_000_000
+EDGE_COLOUR = np.array([0.12, 0.12, 0.14])
+SUPERSAMPLE = 2  # drawn at this many times the size on each side, then averaged
+_BATCH_PIXELS = 400_000
 
 
-@dataclass
-class Camera:
-    eye: np.ndarray
-    look: np.ndarray
-    up: np.ndarray
-    fov: float  # vertical field of view, degrees
-
-    def basis(self):
-        forward = self.look - self.eye
-        forward = forward / np.linalg.norm(forward)
-        right = np.cross(forward, self.up)
-        if np.linalg.norm(right) < 1e-9:
-            right = np.cross(forward, np.array([0.0, 1.0, 0.0]))
-        right /= np.linalg.norm(right)
-        up = np.cross(right, forward)
-        return right, up, forward
-
-
-def frame_camera(points: np.ndarray, azimuth: float, elevation: float, aspect: float) -> Camera:
-    """A camera looking from (azimuth, elevation) that frames all the points,
-    as close as it can while every point stays in the picture."""
-    if len(points) == 0:
-        points = np.zeros((1, 3))
-    low, high = points.min(axis=0), points.max(axis=0)
-    centre = (low + high) / 2
-    radius = max(float(np.linalg.norm(high - low)) / 2, 1e-9)
-    a, e = math.radians(azimuth), math.radians(elevation)
-    direction = np.array([math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e)])
-    fov = 35.0
-    up = np.array([0.0, 0.0, 1.0])
-    if abs(direction[2]) > 0.999:
-        up = np.array([0.0, 1.0, 0.0])
-    camera = Camera(centre + direction * radius * 3, centre, up, fov)
-    right, true_up, forward = camera.basis()
-    # the 8 corners of the box suffice: the nearest distance at which each
-    # corner is inside the picture, for a camera looking at the centre
-    box = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
-                    for z in (low[2], high[2])])
-    tan_v = math.tan(math.radians(fov) / 2) * 0.94
-    tan_h = tan_v * aspect
-    for _ in range(3):  # fit, then move sideways to centre the picture, and fit again
-        corners = box - centre
-        across, along, depth = corners @ right, corners @ true_up, corners @ forward
-        distance = float(np.max(np.maximum(np.abs(across) / tan_h, np.abs(along) / tan_v)
-                                - depth))
-        distance = max(distance, radius * 0.5, 1e-9)
-        u, v = across / (distance + depth), along / (distance + depth)
-        centre = centre + (right * (u.max() + u.min()) / 2
-                           + true_up * (v.max() + v.min()) / 2) * distance
-    return Camera(centre - forward * distance, centre, up, fov)
-
-
-def _project(points: np.ndarray, camera: Camera, width: int, height: int):
-    right, up, forward = camera.basis()
-    rel = points - camera.eye
-    x, y, z = rel @ right, rel @ up, rel @ forward
-    scale = (height / 2) / math.tan(math.radians(camera.fov) / 2)
-    z_safe = np.where(z > 1e-9, z, 1e-9)
-    sx = width / 2 + x / z_safe * scale
-    sy = height / 2 - y / z_safe * scale
-    return np.column_stack([sx, sy]), z
-
-
-def _shade(picture: Picture, camera: Camera) -> np.ndarray:
-    """Polygon colours lit from over the viewer's left shoulder."""
-    right, up, forward = camera.basis()
-    light = -forward * 0.55 + up * 0.65 - right * 0.45
-    light /= np.linalg.norm(light)
+def _normals(picture: Picture) -> np.ndarray:
     pts = picture.points
     normals = np.zeros((picture.polygon_count, 3))
     starts = picture.offsets[:-1]
@@ -97,90 +37,188 @@ def _shade(picture: Picture, camera: Camera) -> np.ndarray:
     polygon = np.repeat(np.arange(len(sizes)), sizes)
     np.add.at(normals, polygon, cross)
     length = np.linalg.norm(normals, axis=1, keepdims=True)
-    normals = np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
-    diffuse = np.clip(normals @ light, 0, 1)
-    facing = np.clip(-(normals @ forward), 0, 1)
-    intensity = 0.28 + 0.55 * diffuse + 0.17 * facing
-    return np.clip(picture.colours * intensity[:, None], 0, 1)
+    return np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
+
+
+def _shade(picture: Picture, camera: Camera, normals: np.ndarray) -> np.ndarray:
+    """Polygon colours lit as castor's pictures are (castor.pictures.shade), by
+    the default sun, without shadows; the normals are turned to the viewer."""
+    from castor.options import DEFAULT_SUN
+    from castor.pictures.camera import direction
+    from castor.pictures.shade import intensity
+
+    if camera.orthographic:
+        towards = np.broadcast_to(-camera.forward, normals.shape)
+    else:
+        towards = camera.eye - picture.points[picture.offsets[:-1]]
+    back = np.einsum("ij,ij->i", normals, towards) < 0
+    normals[back] *= -1
+    # one direction to the viewer for every polygon, so that the pieces of a
+    # flat face are lit alike
+    towards = np.broadcast_to(-camera.forward, normals.shape)
+    strength = intensity(normals, towards, direction(*DEFAULT_SUN), np.ones(len(normals)))
+    return np.clip(picture.colours * strength[:, None], 0, 1)
 
 
 def render(picture: Picture, camera: Camera, width: int, height: int,
            mode: str = "shaded") -> np.ndarray:
-    """An (height, width, 3) uint8 image of the picture."""
-    image = np.tile(BACKGROUND, (height, width, 1))
-    depth = np.full(height * width, np.inf)
-    screen, z = _project(picture.points, camera, width, height)
+    """An (height, width, 3) uint8 image of the picture: ``mode`` "shaded",
+    "edges" (shaded with outline edges) or "wire"."""
+    from castor.pictures.shade import edges
+
+    k = SUPERSAMPLE
+    big_w, big_h = width * k, height * k
+    big = dataclasses.replace(camera, width=big_w, height=big_h)
+    screen, z = big.project(picture.points)
+    depth = np.full(big_h * big_w, np.inf)
+    owner = np.full(big_h * big_w, -1, np.int32)
+    image = np.empty((big_h * big_w, 3), np.float32)
+    image[:] = BACKGROUND
+    normals = _normals(picture)
     if mode != "wire" and picture.polygon_count:
-        colours = _shade(picture, camera)
+        colours = _shade(picture, big, normals).astype(np.float32)
         tris, polygon = picture.triangles()
         visible = np.all(z[tris] > 1e-6, axis=1)
         tris, polygon = tris[visible], polygon[visible]
-        pixel_colour = np.zeros((height * width, 3))
-        _rasterize(screen, z, tris, polygon, colours, width, height, depth, pixel_colour)
-        hit = np.isfinite(depth)
-        image.reshape(-1, 3)[hit] = pixel_colour[hit]
-    if mode in ("wire", "edges"):
-        _draw_edges(picture, screen, z, image, depth if mode == "edges" else None, width, height)
-    return np.clip(np.rint(image * 255), 0, 255).astype(np.uint8)
+        _rasterize(screen, z, tris, polygon, big_w, big_h, depth, owner, big.orthographic)
+        hit = owner >= 0
+        image[hit] = colours[owner[hit]]
+    image = image.reshape(big_h, big_w, 3)
+    if mode == "edges" and picture.polygon_count:
+        strength = np.zeros((big_h, big_w), np.float32)
+        owner2, depth2 = owner.reshape(big_h, big_w), depth.reshape(big_h, big_w)
+        band = 128
+        for top in range(0, big_h, band):  # a band of rows at a time: bounded memory
+            rows = slice(top, min(top + band + 1, big_h))
+            here = owner2[rows]
+            pixel_normals = np.zeros(here.shape + (3,), np.float32)
+            hit = here >= 0
+            pixel_normals[hit] = normals[here[hit]]
+            part = edges(here, depth2[rows].astype(np.float32), pixel_normals)
+            strength[rows] = np.maximum(strength[rows], part)
+        # lines two fine pixels wide: one pixel of the picture
+        strength[:-1] = np.maximum(strength[:-1], strength[1:])
+        strength[:, :-1] = np.maximum(strength[:, :-1], strength[:, 1:])
+        for channel in range(3):  # in place: no picture-sized temporaries
+            layer = image[..., channel]
+            layer -= strength * (layer - np.float32(EDGE_COLOUR[channel]))
+    if mode == "wire":
+        _draw_edges(picture, screen, z, image, None, big_w, big_h, _outline_edges(picture, normals))
+    out = np.empty((height, width, 3), np.uint8)
+    for channel in range(3):
+        layer = image[..., channel].reshape(height, k, width, k).mean(axis=(1, 3))
+        out[..., channel] = np.clip(np.rint(layer * 255), 0, 255)
+    return out
 
 
-def _rasterize(screen, z, tris, polygon, colours, width, height, depth, pixel_colour):
-    a, b, c = screen[tris[:, 0]], screen[tris[:, 1]], screen[tris[:, 2]]
-    low = np.floor(np.minimum(np.minimum(a, b), c)).astype(np.int64)
-    high = np.ceil(np.maximum(np.maximum(a, b), c)).astype(np.int64)
-    low = np.clip(low, 0, [width - 1, height - 1])
-    high = np.clip(high, 0, [width - 1, height - 1])
-    spans = (high - low + 1)
-    areas = spans[:, 0] * spans[:, 1]
-    on_screen = (high[:, 0] >= low[:, 0]) & (high[:, 1] >= low[:, 1]) & (areas > 0)
-    index = np.flatnonzero(on_screen)
+def _outline_edges(picture: Picture, normals: np.ndarray) -> np.ndarray:
+    """For each polygon edge (point i to the next), whether it is drawn: not
+    when the polygon across it lies in the same plane."""
+    count = len(picture.points)
+    if count == 0:
+        return np.zeros(0, bool)
+    scale = max(float(np.abs(picture.points).max()), 1.0) * 1e-9
+    quantized = np.round(picture.points / scale).astype(np.int64)
+    _, vertex = np.unique(quantized, axis=0, return_inverse=True)
+    vertex = vertex.ravel()
+    offsets = picture.offsets
+    nxt = np.arange(count) + 1
+    nxt[offsets[1:] - 1] = offsets[:-1]
+    a, b = vertex, vertex[nxt]
+    key = np.minimum(a, b) * (int(vertex.max()) + 1) + np.maximum(a, b)
+    polygon = np.repeat(np.arange(picture.polygon_count), np.diff(offsets))
+    order = np.argsort(key, kind="stable")
+    sorted_key = key[order]
+    pair = np.flatnonzero(sorted_key[1:] == sorted_key[:-1])
+    single = np.ones(len(pair), bool)  # exactly two polygons share the edge
+    single[1:] &= pair[1:] != pair[:-1] + 1
+    single[:-1] &= pair[:-1] + 1 != pair[1:]
+    pair = pair[single]
+    first, second = order[pair], order[pair + 1]
+    turn = np.einsum("ij,ij->i", normals[polygon[first]], normals[polygon[second]])
+    flat = np.abs(turn) > 1 - 1e-9
+    draw = np.ones(count, bool)
+    draw[first[flat]] = False
+    draw[second[flat]] = False
+    return draw
+
+
+def _rasterize(screen, z, tris, polygon, width, height, depth, owner, orthographic=False):
+    """Each triangle row by row: the pixels whose centres it covers, in batches
+    of fragments; the nearest wins each pixel. The work goes with the area
+    covered, not with the triangles' bounding boxes."""
+    if len(tris) == 0:
+        return
+    p = screen[tris]  # (T, 3, 2)
+    # depth, affine on the screen: 1/z in perspective, z itself in an orthographic view
+    w = z[tris] if orthographic else 1.0 / z[tris]
+    x0, y0 = p[:, 0, 0], p[:, 0, 1]
+    ex1, ey1 = p[:, 1, 0] - x0, p[:, 1, 1] - y0
+    ex2, ey2 = p[:, 2, 0] - x0, p[:, 2, 1] - y0
+    det = ex1 * ey2 - ex2 * ey1
+    keep = np.abs(det) > 1e-12
+    tris, polygon, p, w = tris[keep], polygon[keep], p[keep], w[keep]
+    x0, y0, ex1, ey1, ex2, ey2, det = (v[keep] for v in (x0, y0, ex1, ey1, ex2, ey2, det))
+    dw1, dw2 = w[:, 1] - w[:, 0], w[:, 2] - w[:, 0]
+    gx = (dw1 * ey2 - dw2 * ey1) / det  # d(w)/dx
+    gy = (dw2 * ex1 - dw1 * ex2) / det  # d(w)/dy
+    g0 = w[:, 0] - gx * x0 - gy * y0
+    ys = p[:, :, 1]
+    row0 = np.clip(np.ceil(ys.min(axis=1) - 0.5), 0, height).astype(np.int64)
+    row1 = np.clip(np.floor(ys.max(axis=1) - 0.5), -1, height - 1).astype(np.int64)
+    rows = np.maximum(row1 - row0 + 1, 0)
+    xs = p[:, :, 0]
+    across = np.clip(np.ceil(xs.max(axis=1)) - np.floor(xs.min(axis=1)) + 1, 1, width)
+    ends = np.cumsum(rows * across)  # at most this many fragments: batches of bounded memory
     start = 0
-    cumulative = np.cumsum(areas[index])
-    while start < len(index):
-        base = cumulative[start - 1] if start else 0
-        stop = int(np.searchsorted(cumulative, base + _BATCH_PIXELS, side="right"))
+    while start < len(tris):
+        base = ends[start - 1] if start else 0
+        stop = int(np.searchsorted(ends, base + _BATCH_PIXELS, side="right"))
         stop = max(stop, start + 1)
-        batch = index[start:stop]
-        _rasterize_batch(batch, a, b, c, low, spans, areas, z, tris, polygon, colours,
-                         width, depth, pixel_colour)
+        _rows(np.arange(start, stop), p, rows, row0, gx, gy, g0, polygon, width, depth, owner,
+              orthographic)
         start = stop
 
 
-def _rasterize_batch(batch, a, b, c, low, spans, areas, z, tris, polygon, colours, width,
-                     depth, pixel_colour):
-    counts = areas[batch]
+def _rows(batch, p, rows, row0, gx, gy, g0, polygon, width, depth, owner, orthographic):
+    counts = rows[batch]
     tri = np.repeat(batch, counts)
-    local = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
-    w = spans[tri, 0]
-    px = low[tri, 0] + local % w
-    py = low[tri, 1] + local // w
-    cx, cy = px + 0.5, py + 0.5
-    ax, ay = a[tri, 0], a[tri, 1]
-    bx, by = b[tri, 0], b[tri, 1]
-    qx, qy = c[tri, 0], c[tri, 1]
-    area = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        w0 = ((bx - cx) * (qy - cy) - (by - cy) * (qx - cx)) / area
-        w1 = ((qx - cx) * (ay - cy) - (qy - cy) * (ax - cx)) / area
-        w2 = 1 - w0 - w1
-    eps = -1e-9
-    inside = (area != 0) & (w0 >= eps) & (w1 >= eps) & (w2 >= eps)
-    if not np.any(inside):
+    if len(tri) == 0:
         return
-    tri, px, py = tri[inside], px[inside], py[inside]
-    w0, w1, w2 = w0[inside], w1[inside], w2[inside]
-    corners = tris[tri]
-    # perspective-correct depth: interpolate 1/z across the screen
-    inv = w0 / z[corners[:, 0]] + w1 / z[corners[:, 1]] + w2 / z[corners[:, 2]]
-    d = 1.0 / inv
+    row = row0[tri] + np.arange(len(tri)) - np.repeat(np.cumsum(counts) - counts, counts)
+    cy = row + 0.5
+    left = np.full(len(tri), np.inf)
+    right = np.full(len(tri), -np.inf)
+    for i, j in ((0, 1), (1, 2), (2, 0)):
+        ax, ay = p[tri, i, 0], p[tri, i, 1]
+        bx, by = p[tri, j, 0], p[tri, j, 1]
+        crosses = (np.minimum(ay, by) <= cy) & (cy <= np.maximum(ay, by)) & (ay != by)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = ax + (cy - ay) * (bx - ax) / (by - ay)
+        left = np.where(crosses, np.minimum(left, x), left)
+        right = np.where(crosses, np.maximum(right, x), right)
+    col0 = np.clip(np.ceil(left - 0.5), 0, width).astype(np.int64)
+    col1 = np.clip(np.floor(right - 0.5), -1, width - 1).astype(np.int64)
+    spans = np.maximum(col1 - col0 + 1, 0)
+    spans[~np.isfinite(left)] = 0
+    total = int(spans.sum())
+    if total == 0:
+        return
+    piece = np.repeat(np.arange(len(tri)), spans)
+    px = col0[piece] + np.arange(total) - np.repeat(np.cumsum(spans) - spans, spans)
+    py = row[piece]
+    t = tri[piece]
+    w = gx[t] * (px + 0.5) + gy[t] * (py + 0.5) + g0[t]
+    d = w if orthographic else 1.0 / w
     pixel = py * width + px
     np.minimum.at(depth, pixel, d)
     win = d <= depth[pixel]
-    pixel_colour[pixel[win]] = colours[polygon[tri[win]]]
+    owner[pixel[win]] = polygon[t[win]]
 
 
-def _draw_edges(picture, screen, z, image, depth, width, height):
-    """Polygon outlines; with a depth buffer, only where the surface is visible."""
+def _draw_edges(picture, screen, z, image, depth, width, height, drawn=None):
+    """Polygon outlines (those ``drawn``), two pixels wide; with a depth
+    buffer, only where the surface is visible."""
     pts = picture.offsets
     count = len(picture.points)
     if count == 0:
@@ -189,6 +227,8 @@ def _draw_edges(picture, screen, z, image, depth, width, height):
     nxt[pts[1:] - 1] = pts[:-1]
     start, end = np.arange(count), nxt
     keep = (z[start] > 1e-6) & (z[end] > 1e-6)
+    if drawn is not None:
+        keep &= drawn
     start, end = start[keep], end[keep]
     lengths = np.ceil(np.linalg.norm(screen[end] - screen[start], axis=1)).astype(np.int64) + 1
     lengths = np.minimum(lengths, 4 * (width + height))
@@ -197,9 +237,9 @@ def _draw_edges(picture, screen, z, image, depth, width, height):
         / np.maximum(np.repeat(lengths, lengths) - 1, 1)
     s0, s1 = start[edge], end[edge]
     xy = screen[s0] * (1 - t)[:, None] + screen[s1] * t[:, None]
-    inv = (1 - t) / z[s0] + t / z[s1]
-    d = 1.0 / inv
-    px, py = np.floor(xy[:, 0]).astype(np.int64), np.floor(xy[:, 1]).astype(np.int64)
+    px, py = np.floor(xy[:, 0] - 0.5).astype(np.int64), np.floor(xy[:, 1] - 0.5).astype(np.int64)
+    px, py = np.concatenate([px, px + 1, px, px + 1]), np.concatenate([py, py, py + 1, py + 1])
+    d = np.tile(1.0 / ((1 - t) / z[s0] + t / z[s1]), 4)
     ok = (px >= 0) & (px < width) & (py >= 0) & (py < height)
     px, py, d = px[ok], py[ok], d[ok]
     if depth is not None:
