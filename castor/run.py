@@ -316,7 +316,8 @@ def _streamed_lines(files: list[str], reader):
                 yield from handle
 
 
-def evaluated_frames(text: str, name: str = "<scene>", settings=None) -> tuple[list, str]:
+def evaluated_frames(text: str, name: str = "<scene>", settings=None,
+                     defines: tuple[str, ...] = ()) -> tuple[list, str]:
     """The evaluated CSG trees of a scene's frames, and what castor said (the
     diagnostics' text): the scene as data, for tests and for tools."""
     import io
@@ -330,7 +331,7 @@ def evaluated_frames(text: str, name: str = "<scene>", settings=None) -> tuple[l
     trees: list = []
     interpreter = Interpreter(settings or Settings(), reporter, trees.append)
     try:
-        source = preprocess([(name, text)], [], [], [], reporter)
+        source = preprocess([(name, text)], list(defines), [], [], reporter)
         interpreter.run(Reader(reporter, directives_allowed=True).chunks(source.splitlines()),
                         streaming=False)
     except TooManyErrors:

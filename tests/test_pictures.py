@@ -15,11 +15,18 @@ from castor.language.vocabulary import PRIMITIVES
 from castor.options import View
 from castor.pictures import picture
 from castor.pictures.camera import make_camera
-from castor.pictures.frames import scene_frames
+from castor.run import evaluated_frames
 from castor.pictures.spans import SPANS
 from castor.pictures.trace import compile_frame
 
 WHITE = 255
+
+
+def scene_frames(text, name="<scene>", defines=()):
+    """The frames' trees; the scene must have no error."""
+    frames, said = evaluated_frames(text, name, defines=defines)
+    assert "error" not in said, said
+    return frames
 
 
 def draw(text: str, **options) -> np.ndarray:

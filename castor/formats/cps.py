@@ -7,6 +7,8 @@ them back gives the same double; whole numbers lose their '.0'.
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
+from typing import Iterator
 
 import numpy as np
 
@@ -65,3 +67,70 @@ def format_frame(frame: Frame) -> str:
 def export(frame: Frame, path: str | None = None) -> bytes:
     """The frame's records (the header, written once per stream, is ``HEADER``)."""
     return format_frame(frame).encode("utf-8", "surrogateescape")
+
+
+# --- reading the stream back
+
+
+class StreamError(ValueError):
+    """A polygon stream that cannot be read; the message says where and why."""
+
+
+@dataclass
+class StreamFrame:
+    """One frame: polygons as a flat vertex list with offsets, and a colour each."""
+
+    number: int
+    where: str
+    points: np.ndarray  # (N, 3) float64, polygon after polygon
+    offsets: np.ndarray  # (P + 1,)
+    colours: np.ndarray  # (P, 3) in 0..1
+
+    @property
+    def polygon_count(self) -> int:
+        return len(self.offsets) - 1
+
+    def triangles(self) -> tuple[np.ndarray, np.ndarray]:
+        """Fan triangles as point numbers, and the polygon of each."""
+        from castor.mesh.polygons import fan_triangles
+
+        return fan_triangles(self.offsets, np.arange(len(self.points)))
+
+
+def load(lines: Iterator[str], name: str = "<stdin>") -> Iterator[StreamFrame]:
+    """Frames of a castor polygon stream, each as soon as its 'endframe' is read."""
+    header_seen = False
+    current = None
+    for number, line in enumerate(lines, 1):
+        line = line.rstrip("\n")
+        if not line:
+            continue
+        if not header_seen:
+            if not line.startswith("castor-polygons "):
+                raise StreamError(f"{name}:{number}: not a castor polygon stream (first line is "
+                                f"'{line[:40]}'); give a mesh file, or pipe castor's output")
+            header_seen = True
+            continue
+        fields = line.split(" ")
+        kind = fields[0]
+        try:
+            if kind == "frame":
+                current = (int(fields[1]), fields[2] if len(fields) > 2 else "", [], [], [0])
+            elif kind == "poly":
+                _, _, points, colours, offsets = current
+                n = int(fields[5])
+                values = np.array(fields[6:6 + 3 * n], dtype=np.float64)
+                if len(values) != 3 * n:
+                    raise ValueError("vertex count")
+                colours.append([float(x) for x in fields[2:5]])
+                points.append(values.reshape(n, 3))
+                offsets.append(offsets[-1] + n)
+            elif kind == "endframe":
+                frame_number, where, points, colours, offsets = current
+                yield StreamFrame(frame_number, where,
+                              np.concatenate(points) if points else np.zeros((0, 3)),
+                              np.array(offsets, np.int64),
+                              np.array(colours, dtype=np.float64).reshape(-1, 3))
+                current = None
+        except (ValueError, IndexError, TypeError):
+            raise StreamError(f"{name}:{number}: malformed '{kind}' record") from None
