@@ -142,11 +142,9 @@ def _arguments(argv):
 
 def _overrides(parser, sets: list[str]) -> dict[str, float]:
     """Evaluate each --set NAME=EXPR with the grammar's expressions."""
-    from castor.language.parse import Parser
-    from castor.language.reader import Chunk
-    from castor.language.scene import ParamDef, Tables
-    from castor.language.expressions import evaluate
     import math
+
+    from castor.language.parse import assignment_value
 
     values: dict[str, float] = {}
     for item in sets:
@@ -162,18 +160,9 @@ def _overrides(parser, sets: list[str]) -> dict[str, float]:
             parser.error(f"--set {item!r}: one parameter for each --set; write "
                          + " ".join(f"--set '{part.strip()}'" for part in item.split(";")
                                     if part.strip()))
-        tables = Tables(parameters={"PI": math.pi, "TOLERANCE": 0.01, **values})
-        # the ';' on a line of its own: a '//' comment in EXPR cannot swallow it
-        chunk = Chunk(f"{name} = {expr}\n;", (("<command line>", 1), ("<command line>", 1)), 0)
         try:
-            results = list(Parser(tables).parse(chunk))
-            problems = [r for r in results if isinstance(r, CastorError)]
-            if problems:
-                raise problems[0]
-            statement = results[0]
-            if not isinstance(statement, ParamDef):
-                raise CastorError("expected NAME=EXPR")
-            values[name] = evaluate(statement.expr, tables.parameters)
+            values[name] = assignment_value(name, expr, {"PI": math.pi,
+                                                         "TOLERANCE": DEFAULT_TOLERANCE, **values})
         except CastorError as exc:
             parser.error(f"--set {item}: {exc.message}")
         except RecursionError:

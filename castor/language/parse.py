@@ -430,6 +430,26 @@ class Parser:
             first = failed + 1
 
 
+def assignment_value(name: str, expr: str, parameters: dict[str, float]) -> float:
+    """The value of ``NAME = EXPR`` given on the command line (--set), parsed and
+    evaluated as the same statement in a scene would be; raises CastorError."""
+    from castor.language.scene import ParamDef
+
+    tables = Tables(parameters=dict(parameters))
+    # the ';' on a line of its own: a '//' comment in EXPR cannot swallow it
+    chunk = Chunk(f"{name} = {expr}\n;", (("<command line>", 1), ("<command line>", 1)), 0)
+    results = list(Parser(tables).parse(chunk))
+    problems = [r for r in results if isinstance(r, CastorError)]
+    if problems:
+        raise problems[0]
+    if not results or not isinstance(results[0], ParamDef):
+        raise CastorError("expected NAME=EXPR")
+    try:
+        return evaluate(results[0].expr, tables.parameters)
+    except RecursionError:
+        raise LimitError("the expression is nested too deeply") from None
+
+
 def _combined(chunks: list[Chunk]) -> Chunk:
     """Consecutive chunks as one: their texts join back into the original text,
     and each chunk's first line is the previous one's last."""
