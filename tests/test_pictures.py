@@ -244,3 +244,20 @@ def test_castor_view_is_anti_aliased_and_lit_as_castor():
     partial = (red > face + 10) & (red < WHITE - 10)
     assert partial.sum() > 100  # the silhouette's pixels are blended
     assert blue[100, 100] > 0.75 * 0.9 * 255  # a face turned to the viewer: near its colour
+
+
+def test_a_cutter_flush_with_a_face_leaves_no_speckle():
+    """A door cut by a box flush with the wall's foot: the doorway's floor has
+    no face (the meshes have none), so no pixel of the cutter's colour shows
+    there from above, with or without the sun."""
+    scene = ("> $D(@h(3, 0.2, 2.6) !cu(1, 1, 1), "
+             "@t(1, -0.1, 0) @h(1, 0.4, 2.1) !cu(0.2, 0.4, 0.9));")
+    for sun in (None, (0.0, 90.0)):
+        image = draw(scene, sun=sun, size=(400, 300)).astype(int)
+        blue = image[..., 2] > image[..., 0] + 40
+        # the blue jamb is one solid region; a speckled floor is blue pixels
+        # with hardly a blue neighbour
+        neighbours = (np.roll(blue, 1, 0).astype(int) + np.roll(blue, -1, 0)
+                      + np.roll(blue, 1, 1) + np.roll(blue, -1, 1))
+        assert blue.sum() > 100  # the jamb is seen
+        assert (blue & (neighbours <= 1)).sum() <= 5

@@ -504,4 +504,27 @@ def _merge(op: str, parts: list):
     out_t = _take(t, pick)
     out_face = _take(face, pick)
     out_t[np.arange(keep)[None, :] >= count[:, None]] = INF
-    return out_t, out_face
+    if op == "U":
+        return out_t, out_face
+    return _without_slivers(out_t, out_face)
+
+
+# A span shorter than this (relative to its distance) is rounding between faces
+# that coincide on paper, as a cutter flush with a wall's foot: regularized away.
+SLIVER = 1e-9
+
+
+def _without_slivers(t: np.ndarray, face: np.ndarray):
+    """The spans of zero thickness removed, the others packed to the left."""
+    entry, exit_ = t[:, 0::2], t[:, 1::2]
+    with np.errstate(invalid="ignore"):
+        thin = np.isfinite(entry) & (exit_ - entry <= SLIVER * (1.0 + np.abs(entry)))
+    if not thin.any():
+        return t, face
+    order = np.argsort(thin | ~np.isfinite(entry), axis=1, kind="stable")
+    columns = np.stack([2 * order, 2 * order + 1], axis=2).reshape(len(t), -1)
+    kept_t, kept_face = _take(t, columns), _take(face, columns)
+    dropped = np.take_along_axis(thin, order, axis=1)
+    kept_t[np.repeat(dropped, 2, axis=1)] = INF
+    keep = _columns(kept_t)
+    return kept_t[:, :keep], kept_face[:, :keep]
