@@ -125,10 +125,13 @@ def _arguments(argv):
         if not re.fullmatch(r"[A-Za-z_]\w*", name.strip()):
             p.error(f"-U takes a macro NAME (letters, digits and _), not {name!r}")
     from castor.formats import format_for_suffix
-    from castor.formats.output import available, destination_problem, suffix_message
+    from castor.formats.output import (available, destination_problem, is_device,
+                                       suffix_message)
 
     if args.format is None:
         args.format = format_for_suffix(args.output) if args.output else "cps"
+        if args.format is None and is_device(args.output):
+            args.format = "cps"  # -o /dev/null, a named pipe: the stream, as to standard output
         if args.format is None:
             p.error(suffix_message(args.output))
     if not available(args.format):

@@ -103,6 +103,9 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
         from castor.pictures import picture
 
         started = time.perf_counter()
+        if all(obj.root is None for obj in scene.objects):
+            result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
+                                    scene.location))
         if chosen.all_frames:
             # an animation is drawn at the end, with one camera for all its frames
             from castor.pictures.trace import compile_frame

@@ -42,6 +42,8 @@ class Sequencer:
         self.stopped = False
         self.handling = False  # a frame's own messages go out with it, not behind the queue
         self.owner = threading.current_thread()
+        self.submitted = 0
+        self.refused = False
         self.failure: Exception | None = None
         self.summaries: list[dict] = []
         self.pictures: list = []
@@ -67,6 +69,14 @@ class Sequencer:
             raise self.failure
         if self.stopped:
             raise TooManyErrors()
+        self.submitted += 1
+        refusal = self.output.refusal(self.submitted, scene.number, scene.location) \
+            if self.output is not None else None
+        if refusal is not None:
+            if not self.refused:  # said once; the frames after it are not made
+                self.refused = True
+                self.reporter.error(refusal)
+            return
         job = Job(scene, self.spec)
         if self.executor is None:
             from castor.progress import Progress
@@ -206,7 +216,7 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
     for name in args.files:
         if name != "-" and not os.access(name, os.R_OK):
             reason = "no such file" if not os.path.exists(name) else "permission denied"
-            raise UsageError(f"cannot read '{name}': {reason}")
+            raise UsageError(f"error: cannot read '{name}': {reason}")
     chosen = FORMATS[spec.format]
     output = None  # --check writes nothing; an animation is written once, at the end
     if not args.check and not (chosen.kind == "picture" and chosen.all_frames):
@@ -239,6 +249,12 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
         except TooManyErrors:
             pass
         _warn_unused_overrides(settings.overrides, interpreter, reporter)
+        if interpreter.frames_attempted == 0 and not args.check:
+            reporter.warning("the scene has no '>' command, so nothing was written; "
+                             "'> OBJECT;' writes an object's polygons")
+        if args.section is not None and chosen.kind != "drawing":
+            reporter.warning(f"--section makes a drawing (-o NAME.svg or NAME.dxf); it is "
+                             f"ignored for {spec.format}")
     finally:
         if executor is not None:
             executor.shutdown(wait=True)  # workers end before castor does: none outlives it
@@ -296,7 +312,7 @@ def _read_inputs(files: list[str]) -> list[tuple[str, str]]:
             with open(name, encoding="utf-8", errors="replace") as handle:
                 sources.append((name, handle.read()))
         except OSError as exc:
-            raise UsageError(f"cannot read '{name}': {exc.strerror}") from None
+            raise UsageError(f"error: cannot read '{name}': {exc.strerror}") from None
     return sources
 
 

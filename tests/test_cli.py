@@ -23,7 +23,7 @@ def test_version_and_help():
     (["--tolerance", "0"], "--tolerance must be a positive number"),
     (["--set", "x=1"], "--set takes NAME=EXPR with a parameter NAME"),
     (["--set", "X=1/0"], "--set X=1/0: division by zero"),
-    (["no-such-file.cas"], "castor: cannot read 'no-such-file.cas': no such file"),
+    (["no-such-file.cas"], "castor: error: cannot read 'no-such-file.cas': no such file"),
 ])
 def test_usage_errors_exit_2(args, message):
     status, out, err = run(*args, stdin="")
@@ -74,3 +74,22 @@ def test_tolerance_option_wins_over_the_scene():
     status, out, err = run("--no-cpp", stdin=scene)
     coarse = len(parse_stream(out)[0].polygons)
     assert fine > coarse
+
+
+def test_output_to_a_named_pipe_is_written_into_not_renamed_over(tmp_path):
+    """-o /dev/null or a pipe: castor writes into it (as root, renaming a file
+    over /dev/null would replace the device)."""
+    import os
+    import stat
+    import threading
+
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    received = []
+    reader = threading.Thread(target=lambda: received.append(fifo.read_bytes()))
+    reader.start()
+    status, out, err = run("--no-cpp", "-o", str(fifo), stdin="> !cu(1, 0, 0);\n")
+    reader.join(timeout=60)
+    assert status == 0, err
+    assert stat.S_ISFIFO(os.stat(fifo).st_mode)
+    assert received[0].startswith(b"castor-polygons 1\nframe 1 <stdin>:1\n")

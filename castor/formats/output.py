@@ -91,6 +91,17 @@ def destination_problem(path: str, option: str = "-o") -> str | None:
     return None
 
 
+def is_device(path: str) -> bool:
+    """An existing path that is no regular file or directory (/dev/null, a pipe)."""
+    import stat
+
+    try:
+        mode = os.stat(path).st_mode
+    except OSError:
+        return False
+    return not stat.S_ISREG(mode) and not stat.S_ISDIR(mode)
+
+
 def _file_mode() -> int:
     """The mode a new file gets from open(): 0o666 less the umask."""
     mask = os.umask(0o022)
@@ -103,6 +114,14 @@ def write_atomically(path: str, data: bytes) -> None:
 
     Raises ``Unwritable`` with a message in the user's words when the file
     cannot be written (missing directory, no permission, full disk)."""
+    if is_device(path):
+        # /dev/null, a named pipe, a terminal: written into, never renamed over
+        try:
+            with open(path, "wb") as handle:
+                handle.write(data)
+        except OSError as exc:
+            raise Unwritable(f"cannot write '{path}': {_reason(exc)}") from None
+        return
     directory = os.path.dirname(os.path.abspath(path))
     try:
         fd, temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
@@ -189,19 +208,26 @@ class Output:
             else:
                 self.stream_parts.append(data)
             return
-        if self.frames > 1 and not patterned and not FORMATS[self.format].all_frames:
-            where = self.path or "standard output"
-            stem, suffix = os.path.splitext(self.path or f"scene{FORMATS[self.format].suffix}")
-            raise OutputError(
-                f"{self.format} output holds one frame, and this is frame {number} for "
-                f"{where}; give a pattern such as -o {stem}-%03d{suffix} for one file per frame",
-                location)
+        refusal = self.refusal(self.frames, number, location)
+        if refusal is not None:
+            raise refusal
         if self.path is None:
             to_stdout(data)
             return
         for companion, content in companions.items():
             write_atomically(companion, content)
         write_atomically(frame_path(self.path, number) if patterned else self.path, data)
+
+    def refusal(self, count: int, number: int, location: Location) -> OutputError | None:
+        """Why this output cannot take its ``count``-th frame (frame ``number``), or None."""
+        if count <= 1 or FORMATS[self.format].all_frames or (self.path and has_pattern(self.path)):
+            return None
+        where = self.path or "standard output"
+        stem, suffix = os.path.splitext(self.path or f"scene{FORMATS[self.format].suffix}")
+        return OutputError(
+            f"{self.format} output holds one frame, and this is frame {number} for {where}; "
+            f"give a pattern such as -o {stem}-%03d{suffix} for one file per frame (the frames "
+            f"after it are not made)", location)
 
     def finish(self, had_errors: bool) -> bool:
         """Put a single cps file in place; False when it was left out."""
