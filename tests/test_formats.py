@@ -115,3 +115,26 @@ def test_openscad_imports(tmp_path, name):
     original = trimesh.load_mesh(str(source))
     assert back.is_watertight
     assert back.volume == pytest.approx(original.volume, rel=1e-5)
+
+
+@pytest.mark.parametrize("name", ["ply", "glb", "obj", "off"])
+def test_castor_view_draws_a_mesh_file_in_its_colours(tmp_path, name):
+    import subprocess
+    import sys
+
+    import numpy as np
+    from PIL import Image
+
+    path = tmp_path / f"car.{name}"
+    run("-o", str(path), str(Path(__file__).resolve().parent.parent / "examples" / "car.cas"),
+        check_status=0)
+    picture = tmp_path / "car.png"
+    subprocess.run([sys.executable, "-m", "castor.view.cli", "-o", str(picture), str(path)],
+                   check=True, capture_output=True, timeout=120)
+    image = np.asarray(Image.open(picture)).astype(int)
+    red = (image[..., 0] > image[..., 1] + 80) & (image[..., 0] > image[..., 2] + 80)
+    assert red.sum() > 1000  # the car's red body, not grey
+    sys_error = subprocess.run([sys.executable, "-m", "castor.view.cli", "-o",
+                                str(tmp_path / "x.png"), str(tmp_path / "x.3mf")],
+                               capture_output=True, text=True, timeout=60)
+    assert sys_error.returncode == 2 and "not 3mf files" in sys_error.stderr

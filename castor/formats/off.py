@@ -65,3 +65,33 @@ def export(frame: Frame, path: str | None = None) -> bytes:
     lines.extend(f"{sizes[p]} {' '.join(words[bounds[p]:bounds[p + 1]])} {rgb[p]}"
                  for p in range(len(sizes)))
     return ("\n".join(lines) + "\n").encode("ascii")
+
+
+def load(text: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """An OFF file read back: (points polygon after polygon, offsets, colours 0..1),
+    each face's colour as written (0..255 integers or 0..1 numbers), grey if none.
+    Raises ValueError on a malformed file."""
+    words = []
+    for line in text.splitlines():
+        line = line.split("#", 1)[0].split()
+        if line:
+            words.append(line)
+    if not words or words[0][0] not in ("OFF", "COFF"):
+        raise ValueError("not an OFF file (it does not begin with OFF)")
+    counts = words[0][1:] or words[1]
+    start = 1 if words[0][1:] else 2
+    n_vertices, n_faces = int(counts[0]), int(counts[1])
+    vertices = np.array([w[:3] for w in words[start:start + n_vertices]], dtype=np.float64)
+    points, offsets, colours = [], [0], []
+    for face in words[start + n_vertices:start + n_vertices + n_faces]:
+        size = int(face[0])
+        points.append(vertices[np.array(face[1:1 + size], dtype=np.int64)])
+        offsets.append(offsets[-1] + size)
+        rgb = np.array(face[1 + size:4 + size], dtype=np.float64)
+        if len(rgb) < 3:
+            rgb = np.full(3, 0.8)
+        elif any("." not in w for w in face[1 + size:4 + size]) and rgb.max() > 1:
+            rgb = rgb / 255.0
+        colours.append(rgb)
+    return (np.concatenate(points) if points else np.zeros((0, 3)),
+            np.array(offsets, np.int64), np.array(colours, dtype=np.float64).reshape(-1, 3))

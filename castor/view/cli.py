@@ -9,6 +9,7 @@ import sys
 USAGE_ERROR = 2
 _PATTERN = re.compile(r"%0?\d*d")
 _MESH_SUFFIXES = (".off", ".obj", ".stl", ".ply", ".glb", ".gltf")
+_NOT_READ = (".3mf", ".png", ".gif", ".svg", ".dxf")  # castor writes them; no reader here
 
 
 class _Parser(argparse.ArgumentParser):
@@ -93,6 +94,11 @@ def _pictures(args):
     if args.file != "-" and args.file.lower().endswith(_MESH_SUFFIXES):
         yield read_mesh_file(args.file)
         return
+    if args.file != "-" and args.file.lower().endswith(_NOT_READ):
+        sys.stderr.write(f"castor-view: error: '{args.file}': castor-view reads a polygon "
+                         f"stream or a mesh file ({' '.join(_MESH_SUFFIXES)}), not "
+                         f"{args.file.rsplit('.', 1)[-1]} files\n")
+        sys.exit(USAGE_ERROR)
     if args.file == "-":
         yield from read_stream(iter(sys.stdin.readline, ""), "<stdin>")
         return

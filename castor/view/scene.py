@@ -17,6 +17,15 @@ read_stream = load
 
 def read_mesh_file(path: str) -> Picture:
     """A mesh file (.off .obj .stl .ply .glb) as one frame."""
+    if path.lower().endswith(".off"):  # read beside its writer: trimesh drops OFF colours
+        from castor.formats.off import load
+
+        try:
+            with open(path, encoding="utf-8", errors="replace") as handle:
+                points, offsets, colours = load(handle.read())
+        except (OSError, ValueError, IndexError) as exc:
+            raise ViewError(f"{path}: cannot read this OFF file ({exc})") from None
+        return Picture(1, path, points, offsets, colours)
     try:
         import trimesh
     except ImportError:  # pragma: no cover - trimesh is a dependency
@@ -66,6 +75,9 @@ def _face_colours(mesh) -> np.ndarray:
                 return np.tile(rgb, (len(mesh.faces), 1))
         if visual is not None and visual.kind == "face":
             return np.asarray(visual.face_colors, dtype=np.float64)[:, :3] / 255.0
+        if visual is not None and visual.kind == "vertex":  # a PLY's vertex colours
+            corners = np.asarray(visual.vertex_colors, dtype=np.float64)[mesh.faces, :3]
+            return corners.mean(axis=1) / 255.0
     except Exception:  # colours are a nicety: fall back to grey
         return default
     return default
