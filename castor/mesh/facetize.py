@@ -54,7 +54,7 @@ class Facetizer:
         started = time.perf_counter()
         self.counter.booleans = 0
         self.primitive_count = 0
-        estimate = estimate_triangles(scene)
+        estimate, booleans = tree_figures(scene)
         if estimate > ESTIMATE_SLACK * self.max_polygons:
             raise LimitError(f"the frame would need about {estimate:,} polygons, more than "
                              f"--max-polygons {self.max_polygons:,}; is an object used twice "
@@ -75,8 +75,9 @@ class Facetizer:
                     merged = polygons.as_triangles(tri.triangles, tri.origin_ids)
                 pieces.append((tri.vertices, merged))
             frame.objects.append(compact(pieces, solid.origins, obj.name))
-        self.stats = FrameStats(self.primitive_count, self.counter.booleans,
-                                time.perf_counter() - started)
+        # the frame's booleans, each shared subtree counted once: the same
+        # figure whichever process makes the frame, whatever it had cached
+        self.stats = FrameStats(self.primitive_count, booleans, time.perf_counter() - started)
         return frame
 
     def _check_count(self, triangles: int, where) -> None:
@@ -153,18 +154,22 @@ class Facetizer:
         return solid
 
 
-def estimate_triangles(scene: tree.Frame) -> int:
-    """About how many triangles the frame gives, without building anything:
-    operands add up, primitives count their facets, a shared subtree counts
-    once per use. It catches a graph whose expansion explodes before any memory
+def tree_figures(scene: tree.Frame) -> tuple[int, int]:
+    """About how many triangles the frame gives, and its boolean operations,
+    without building anything: operands add up, primitives count their facets,
+    a shared subtree counts its triangles once per use and its booleans once.
+    The estimate catches a graph whose expansion explodes before any memory
     goes to it."""
     known: dict[str, int] = {}
+    booleans = 0
 
     def count(node) -> int:
+        nonlocal booleans
         kind = type(node)
         if kind is tree.Primitive:
             return primitives.estimate_triangles(node.kind, node.shape, node.tolerance)
         if kind is tree.Boolean:
+            booleans += 1
             total = sum(count(o) for o in node.operands)
             return max(total, 1) if node.op == "D" else total
         shared = node.shared
@@ -172,4 +177,5 @@ def estimate_triangles(scene: tree.Frame) -> int:
             known[shared.key] = count(shared.child) if shared.child is not None else 0
         return known[shared.key]
 
-    return sum(count(o.root) for o in scene.objects if o.root is not None)
+    triangles = sum(count(o.root) for o in scene.objects if o.root is not None)
+    return triangles, booleans
