@@ -249,7 +249,7 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
         except TooManyErrors:
             pass
         _warn_unused_overrides(settings.overrides, interpreter, reporter)
-        if interpreter.frames_attempted == 0 and not args.check:
+        if interpreter.frames_attempted == 0 and not args.check and not reporter.errors:
             reporter.warning("the scene has no '>' command, so nothing was written; "
                              "'> OBJECT;' writes an object's polygons")
         if args.section is not None and chosen.kind != "drawing":

@@ -243,10 +243,32 @@ def _expansion_finder(p, originals: SourceLines):
         original = originals.line(file, number)
         if original is None or expanded is None or original == expanded:
             return None
-        mapped = _expansions_of(expanded, original, p)
+        mapped = _expansions_of(expanded, original, p) or _difference(expanded, original, p)
         return LineExpansions(original, tuple(mapped)) if mapped else None
 
     return find
+
+
+def _difference(line: str, original: str, p) -> list:
+    """Where the macro uses of a line could not be lined up one by one: the part
+    that differs between the line as written and as expanded, as one expansion
+    of the first macro named in it (the same start and end on both lines)."""
+    from castor.diagnostics import Expansion
+
+    prefix = 0
+    while prefix < min(len(line), len(original)) and line[prefix] == original[prefix]:
+        prefix += 1
+    suffix = 0
+    while (suffix < min(len(line), len(original)) - prefix
+           and line[-1 - suffix] == original[-1 - suffix]):
+        suffix += 1
+    names = [m.group() for m in _ORIGINAL_TOKEN.finditer(original, prefix)
+             if m.start() < len(original) - suffix and m.group() in p.macros]
+    if not names:
+        return []
+    defined = p.definitions.get(names[0])
+    return [Expansion(prefix, len(line) - suffix, prefix, len(original) - suffix, names[0],
+                      f"{defined.file}:{defined.line}" if defined else "the command line")]
 
 
 def _expansions_of(line: str, original: str, p) -> list | None:
