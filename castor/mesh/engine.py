@@ -15,6 +15,7 @@ from typing import NamedTuple
 import manifold3d
 import numpy as np
 
+from castor.mesh import polygons
 from castor.mesh.frame import Origin
 from castor.mesh.primitives import Mesh
 
@@ -100,11 +101,17 @@ def instance(shape: manifold3d.Manifold, origin: Origin) -> Solid:
     return Solid((manifold,), {manifold.original_id(): origin})
 
 
-def reinstanced(solid: Solid) -> Solid:
-    """A copy of ``solid`` whose origins have new IDs.
+def reinstanced(solid: Solid) -> Solid | None:
+    """A copy of ``solid`` whose origins have new IDs, or None if the engine
+    cannot give one that is exactly the same solid.
 
     A cached subgraph used twice in one scene must not share IDs with its other
-    uses, or the two uses could not be told apart in the output.
+    uses, or the two uses could not be told apart in the output. The engine
+    gives new IDs only to a mesh it builds afresh, and building cleans up the
+    topology (it swaps and collapses edges it judges degenerate), which can
+    change a solid that holds a fold the boolean left. So the copy is compared
+    with the solid, part by part (triangles, vertices, volume, area and box,
+    all exactly); if any differs, the caller evaluates the object again.
     """
     if solid.empty:
         return solid
@@ -117,8 +124,8 @@ def reinstanced(solid: Solid) -> Solid:
         return np.array(values, dtype=dtype)  # an owned, writable copy: the engine wants one
 
     parts = []
-    for gl, ids in zip(meshes, run_ids):
-        copy = manifold3d.Mesh64(
+    for original, gl, ids in zip(solid.parts, meshes, run_ids):
+        copy = manifold3d.Manifold(manifold3d.Mesh64(
             vert_properties=np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64),
             tri_verts=array(gl.tri_verts, np.uint64),
             run_index=array(gl.run_index, np.uint64),
@@ -126,10 +133,26 @@ def reinstanced(solid: Solid) -> Solid:
             face_id=array(gl.face_id, np.uint64),
             merge_from_vert=array(gl.merge_from_vert, np.uint64),
             merge_to_vert=array(gl.merge_to_vert, np.uint64),
-        )
-        parts.append(manifold3d.Manifold(copy))
+        ))
+        del gl
+        if not _same(original, copy):
+            return None
+        parts.append(copy)
+    del meshes
     mapping = dict(zip(unique.tolist(), range(first, first + len(unique))))
     return _solid(parts, {mapping[i]: o for i, o in solid.origins.items() if i in mapping})
+
+
+def _same(a: manifold3d.Manifold, b: manifold3d.Manifold) -> bool:
+    """Whether two manifolds are the same solid: the same counts and box, and
+    volume and area equal but for the order of summation (an edge swapped
+    across a bend changes them; one swapped within a flat face does not, and
+    leaves the same surface)."""
+    def close(x, y):
+        return abs(x - y) <= 1e-12 * max(abs(x), abs(y), 1e-300)
+    return (a.num_tri() == b.num_tri() and a.num_vert() == b.num_vert()
+            and a.bounding_box() == b.bounding_box()
+            and close(a.volume(), b.volume()) and close(a.surface_area(), b.surface_area()))
 
 
 def _merged_origins(solids) -> dict[int, Origin]:
@@ -281,16 +304,24 @@ def batches(parts, triangles: int = 20_000, count: int = 256):
 
 
 def triangles(parts) -> Triangles:
-    """The triangles of the parts, one vertex list for all."""
+    """The triangles of the parts, one vertex list for all, none of them flat."""
     pieces = [_part_triangles(part) for part in parts]
     if len(pieces) == 1:
-        return pieces[0]
+        return _without_flat(pieces[0])
     base = np.cumsum([0] + [len(p.vertices) for p in pieces[:-1]])
     # faces of different parts must not share a number: the part in the top bits
-    return Triangles(np.concatenate([p.vertices for p in pieces]),
-                     np.concatenate([p.triangles + b for p, b in zip(pieces, base)]),
-                     np.concatenate([p.origin_ids for p in pieces]),
-                     np.concatenate([p.face_ids + (k << 48) for k, p in enumerate(pieces)]))
+    return _without_flat(Triangles(
+        np.concatenate([p.vertices for p in pieces]),
+        np.concatenate([p.triangles + b for p, b in zip(pieces, base)]),
+        np.concatenate([p.origin_ids for p in pieces]),
+        np.concatenate([p.face_ids + (k << 48) for k, p in enumerate(pieces)])))
+
+
+def _without_flat(tri: Triangles) -> Triangles:
+    """The engine's rounding leaves a few triangles of zero area: gone (polygons)."""
+    triangles, origin_ids, face_ids = polygons.without_flat_triangles(
+        tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
+    return Triangles(tri.vertices, triangles, origin_ids, face_ids)
 
 
 def _part_triangles(part: manifold3d.Manifold) -> Triangles:

@@ -191,8 +191,10 @@ class Facetizer:
         key = (node, tuple(env.get(p, _MISSING) for p in sorted(node.params)), local)
         cached = self.cache.get(key)
         if cached is not None:
-            self.primitive_count += cached[1]
-            return engine.reinstanced(cached[0]).prefixed(f"({node.name})")
+            copy = engine.reinstanced(cached[0])
+            if copy is not None:  # else the engine could not copy it exactly: evaluate again
+                self.primitive_count += cached[1]
+                return copy.prefixed(f"({node.name})")
         before = self.primitive_count
         solid = self.solid(node.child, env, scale, tolerance, here)
         count = solid.triangle_count()

@@ -353,3 +353,109 @@ class Merger:
             self.known.clear()
         self.known[key] = polygons
         return polygons
+
+
+# A triangle whose height is below this fraction of its longest side is flat:
+# the engine's rounding, not a face of the solid.
+_FLAT = 1e-10
+
+
+def flat_triangles(vertices: np.ndarray, triangles: np.ndarray, chunk: int = 1 << 20) -> np.ndarray:
+    """Which triangles have (about) zero area: a repeated vertex, or three in a line."""
+    flat = np.zeros(len(triangles), bool)
+    for start in range(0, len(triangles), chunk):  # in slices: a few temporaries of 3 x chunk
+        t = triangles[start:start + chunk]
+        p = vertices[t]
+        e0, e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 1], p[:, 0] - p[:, 2]
+        twice_area = _norm(_cross(e0, -e2))
+        longest = np.sqrt(np.maximum(np.maximum(np.einsum("ij,ij->i", e0, e0),
+                                                np.einsum("ij,ij->i", e1, e1)),
+                                     np.einsum("ij,ij->i", e2, e2)))
+        flat[start:start + chunk] = (twice_area <= _FLAT * longest * longest) | (
+            (t[:, 0] == t[:, 1]) | (t[:, 1] == t[:, 2]) | (t[:, 2] == t[:, 0]))
+    return flat
+
+
+def without_flat_triangles(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
+                           face_ids: np.ndarray):
+    """The same closed surface with no flat triangle (LANGUAGE.md §7).
+
+    The engine leaves a few: two vertices at one place (welded into one, and
+    the triangles between them dropped), or three in a line (the triangle's
+    long edge is flipped with the neighbour across it, which splits the
+    neighbour at the middle vertex: the flat triangle's area, zero, goes to a
+    triangle in the neighbour's plane). Every edge stays paired. Returns the
+    arrays unchanged if there is nothing to do.
+    """
+    flat = flat_triangles(vertices, triangles)
+    if not flat.any():
+        return triangles, origin_ids, face_ids
+    triangles = triangles.copy()
+    # weld vertices at one place that a flat triangle joins
+    remap = {}
+    for a, b, c in triangles[flat].tolist():
+        for u, w in ((a, b), (b, c), (c, a)):
+            if u != w and vertices[u].tolist() == vertices[w].tolist():
+                ru, rw = remap.get(u, u), remap.get(w, w)
+                if ru != rw:
+                    remap[max(ru, rw)] = min(ru, rw)
+    if remap:
+        table = np.arange(len(vertices))
+        for u in sorted(remap):  # chains resolve to their smallest number
+            table[u] = table[remap[u]]
+        triangles = table[triangles]
+        keep = ~((triangles[:, 0] == triangles[:, 1]) | (triangles[:, 1] == triangles[:, 2])
+                 | (triangles[:, 2] == triangles[:, 0]))
+        triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
+        flat = flat_triangles(vertices, triangles)
+    if flat.any():
+        triangles, origin_ids, face_ids = _flip_flat(vertices, triangles, origin_ids,
+                                                     face_ids, flat)
+    return triangles, origin_ids, face_ids
+
+
+def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
+    """Flip the long edge of each triangle with three vertices in a line."""
+    corners = np.unique(triangles[flat])
+    near = np.flatnonzero(np.isin(triangles, corners).any(axis=1))
+    tris = {int(i): tuple(triangles[i].tolist()) for i in near}
+    owner = {}
+    for i, (a, b, c) in tris.items():
+        owner[(a, b)] = owner[(b, c)] = owner[(c, a)] = i
+    origin = origin_ids.copy()
+    face = face_ids.copy()
+    todo = [int(i) for i in np.flatnonzero(flat)]
+    point = vertices
+    for _ in range(4 * len(todo) + 16):
+        if not todo:
+            break
+        i = todo.pop()
+        t = tris.get(i)
+        if t is None:
+            continue
+        p = point[list(t)]
+        lengths = [float(np.dot(p[(k + 1) % 3] - p[k], p[(k + 1) % 3] - p[k])) for k in range(3)]
+        k = int(np.argmax(lengths))
+        u, w, m = t[k], t[(k + 1) % 3], t[(k + 2) % 3]  # long edge u->w, m between them
+        n = owner.get((w, u))
+        if n is None or n == i:
+            continue
+        a, b, c = tris[n]
+        x = ({a, b, c} - {u, w}).pop() if len({a, b, c} - {u, w}) == 1 else None
+        if x is None or x == m:
+            continue
+        for tri in (t, tris[n]):
+            for e in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+                owner.pop(e, None)
+        first, second = (m, u, x), (w, m, x)
+        tris[i], tris[n] = first, second
+        origin[i], face[i] = origin[n], face[n]
+        for j, tri in ((i, first), (n, second)):
+            for e in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+                owner[e] = j
+            if flat_triangles(point, np.array([tri]))[0]:
+                todo.append(j)
+    rows = np.array(list(tris.keys()), np.int64)
+    triangles = triangles.copy()
+    triangles[rows] = np.array([tris[r] for r in rows.tolist()], np.int64)
+    return triangles, origin, face
