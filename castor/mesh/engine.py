@@ -74,6 +74,34 @@ def _solid(manifolds, origins: dict[int, Origin]) -> Solid:
     return Solid(tuple(m for m in manifolds if not m.is_empty()), origins)
 
 
+# A shell thinner than this (its volume over half its area), relative to the
+# size of its coordinates, is a sheet: what solids that only touch leave.
+SHEET = 1e-9
+
+
+def regular(manifold: manifold3d.Manifold) -> manifold3d.Manifold:
+    """A boolean's result without its shells of (about) zero volume.
+
+    manifold3d keeps a result 2-manifold, not regular: solids that only touch
+    intersect into a closed sheet of zero volume, a difference of coincident
+    solids leaves one. Regularization (LANGUAGE.md §4.3, §7) removes them."""
+    if manifold.is_empty():
+        return manifold
+    shells = manifold.decompose()
+    kept = [shell for shell in shells if not _sheet(shell)]
+    if len(kept) == len(shells):
+        return manifold
+    if not kept:
+        return manifold3d.Manifold()
+    return kept[0] if len(kept) == 1 else manifold3d.Manifold.compose(kept)
+
+
+def _sheet(shell: manifold3d.Manifold) -> bool:
+    box = shell.bounding_box()
+    size = max(1.0, max(abs(c) for c in box))
+    return shell.volume() <= SHEET * size * shell.surface_area() / 2
+
+
 EMPTY = Solid((), {})
 
 
@@ -214,7 +242,7 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
             result_boxes.append(boxes[group[0]])
         else:
             counter.booleans += 1
-            result.append(manifold3d.Manifold.batch_boolean([parts[i] for i in group], _Add))
+            result.append(regular(manifold3d.Manifold.batch_boolean([parts[i] for i in group], _Add)))
             result_boxes.append(np.array([boxes[group, 0].min(axis=0), boxes[group, 1].max(axis=0)]))
     return _solid(_fewer_parts(result, np.array(result_boxes)), _merged_origins(solids))
 
@@ -250,7 +278,7 @@ def intersection(solids: list[Solid], counter: Counter) -> Solid:
     if np.any(lo >= hi):
         return EMPTY
     counter.booleans += 1
-    manifold = manifold3d.Manifold.batch_boolean([s.whole() for s in solids], _Intersect)
+    manifold = regular(manifold3d.Manifold.batch_boolean([s.whole() for s in solids], _Intersect))
     return _solid([manifold], _merged_origins(solids))
 
 
@@ -267,7 +295,7 @@ def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
     cutter = b.whole()
     parts = list(a.parts)
     for i in touched:
-        parts[i] = parts[i] - cutter
+        parts[i] = regular(parts[i] - cutter)
     return _solid(parts, _merged_origins((a, b)))
 
 
