@@ -380,38 +380,101 @@ def without_flat_triangles(vertices: np.ndarray, triangles: np.ndarray, origin_i
                            face_ids: np.ndarray):
     """The same closed surface with no flat triangle (LANGUAGE.md §7).
 
-    The engine leaves a few: two vertices at one place (welded into one, and
-    the triangles between them dropped), or three in a line (the triangle's
+    The engine leaves a few: two vertices at one place, or closer than the
+    rounding of the triangle's size (welded into one, and the triangles
+    between them dropped), or three in a line (the triangle's
     long edge is flipped with the neighbour across it, which splits the
     neighbour at the middle vertex: the flat triangle's area, zero, goes to a
     triangle in the neighbour's plane). Every edge stays paired. Returns the
     arrays unchanged if there is nothing to do.
     """
     flat = flat_triangles(vertices, triangles)
+    twins = _coincident(triangles)
+    if twins is not None:  # a sheet of coincident triangles turned towards each other
+        keep = ~twins
+        triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
+        flat = flat[keep]
     if not flat.any():
         return triangles, origin_ids, face_ids
     triangles = triangles.copy()
-    # weld vertices at one place that a flat triangle joins
+    # weld the vertices of flat triangles that are at one place, or closer
+    # than rounding: needles, and fins of two flat triangles back to back
+    corners = np.unique(triangles[flat])
+    points = vertices[corners]
+    scale = max(1.0, float(np.abs(points).max()))
     remap = {}
-    for a, b, c in triangles[flat].tolist():
-        for u, w in ((a, b), (b, c), (c, a)):
-            if u != w and vertices[u].tolist() == vertices[w].tolist():
-                ru, rw = remap.get(u, u), remap.get(w, w)
-                if ru != rw:
-                    remap[max(ru, rw)] = min(ru, rw)
+    for i in range(len(corners)):
+        close = np.flatnonzero(np.abs(points[i + 1:] - points[i]).max(axis=1) <= 1e-12 * scale)
+        for j in close.tolist():
+            u, w = int(corners[i]), int(corners[i + 1 + j])
+            ru, rw = remap.get(u, u), remap.get(w, w)
+            if ru != rw:
+                remap[max(ru, rw)] = min(ru, rw)
     if remap:
         table = np.arange(len(vertices))
         for u in sorted(remap):  # chains resolve to their smallest number
             table[u] = table[remap[u]]
         triangles = table[triangles]
-        keep = ~((triangles[:, 0] == triangles[:, 1]) | (triangles[:, 1] == triangles[:, 2])
-                 | (triangles[:, 2] == triangles[:, 0]))
-        triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
-        flat = flat_triangles(vertices, triangles)
+    keep = ~((triangles[:, 0] == triangles[:, 1]) | (triangles[:, 1] == triangles[:, 2])
+             | (triangles[:, 2] == triangles[:, 0]))
+    keep &= ~_twins(triangles, corners)
+    triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
+    flat = flat_triangles(vertices, triangles)
     if flat.any():
         triangles, origin_ids, face_ids = _flip_flat(vertices, triangles, origin_ids,
                                                      face_ids, flat)
     return triangles, origin_ids, face_ids
+
+
+def _coincident(triangles: np.ndarray) -> np.ndarray | None:
+    """Triangles whose three vertices another triangle has, turned the other
+    way (None if there is none: the usual case, found in a few array passes)."""
+    if len(triangles) < 2:
+        return None
+    t = triangles
+    first = np.argmin(t, axis=1)[:, None]
+    rows = np.arange(len(t))[:, None]
+    forward = t[rows, (first + np.arange(3)) % 3]  # each turn from its smallest vertex
+    backward = forward[:, [0, 2, 1]]
+    n = int(t.max()) + 1
+    if n ** 3 < 2 ** 62:
+        key_f = (forward[:, 0] * n + forward[:, 1]) * n + forward[:, 2]
+        key_b = (backward[:, 0] * n + backward[:, 1]) * n + backward[:, 2]
+    else:
+        return None
+    hit = np.isin(key_f, key_b)
+    if not hit.any():
+        return None
+    # pair them one to one, so every edge keeps its partner
+    found = np.zeros(len(t), bool)
+    waiting: dict[int, list[int]] = {}
+    for i in np.flatnonzero(hit).tolist():
+        partners = waiting.get(int(key_b[i]))
+        if partners:
+            found[partners.pop()] = True
+            found[i] = True
+        else:
+            waiting.setdefault(int(key_f[i]), []).append(i)
+    return found if found.any() else None
+
+
+def _twins(triangles: np.ndarray, corners: np.ndarray) -> np.ndarray:
+    """Triangles near ``corners`` paired with another of the same three
+    vertices turned the other way: a sheet of zero thickness, both go."""
+    near = np.flatnonzero(np.isin(triangles, corners).any(axis=1))
+    found = np.zeros(len(triangles), bool)
+    seen: dict[tuple, list[int]] = {}
+    for i in near.tolist():
+        a, b, c = triangles[i].tolist()
+        k = min((a, b, c), (b, c, a), (c, a, b))  # this turn, from its smallest vertex
+        reverse = min((a, c, b), (c, b, a), (b, a, c))
+        partners = seen.get(reverse)
+        if partners:
+            found[partners.pop()] = True
+            found[i] = True
+        else:
+            seen.setdefault(k, []).append(i)
+    return found
 
 
 def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
