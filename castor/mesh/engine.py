@@ -23,6 +23,68 @@ _Add = manifold3d.OpType.Add
 _Intersect = manifold3d.OpType.Intersect
 
 
+class Template:
+    """A primitive's shape in the engine, built once, with its own triangles
+    kept as arrays: a copy placed somewhere is written from them directly."""
+
+    __slots__ = ("manifold", "vertices", "triangles", "face_ids", "turned")
+
+    def __init__(self, manifold: manifold3d.Manifold):
+        self.manifold = manifold
+        gl = manifold.to_mesh64()
+        self.vertices = np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64)
+        self.triangles = np.asarray(gl.tri_verts, dtype=np.int64)
+        self.face_ids = np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF
+        self.turned = self.triangles[:, ::-1].copy()  # for mirrored copies
+
+    def num_tri(self) -> int:
+        return len(self.triangles)
+
+
+class Placed:
+    """One use of a primitive: its template and where it stands, not yet in
+    the engine. A copy costs a few hundred bytes, not the engine's mesh; it
+    goes to the engine (as_original, transform) only when a boolean needs it,
+    so that a union of 200,000 cubes that do not meet, or a forest, holds one
+    mesh per kind of primitive. ``id`` names its origin, as the engine's IDs do
+    (taken from the engine's own counter)."""
+
+    __slots__ = ("template", "matrix", "id", "_box")
+
+    def __init__(self, template: Template, matrix: np.ndarray, id: int):
+        self.template = template
+        self.matrix = matrix  # (3, 4)
+        self.id = id
+        self._box = None
+
+    def num_tri(self) -> int:
+        return len(self.template.triangles)
+
+    def is_empty(self) -> bool:
+        return False
+
+    def vertices(self) -> np.ndarray:
+        m = self.matrix
+        return self.template.vertices @ m[:, :3].T + m[:, 3]
+
+    def bounding_box(self) -> tuple:
+        if self._box is None:
+            v = self.vertices()
+            self._box = (*v.min(axis=0).tolist(), *v.max(axis=0).tolist())
+        return self._box
+
+    def moved(self, matrix: np.ndarray) -> "Placed":
+        m = matrix[:3, :3] @ self.matrix
+        m[:, 3] += matrix[:3, 3]
+        return Placed(self.template, m, self.id)
+
+    def in_engine(self) -> tuple[manifold3d.Manifold, int]:
+        """The engine's own copy, and its new ID (to which the caller maps
+        ``id``'s origin)."""
+        original = self.template.manifold.as_original()
+        return original.transform(np.ascontiguousarray(self.matrix)), original.original_id()
+
+
 @dataclass(frozen=True, slots=True)
 class Solid:
     """A solid as parts whose bounding boxes do not meet, and its origins.
@@ -34,7 +96,7 @@ class Solid:
     only when a boolean needs it.
     """
 
-    parts: tuple[manifold3d.Manifold, ...]  # never empty manifolds
+    parts: tuple  # never empty: manifolds, and primitives not yet in the engine (Placed)
     origins: dict[int, Origin]
 
     @property
@@ -51,14 +113,30 @@ class Solid:
 
     def box(self) -> np.ndarray:
         """(min xyz, max xyz) as a (2, 3) array."""
+        if len(self.parts) == 1:
+            return np.array(self.parts[0].bounding_box(), dtype=np.float64).reshape(2, 3)
         boxes = self.part_boxes()
         return np.array([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])
 
     def whole(self) -> manifold3d.Manifold:
-        """All parts as one manifold, for a boolean that needs them together."""
+        """All parts as one manifold, for a boolean that needs them together
+        (of a solid whose parts are all in the engine: see ``in_engine``)."""
         if len(self.parts) == 1:
             return self.parts[0]
         return manifold3d.Manifold.compose(list(self.parts))
+
+    def in_engine(self, which=None) -> "Solid":
+        """The same solid with its parts (or those numbered in ``which``) in the
+        engine, their origins under the engine's IDs."""
+        if not any(type(p) is Placed for p in self.parts):
+            return self
+        parts = list(self.parts)
+        origins = dict(self.origins)
+        for i in range(len(parts)) if which is None else which:
+            part = parts[i]
+            if type(part) is Placed:
+                parts[i] = _in_engine(part, origins)
+        return Solid(tuple(parts), origins)
 
     def prefixed(self, prefix: str) -> "Solid":
         """The same solid with ``prefix`` put in front of every path."""
@@ -67,7 +145,8 @@ class Solid:
 
     def transformed(self, matrix: np.ndarray) -> "Solid":
         m = np.ascontiguousarray(matrix[:3, :])
-        return Solid(tuple(part.transform(m) for part in self.parts), self.origins)
+        return Solid(tuple(part.moved(matrix) if type(part) is Placed else part.transform(m)
+                           for part in self.parts), self.origins)
 
 
 def _solid(manifolds, origins: dict[int, Origin]) -> Solid:
@@ -109,7 +188,7 @@ class EngineError(Exception):
     """manifold3d refused a mesh (not an oriented 2-manifold)."""
 
 
-def template(mesh: Mesh) -> manifold3d.Manifold:
+def template(mesh: Mesh) -> Template:
     """A primitive's mesh in the engine, built once and instanced many times."""
     gl = manifold3d.Mesh64(
         vert_properties=mesh.vertices,
@@ -119,14 +198,17 @@ def template(mesh: Mesh) -> manifold3d.Manifold:
     manifold = manifold3d.Manifold(gl)
     if manifold.status() != manifold3d.Error.NoError:
         raise EngineError(str(manifold.status()))
-    return manifold
+    return Template(manifold)
 
 
-def instance(shape: manifold3d.Manifold, origin: Origin) -> Solid:
-    """One use of a primitive: the engine gives it a new ID that every output
-    triangle coming from it will carry (as_original is cheap: no rebuilding)."""
-    manifold = shape.as_original()
-    return Solid((manifold,), {manifold.original_id(): origin})
+_IDENTITY = np.eye(4)[:3]
+
+
+def instance(shape: Template, origin: Origin) -> Solid:
+    """One use of a primitive, with an ID of its own that every output triangle
+    coming from it will carry; it enters the engine only if a boolean needs it."""
+    placed = Placed(shape, _IDENTITY.copy(), manifold3d.Manifold.reserve_ids(1))
+    return Solid((placed,), {placed.id: origin})
 
 
 def reinstanced(solid: Solid) -> Solid | None:
@@ -143,6 +225,18 @@ def reinstanced(solid: Solid) -> Solid | None:
     """
     if solid.empty:
         return solid
+    if any(type(p) is Placed for p in solid.parts):
+        placed = [p for p in solid.parts if type(p) is Placed]
+        first = manifold3d.Manifold.reserve_ids(len(placed))
+        renamed = {p.id: first + k for k, p in enumerate(placed)}
+        rest = reinstanced(Solid(tuple(p for p in solid.parts if type(p) is not Placed),
+                                 {i: o for i, o in solid.origins.items() if i not in renamed}))
+        if rest is None:
+            return None
+        parts = [Placed(p.template, p.matrix, renamed[p.id]) for p in placed]
+        origins = dict(rest.origins)
+        origins.update({renamed[i]: solid.origins[i] for i in renamed})
+        return Solid(tuple(parts) + rest.parts, origins)
     meshes = [part.to_mesh64() for part in solid.parts]
     run_ids = [np.asarray(gl.run_original_id, dtype=np.int64) for gl in meshes]
     unique = np.unique(np.concatenate(run_ids))
@@ -191,8 +285,47 @@ def _merged_origins(solids) -> dict[int, Origin]:
 
 
 def _overlap_groups(boxes: np.ndarray) -> list[list[int]]:
-    """Groups of operands whose boxes meet (touching counts), by union-find."""
+    """Groups of operands whose boxes meet (touching counts).
+
+    Boxes go into the cells of a grid as large as a typical box; only boxes
+    sharing a cell can meet, so a union of 200,000 cubes that do not meet is a
+    few array operations, not a sweep in Python. A box over very many cells is
+    compared with all the others at once."""
     n = len(boxes)
+    lo, hi = boxes[:, 0, :], boxes[:, 1, :]
+    extent = hi - lo
+    cell = np.maximum(np.median(extent, axis=0), 1e-300)
+    cell = np.where(cell > 0, cell, np.maximum(extent.max(axis=0), 1.0))
+    first = np.floor(lo / cell).astype(np.int64)
+    last = np.floor(hi / cell).astype(np.int64)
+    span = last - first + 1
+    cells = np.prod(span, axis=1)
+    big = cells > 64
+    pairs = []
+    small = np.flatnonzero(~big)
+    if len(small):
+        # one entry per (box, cell it covers)
+        counts = cells[small]
+        owner = np.repeat(small, counts)
+        k = np.arange(len(owner)) - np.repeat(np.cumsum(counts) - counts, counts)
+        sx, sy = span[owner, 0], span[owner, 1]
+        cx = first[owner, 0] + k % sx
+        cy = first[owner, 1] + (k // sx) % sy
+        cz = first[owner, 2] + k // (sx * sy)
+        key = np.stack([cx, cy, cz], axis=1)
+        _, cell_of = np.unique(key, axis=0, return_inverse=True)
+        cell_of = cell_of.ravel()
+        order = np.argsort(cell_of, kind="stable")
+        cell_of, owner = cell_of[order], owner[order]
+        starts = np.flatnonzero(np.r_[True, cell_of[1:] != cell_of[:-1]])
+        sizes = np.diff(np.r_[starts, len(cell_of)])
+        for size in np.unique(sizes[sizes > 1]).tolist():
+            members = owner[starts[sizes == size][:, None] + np.arange(size)]
+            a, b = np.triu_indices(size, 1)
+            pairs.append(np.stack([members[:, a].ravel(), members[:, b].ravel()], axis=1))
+    for i in np.flatnonzero(big).tolist():
+        others = np.arange(n)
+        pairs.append(np.stack([np.full(n, i), others], axis=1)[others != i])
     parent = list(range(n))
 
     def find(i):
@@ -201,18 +334,12 @@ def _overlap_groups(boxes: np.ndarray) -> list[list[int]]:
             i = parent[i]
         return i
 
-    lo, hi = boxes[:, 0, :], boxes[:, 1, :]
-    order = np.argsort(lo[:, 0], kind="stable")
-    # sweep along x: only operands whose x-intervals meet can overlap
-    active: list[int] = []
-    for i in order.tolist():
-        active = [j for j in active if hi[j, 0] >= lo[i, 0]]
-        if active:
-            a = np.array(active)
-            meet = np.all((lo[a] <= hi[i]) & (lo[i] <= hi[a]), axis=1)
-            for j in a[meet].tolist():
-                parent[find(j)] = find(i)
-        active.append(i)
+    if pairs:
+        pairs = np.unique(np.sort(np.concatenate(pairs), axis=1), axis=0)
+        a, b = pairs[:, 0], pairs[:, 1]
+        meet = np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
+        for i, j in pairs[meet].tolist():
+            parent[find(j)] = find(i)
     groups: dict[int, list[int]] = {}
     for i in range(n):
         groups.setdefault(find(i), []).append(i)
@@ -235,6 +362,7 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
         return solids[0]
     parts = [part for s in solids for part in s.parts]
     boxes = np.concatenate([s.part_boxes() for s in solids])
+    origins = _merged_origins(solids)
     result, result_boxes = [], []
     for group in _overlap_groups(boxes):
         if len(group) == 1:
@@ -242,9 +370,20 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
             result_boxes.append(boxes[group[0]])
         else:
             counter.booleans += 1
-            result.append(regular(manifold3d.Manifold.batch_boolean([parts[i] for i in group], _Add)))
+            operands = [_in_engine(parts[i], origins) for i in group]
+            result.append(regular(manifold3d.Manifold.batch_boolean(operands, _Add)))
             result_boxes.append(np.array([boxes[group, 0].min(axis=0), boxes[group, 1].max(axis=0)]))
-    return _solid(_fewer_parts(result, np.array(result_boxes)), _merged_origins(solids))
+    return _solid(_fewer_parts(result, np.array(result_boxes)), origins)
+
+
+def _in_engine(part, origins: dict[int, Origin]) -> manifold3d.Manifold:
+    """A part as the engine's manifold; a Placed part's origin moves to its new ID."""
+    if type(part) is not Placed:
+        return part
+    manifold, new_id = part.in_engine()
+    if part.id in origins:
+        origins[new_id] = origins[part.id]
+    return manifold
 
 
 # More parts than this are composed into fewer: each part costs the engine a
@@ -253,13 +392,18 @@ MAX_PARTS = 1024
 
 
 def _fewer_parts(parts: list, boxes: np.ndarray) -> list:
-    """Many parts composed into at most MAX_PARTS, neighbours together (by x)."""
-    if len(parts) <= MAX_PARTS:
+    """Many parts of the engine composed into at most MAX_PARTS, neighbours
+    together (by x). Placed primitives stay as they are: they cost little."""
+    engine_parts = [i for i, p in enumerate(parts) if type(p) is not Placed]
+    if len(engine_parts) <= MAX_PARTS:
         return parts
+    placed = [p for p in parts if type(p) is Placed]
+    parts = [parts[i] for i in engine_parts]
+    boxes = boxes[engine_parts]
     order = np.argsort(boxes[:, 0, 0], kind="stable")
     size = -(-len(parts) // MAX_PARTS)
-    return [manifold3d.Manifold.compose([parts[i] for i in order[k:k + size]])
-            for k in range(0, len(parts), size)]
+    return placed + [manifold3d.Manifold.compose([parts[i] for i in order[k:k + size]])
+                     for k in range(0, len(parts), size)]
 
 
 def _apart(a: np.ndarray, b: np.ndarray) -> bool:
@@ -278,6 +422,7 @@ def intersection(solids: list[Solid], counter: Counter) -> Solid:
     if np.any(lo >= hi):
         return EMPTY
     counter.booleans += 1
+    solids = [s.in_engine() for s in solids]
     manifold = regular(manifold3d.Manifold.batch_boolean([s.whole() for s in solids], _Intersect))
     return _solid([manifold], _merged_origins(solids))
 
@@ -292,6 +437,8 @@ def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
     if not touched:
         return a
     counter.booleans += 1
+    a = a.in_engine(touched)
+    b = b.in_engine()
     cutter = b.whole()
     parts = list(a.parts)
     for i in touched:
@@ -333,7 +480,21 @@ def batches(parts, triangles: int = 20_000, count: int = 256):
 
 def triangles(parts) -> Triangles:
     """The triangles of the parts, one vertex list for all, none of them flat."""
-    pieces = [_part_triangles(part) for part in parts]
+    pieces = []
+    run: list[Placed] = []
+    for part in parts:  # copies of one primitive side by side are placed at once
+        if type(part) is Placed:
+            if run and run[-1].template is not part.template:
+                pieces.append(_placed_triangles(run))
+                run = []
+            run.append(part)
+            continue
+        if run:
+            pieces.append(_placed_triangles(run))
+            run = []
+        pieces.append(_part_triangles(part))
+    if run:
+        pieces.append(_placed_triangles(run))
     if len(pieces) == 1:
         return _without_flat(pieces[0])
     base = np.cumsum([0] + [len(p.vertices) for p in pieces[:-1]])
@@ -343,6 +504,23 @@ def triangles(parts) -> Triangles:
         np.concatenate([p.triangles + b for p, b in zip(pieces, base)]),
         np.concatenate([p.origin_ids for p in pieces]),
         np.concatenate([p.face_ids + (k << 48) for k, p in enumerate(pieces)])))
+
+
+def _placed_triangles(run: list[Placed]) -> Triangles:
+    """The triangles of copies of one primitive, placed with one array operation;
+    a mirrored copy's triangles turn the other way."""
+    template = run[0].template
+    matrices = np.stack([p.matrix for p in run])  # (k, 3, 4)
+    v = template.vertices
+    vertices = (np.einsum("kij,vj->kvi", matrices[:, :, :3], v)
+                + matrices[:, None, :, 3]).reshape(-1, 3)
+    mirrored = np.linalg.det(matrices[:, :, :3]) < 0
+    count = len(template.triangles)
+    tris = np.where(mirrored[:, None, None], template.turned[None], template.triangles[None])
+    tris = (tris + (np.arange(len(run)) * len(v))[:, None, None]).reshape(-1, 3)
+    origin_ids = np.repeat(np.array([p.id for p in run], dtype=np.int64), count)
+    faces = ((np.arange(len(run), dtype=np.int64) << 32)[:, None] | template.face_ids[None]).ravel()
+    return Triangles(vertices, tris, origin_ids, faces)
 
 
 def _without_flat(tri: Triangles) -> Triangles:
