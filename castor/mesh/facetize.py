@@ -17,7 +17,7 @@ from typing import MutableMapping
 
 import numpy as np
 
-from castor.mesh import engine, polygons, primitives
+from castor.mesh import engine, memory, polygons, primitives
 from castor.diagnostics import EvaluationError, GeometryError, LimitError, Location
 from castor.language.expressions import evaluate, format_number
 from castor.mesh.frame import Frame, FrameObject
@@ -104,6 +104,11 @@ class Facetizer:
             raise LimitError(f"the frame would need about {estimate:,} polygons, more than "
                              f"--max-polygons {self.max_polygons:,}; is an object used twice "
                              "at every level of a deep chain?", location)
+        short = memory.too_big(estimate)
+        if short is not None:
+            raise LimitError(f"the frame would need about {short[0] / 2 ** 30:.1f} GB of memory, "
+                             f"more than the {short[1] / 2 ** 30:.1f} GB available; simplify the "
+                             "scene or raise TOLERANCE", location)
         total = 0
         merger = polygons.Merger()
         for node in objects:
@@ -111,13 +116,14 @@ class Facetizer:
             pieces = []
             for batch in engine.batches(solid.parts):
                 tri = engine.triangles(batch)
-                total += len(tri.triangles)
-                self._check_count(total, location)
                 if self.merge_polygons:
                     merged = merger.merge(tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
                 else:
                     merged = polygons.as_triangles(tri.triangles, tri.origin_ids)
+                total += len(merged.offsets) - 1  # the limit counts polygons (CLI.md)
+                self._check_count(total, location)
                 pieces.append((tri.vertices, merged))
+                del tri
             frame.objects.append(_frame_object(pieces, solid.origins))
         self.stats = FrameStats(self.primitive_count, self.counter.booleans)
         self.stats.seconds = time.perf_counter() - started
