@@ -266,7 +266,9 @@ class Facetizer:
             result = engine.intersection(operands, self.counter)
         else:
             result = engine.difference(operands[0], operands[1], self.counter)
-        self._check_count(result.triangle_count(), node.location)
+        result_triangles = result.triangle_count()
+        if result_triangles > 2 * self.max_polygons:  # polygons are counted when merged
+            self._check_count(result_triangles, node.location)
         return result
 
     def _primitive(self, node: Primitive, env, scale, tolerance, path) -> engine.Solid:
