@@ -107,3 +107,43 @@ def test_two_cubes_touching_along_an_edge_unite_into_two_shells():
     assert frame.volume() == pytest.approx(2.0)
     assert len(frame.polygons) == 12
     assert regularity_defects(frame) == []
+
+
+def _fresh_frames(path, monkeypatch):
+    """castor in this process with its cache emptied before every frame: each
+    frame evaluated afresh, as if it were the scene's only one."""
+    import io
+    import sys
+
+    from castor import cli
+    from castor.mesh import facetize
+
+    made = facetize.Facetizer.frame
+
+    def fresh(self, *args, **kwargs):
+        self.cache.clear()
+        self.cache_triangles = 0
+        return made(self, *args, **kwargs)
+
+    monkeypatch.setattr(facetize.Facetizer, "frame", fresh)
+    out = io.StringIO()
+    monkeypatch.setattr(sys, "stdout", out)
+    monkeypatch.setattr(sys, "stderr", io.StringIO())
+    assert cli.main([str(path)]) == 0
+    return parse_stream(out.getvalue())
+
+
+EXAMPLES = sorted((__import__("pathlib").Path(__file__).resolve().parent.parent / "examples")
+                  .glob("*.cas"))
+
+
+@pytest.mark.parametrize("example", EXAMPLES, ids=lambda p: p.name)
+def test_every_example_frame_has_the_volume_of_a_fresh_evaluation(example, monkeypatch, tmp_path):
+    status, out, err = run(str(example), cwd=tmp_path)
+    assert status == 0, err
+    reused = parse_stream(out)
+    fresh = _fresh_frames(example, monkeypatch)
+    assert len(reused) == len(fresh)
+    for a, b in zip(reused, fresh):
+        assert a.volume() == pytest.approx(b.volume(), rel=1e-12, abs=1e-12)
+        assert a.area() == pytest.approx(b.area(), rel=1e-12, abs=1e-12)
