@@ -213,7 +213,7 @@ def shell_defects(frame: Frame, thickness: float = 1e-9) -> list[str]:
     for members in shells(frame):
         volume = sum(_fan_volume(frame.polygons[i].points) for i in members)
         area = sum(np.linalg.norm(_newell(frame.polygons[i].points)) / 2 for i in members)
-        if volume <= thickness * size * area / 2:
+        if abs(volume) <= thickness * size * area / 2:  # a cavity's volume is negative
             defects.append(f"a shell of {len(members)} polygons has volume {volume:.3g} "
                            f"for area {area:.3g}")
     return defects

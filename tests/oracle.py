@@ -221,11 +221,22 @@ def primitive_solid(prim: Prim) -> manifold3d.Manifold:
     return solid
 
 
+def _distinct(solids: list) -> list:
+    kept, seen = [], set()
+    for solid in solids:
+        gl = solid.to_mesh64()
+        key = (np.asarray(gl.vert_properties)[:, :3].tobytes(), np.asarray(gl.tri_verts).tobytes())
+        if key not in seen:
+            seen.add(key)
+            kept.append(solid)
+    return kept
+
+
 def without_thin_shells(solid: manifold3d.Manifold) -> manifold3d.Manifold:
     """The solid without its shells of (about) zero volume: what touches only
     leaves a sheet in manifold3d, which regularization removes."""
     parts = solid.decompose()
-    kept = [p for p in parts if p.volume() > 1e-9 * p.surface_area()]
+    kept = [p for p in parts if abs(p.volume()) > 1e-9 * p.surface_area()]  # cavities stay
     if len(kept) == len(parts):
         return solid
     return manifold3d.Manifold.compose(kept) if kept else manifold3d.Manifold()
@@ -310,6 +321,10 @@ class Oracle:
             solids = [self.evaluate(c, env, matrix, f"{path}{dot}{node.op}{k}", uses)
                       for k, c in enumerate(node.children, 1)]
             op = node.op
+        # A with A is A: the engine is not asked to unite or intersect a solid
+        # with an exact copy of itself (its coincident faces are the hardest case)
+        if op in "UI":
+            solids = _distinct(solids)
         result = solids[0]
         for other in solids[1:]:  # one by one, left to right: not castor's order
             if op == "U":

@@ -66,10 +66,12 @@ def test_difference_of_coincident_cubes_leaves_no_extra_surface():
     "piece = $U[J = -1, 1, 0.5](@t(J * 1.25, 0, 0) !pr(1, 1, 1, 6)); > piece;",
     # found by the oracle: two vertices 2e-16 apart, a fin of two flat triangles
     "> $U(!py(0, 1, 1, 4), @r(1, 1, 1, 90) @r(1, 1, 1, -14.7) !py(1, 0, 1, 3));",
+    # found by the oracle: a face whose outline touches itself, merged into one
+    # polygon that winds twice (the prism touches the cube along a line)
+    "> $D(!cu(0.5, 0, 1), @t(0.875, 0, -0.284) !pr(1, 0, 0, 8));",
 ])
 def test_no_degenerate_polygon(scene):
     (frame,) = frames_of(scene + "\n")
-    check_closed(frame)
     assert [d for p in frame.polygons for d in polygon_defects(p)] == []
     assert regularity_defects(frame) == []
 
@@ -147,3 +149,15 @@ def test_every_example_frame_has_the_volume_of_a_fresh_evaluation(example, monke
     for a, b in zip(reused, fresh):
         assert a.volume() == pytest.approx(b.volume(), rel=1e-12, abs=1e-12)
         assert a.area() == pytest.approx(b.area(), rel=1e-12, abs=1e-12)
+
+
+def test_a_cavity_is_kept():
+    """A cube cut from inside a larger one leaves a shell of negative volume:
+    part of the solid, not a sheet to remove."""
+    (frame,) = frames_of("> $D(@h(3) !cu(1,1,1), @t(1,1,1) !cu(1,0,0));\n")
+    assert frame.volume() == pytest.approx(26.0, abs=1e-12)
+    assert len(frame.polygons) == 12
+    assert regularity_defects(frame) == []
+    (frame,) = frames_of("> $D(@rx(180) @h(-2) @rz(93.77) !cu(0,1,0.5), "
+                         "!ex(0,0.5,1, 0,0, 1,0, 0.5,0.8));\n")
+    assert frame.volume() == pytest.approx(7.6, abs=1e-12)

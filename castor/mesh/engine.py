@@ -178,7 +178,8 @@ def regular(manifold: manifold3d.Manifold) -> manifold3d.Manifold:
 def _sheet(shell: manifold3d.Manifold) -> bool:
     box = shell.bounding_box()
     size = max(1.0, max(abs(c) for c in box))
-    return shell.volume() <= SHEET * size * shell.surface_area() / 2
+    # a cavity is a shell of negative volume: as much a part of the solid
+    return abs(shell.volume()) <= SHEET * size * shell.surface_area() / 2
 
 
 EMPTY = Solid((), {})

@@ -175,8 +175,12 @@ def _join(p: list[int], q: list[int], a: int, b: int) -> list[int] | None:
 
 
 def _convex(point: dict, poly: list[int], normal) -> bool:
-    """No corner of ``poly`` turns against ``normal`` (beyond rounding)."""
+    """No corner of ``poly`` turns against ``normal`` (beyond rounding), and
+    its corners turn once around, not twice (an outline that touches itself,
+    two vertices at one place, can turn left at every corner and wind twice)."""
     n = len(poly)
+    length = math.sqrt(normal[0] ** 2 + normal[1] ** 2 + normal[2] ** 2)
+    total = 0.0
     for k in range(n):
         p0, p1, p2 = point[poly[k - 1]], point[poly[k]], point[poly[(k + 1) % n]]
         e1 = _sub(p1, p0)
@@ -189,7 +193,9 @@ def _convex(point: dict, poly: list[int], normal) -> bool:
                     * math.sqrt(normal[0] ** 2 + normal[1] ** 2 + normal[2] ** 2))
             if turn < -_CONVEX_SLACK * size:
                 return False
-    return True
+        if n > 4:
+            total += math.atan2(turn / length, e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2])
+    return n <= 4 or total < 3 * math.pi
 
 
 def _split_off_plane(vertices: np.ndarray, triangles: np.ndarray, group: np.ndarray) -> np.ndarray:
