@@ -288,14 +288,14 @@ def _merged_origins(solids) -> dict[int, Origin]:
 def _overlap_groups(boxes: np.ndarray) -> list[list[int]]:
     """Groups of operands whose boxes meet (touching counts).
 
-    Boxes go into the cells of a grid as large as a typical box; only boxes
+    Boxes go into the cells of a grid twice as large as a typical box; only boxes
     sharing a cell can meet, so a union of 200,000 cubes that do not meet is a
     few array operations, not a sweep in Python. A box over very many cells is
     compared with all the others at once."""
     n = len(boxes)
     lo, hi = boxes[:, 0, :], boxes[:, 1, :]
     extent = hi - lo
-    cell = np.maximum(np.median(extent, axis=0), 1e-300)
+    cell = np.maximum(2 * np.median(extent, axis=0), 1e-300)
     cell = np.where(cell > 0, cell, np.maximum(extent.max(axis=0), 1.0))
     first = np.floor(lo / cell).astype(np.int64)
     last = np.floor(hi / cell).astype(np.int64)
@@ -313,13 +313,12 @@ def _overlap_groups(boxes: np.ndarray) -> list[list[int]]:
         cx = first[owner, 0] + k % sx
         cy = first[owner, 1] + (k // sx) % sy
         cz = first[owner, 2] + k // (sx * sy)
-        key = np.stack([cx, cy, cz], axis=1)
-        _, cell_of = np.unique(key, axis=0, return_inverse=True)
-        cell_of = cell_of.ravel()
-        order = np.argsort(cell_of, kind="stable")
-        cell_of, owner = cell_of[order], owner[order]
-        starts = np.flatnonzero(np.r_[True, cell_of[1:] != cell_of[:-1]])
-        sizes = np.diff(np.r_[starts, len(cell_of)])
+        cx, cy, cz = cx - cx.min(), cy - cy.min(), cz - cz.min()
+        key = (cx * (int(cy.max()) + 1) + cy) * (int(cz.max()) + 1) + cz
+        order = np.argsort(key, kind="stable")
+        key, owner = key[order], owner[order]
+        starts = np.flatnonzero(np.r_[True, key[1:] != key[:-1]])
+        sizes = np.diff(np.r_[starts, len(key)])
         for size in np.unique(sizes[sizes > 1]).tolist():
             members = owner[starts[sizes == size][:, None] + np.arange(size)]
             a, b = np.triu_indices(size, 1)
@@ -327,24 +326,27 @@ def _overlap_groups(boxes: np.ndarray) -> list[list[int]]:
     for i in np.flatnonzero(big).tolist():
         others = np.arange(n)
         pairs.append(np.stack([np.full(n, i), others], axis=1)[others != i])
-    parent = list(range(n))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
+    label = np.arange(n)
     if pairs:
         pairs = np.unique(np.sort(np.concatenate(pairs), axis=1), axis=0)
         a, b = pairs[:, 0], pairs[:, 1]
         meet = np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
-        for i, j in pairs[meet].tolist():
-            parent[find(j)] = find(i)
-    groups: dict[int, list[int]] = {}
-    for i in range(n):
-        groups.setdefault(find(i), []).append(i)
-    return list(groups.values())
+        a, b = a[meet], b[meet]
+        while len(a):  # hook each root to the smallest label it meets, then jump
+            la, lb = label[a], label[b]
+            low = np.minimum(la, lb)
+            np.minimum.at(label, la, low)
+            np.minimum.at(label, lb, low)
+            while True:
+                jumped = label[label]
+                if np.array_equal(jumped, label):
+                    break
+                label = jumped
+            if np.array_equal(label[a], label[b]):
+                break
+    order = np.argsort(label, kind="stable")
+    bounds = np.flatnonzero(np.diff(label[order])) + 1
+    return [group.tolist() for group in np.split(order, bounds)]
 
 
 class Counter:
@@ -362,7 +364,7 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
     if len(solids) == 1:
         return solids[0]
     parts = [part for s in solids for part in s.parts]
-    boxes = np.concatenate([s.part_boxes() for s in solids])
+    boxes = np.array([part.bounding_box() for part in parts], dtype=np.float64).reshape(-1, 2, 3)
     origins = _merged_origins(solids)
     result, result_boxes = [], []
     for group in _overlap_groups(boxes):
