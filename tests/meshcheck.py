@@ -259,15 +259,17 @@ def sheet_defects(frame: Frame, offset: float = 1e-6) -> list[str]:
         if length == 0:
             continue
         normal /= length
-        # a point well inside the (convex) polygon: the mean of a fan triangle's
-        # centroid and the polygon's vertex mean
-        centre = (p.points.mean(axis=0) + p.points[:3].mean(axis=0)) / 2
-        points += [centre - offset * size * normal, centre + offset * size * normal]
+        # four points well inside the (convex) polygon: its centre, and three
+        # towards its first corners (one point could lie on another solid's edge)
+        centre = p.points.mean(axis=0)
+        for q in [centre] + [0.6 * p.points[k] + 0.4 * centre for k in range(3)]:
+            points += [q - offset * size * normal, q + offset * size * normal]
         names.append(p.path)
-    w = winding_numbers(triangles, np.array(points)).reshape(-1, 2)
-    bad = np.flatnonzero((np.abs(w[:, 0] - 1) > 0.01) | (np.abs(w[:, 1]) > 0.01))
-    return [f"polygon {i} of {names[i]} has winding {w[i, 0]:.3f} behind and "
-            f"{w[i, 1]:.3f} in front" for i in bad.tolist()]
+    w = winding_numbers(triangles, np.array(points)).reshape(-1, 4, 2)
+    wrong = (np.abs(w[:, :, 0] - 1) > 0.01) | (np.abs(w[:, :, 1]) > 0.01)
+    bad = np.flatnonzero(wrong.sum(axis=1) >= 2)
+    return [f"polygon {i} of {names[i]} has winding {w[i, 0, 0]:.3f} behind and "
+            f"{w[i, 0, 1]:.3f} in front" for i in bad.tolist()]
 
 
 def regularity_defects(frame: Frame, sheets: bool = True) -> list[str]:

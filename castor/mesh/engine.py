@@ -527,10 +527,13 @@ def _placed_triangles(run: list[Placed]) -> Triangles:
 
 
 def _without_flat(tri: Triangles) -> Triangles:
-    """The engine's rounding leaves a few triangles of zero area: gone (polygons)."""
-    triangles, origin_ids, face_ids = polygons.without_flat_triangles(
+    """The engine leaves sheets where faces only touch, and its rounding a few
+    triangles of zero area: both gone (polygons)."""
+    vertices, triangles, origin_ids, face_ids = polygons.without_sheets(
         tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
-    return Triangles(tri.vertices, triangles, origin_ids, face_ids)
+    triangles, origin_ids, face_ids = polygons.without_flat_triangles(
+        vertices, triangles, origin_ids, face_ids)
+    return Triangles(vertices, triangles, origin_ids, face_ids)
 
 
 def _part_triangles(part: manifold3d.Manifold) -> Triangles:
