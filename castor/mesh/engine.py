@@ -529,10 +529,14 @@ def _placed_triangles(run: list[Placed]) -> Triangles:
 def _without_flat(tri: Triangles) -> Triangles:
     """The engine leaves sheets where faces only touch, and its rounding a few
     triangles of zero area: both gone (polygons)."""
-    vertices, triangles, origin_ids, face_ids = polygons.without_sheets(
-        tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
+    vertices = tri.vertices
     triangles, origin_ids, face_ids = polygons.without_flat_triangles(
+        vertices, tri.triangles, tri.origin_ids, tri.face_ids)
+    vertices, cut, origin_cut, face_cut = polygons.without_sheets(
         vertices, triangles, origin_ids, face_ids)
+    if cut is not triangles:  # cutting can leave slivers of its own
+        triangles, origin_ids, face_ids = polygons.without_flat_triangles(
+            vertices, cut, origin_cut, face_cut)
     return Triangles(vertices, triangles, origin_ids, face_ids)
 
 

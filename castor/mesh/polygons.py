@@ -786,11 +786,13 @@ class _Resolver:
             points = self.on_edge.get(_edge(u, v))
             if not points:
                 # an edge of a piece may lie along an original edge without
-                # being one: look along every edge that holds points
+                # being one: look along every edge that holds points, its
+                # ends included
                 points = set()
                 for (i, j), extra in self.on_edge.items():
-                    if {u, v} <= ({i, j} | extra):
-                        points |= extra
+                    line = {i, j} | extra
+                    if u in line and v in line:
+                        points |= line
             if points:
                 pu, pv = self.point(u), self.point(v)
                 d = pv - pu
