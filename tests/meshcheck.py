@@ -244,7 +244,7 @@ def winding_numbers(triangles: np.ndarray, points: np.ndarray) -> np.ndarray:
     return out
 
 
-def sheet_defects(frame: Frame, offset: float = 1e-6) -> list[str]:
+def sheet_defects(frame: Frame, offset: float = 1e-8) -> list[str]:
     """Polygons that do not part inside from outside: just behind each polygon
     (at a point inside it) the winding number must be 1, just in front 0. A
     sheet of two coincident faces, or a face folded back on itself, fails."""

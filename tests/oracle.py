@@ -512,7 +512,7 @@ def has_sheets(solid: manifold3d.Manifold) -> bool:
     length = np.linalg.norm(normal, axis=1)
     keep = length > 1e-12 * max(1.0, float(np.abs(v).max())) ** 2
     normal = normal[keep] / length[keep, None]
-    offset = 1e-6 * max(1.0, float(np.abs(v).max()))
+    offset = 1e-8 * max(1.0, float(np.abs(v).max()))
     # the centre and a point near each corner: a triangle half on a sheet shows
     weights = np.array([[1 / 3, 1 / 3, 1 / 3], [0.8, 0.1, 0.1], [0.1, 0.8, 0.1], [0.1, 0.1, 0.8]])
     centre = np.einsum("sk,tkj->stj", weights, p[keep]).reshape(-1, 3)

@@ -8,17 +8,12 @@ import pytest
 import oracle
 from meshcheck import parse_stream
 
-# Sheets that manifold3d leaves where faces only touch, and that castor does
-# not yet remove (see test_known_sheets): judged there, not here.
-KNOWN = {"winding"}
-
-
 @pytest.mark.parametrize("seed", [11, 12, 13, 14, 15])
 def test_random_scenes_agree_with_the_oracle(seed):
     scenes = oracle.scenes(50, seed)
     failures = oracle.check_scenes(scenes)
     found = [(number, p, oracle.scene_text(scene)) for scene, number, problems in failures
-             for p in problems if oracle.kind_of(p) not in KNOWN]
+             for p in problems]
     assert found == [], found[0]
 
 
