@@ -532,11 +532,15 @@ def _without_flat(tri: Triangles) -> Triangles:
     vertices = tri.vertices
     triangles, origin_ids, face_ids = polygons.without_flat_triangles(
         vertices, tri.triangles, tri.origin_ids, tri.face_ids)
-    vertices, cut, origin_cut, face_cut = polygons.without_sheets(
+    cut_vertices, cut, origin_cut, face_cut = polygons.without_sheets(
         vertices, triangles, origin_ids, face_ids)
     if cut is not triangles:  # cutting can leave slivers of its own
-        triangles, origin_ids, face_ids = polygons.without_flat_triangles(
-            vertices, cut, origin_cut, face_cut)
+        cut, origin_cut, face_cut = polygons.without_flat_triangles(
+            cut_vertices, cut, origin_cut, face_cut)
+        # kept only if every edge is still paired and nothing is flat: a
+        # sheet left in place is better than a surface that is not closed
+        if polygons.paired(cut) and not polygons.flat_triangles(cut_vertices, cut).any():
+            return Triangles(cut_vertices, cut, origin_cut, face_cut)
     return Triangles(vertices, triangles, origin_ids, face_ids)
 
 

@@ -818,6 +818,18 @@ class _Resolver:
         return [[outline[k], outline[(k + 1) % len(outline)], c] for k in range(len(outline))]
 
 
+def paired(triangles: np.ndarray) -> bool:
+    """Whether every edge is used as often one way as the other (closed, oriented)."""
+    if len(triangles) == 0:
+        return True
+    a = triangles.ravel()
+    b = np.roll(triangles, -1, axis=1).ravel()
+    n = int(triangles.max()) + 1
+    forward, fc = np.unique(a * n + b, return_counts=True)
+    backward, bc = np.unique(b * n + a, return_counts=True)
+    return len(forward) == len(backward) and bool(np.all(forward == backward) and np.all(fc == bc))
+
+
 def _welded_seams(vertices: np.ndarray, triangles: np.ndarray, eps: float) -> np.ndarray:
     """Two shells that met through a sheet now meet edge to edge, where each
     kept its own vertices (a rounding apart): the vertices of edges left
