@@ -537,9 +537,28 @@ def _placed_triangles(run: list[Placed]) -> Triangles:
     return Triangles(vertices, tris, origin_ids, faces)
 
 
+# Parts already found clean, by their triangles and faces: a copy of one
+# object moved by an affine map has no sheet or flat triangle if the first had none.
+_CLEAN: dict[int, bool] = {}
+
+
 def _without_flat(tri: Triangles) -> Triangles:
     """The engine leaves sheets where faces only touch, and its rounding a few
     triangles of zero area: both gone (polygons)."""
+    key = None
+    if len(tri.triangles) <= 200_000:
+        key = hash((tri.triangles.tobytes(), tri.face_ids.tobytes()))
+        if key in _CLEAN:
+            return tri
+    cleaned = _cleaned(tri)
+    if key is not None and cleaned is tri:
+        if len(_CLEAN) > 10_000:
+            _CLEAN.clear()
+        _CLEAN[key] = True
+    return cleaned
+
+
+def _cleaned(tri: Triangles) -> Triangles:
     vertices = tri.vertices
     triangles, origin_ids, face_ids = polygons.without_flat_triangles(
         vertices, tri.triangles, tri.origin_ids, tri.face_ids)
@@ -552,6 +571,8 @@ def _without_flat(tri: Triangles) -> Triangles:
         # sheet left in place is better than a surface that is not closed
         if polygons.paired(cut) and not polygons.flat_triangles(cut_vertices, cut).any():
             return Triangles(cut_vertices, cut, origin_cut, face_cut)
+    if triangles is tri.triangles:
+        return tri  # nothing to do: the same object, so that it is known clean
     return Triangles(vertices, triangles, origin_ids, face_ids)
 
 
