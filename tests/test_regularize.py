@@ -173,3 +173,17 @@ s4o1 = $U($U(@h(-2, 0.5, -2) s4o0, @r(1, 1, -1, 90) !py(0.25, 1, 1, 6), s4o0), @
     (frame,) = frames_of(scene)
     assert frame.volume() == pytest.approx(74.1554298, abs=1e-6)
     assert regularity_defects(frame) == []
+
+
+def test_an_object_united_with_itself_is_itself():
+    """Found by the oracle: the union of two copies of one object in one place
+    lost volume in the engine; A with A is A."""
+    scene = """s4o0 = !ex(0.25, 1, 1, 0,0, 0,2, 1,2, 1,1, 2,1, 2,0);
+s4o1 = $U($U(@h(-2, 0.5, -2) s4o0, @r(1, 1, -1, 90) !py(0.25, 1, 1, 6), @h(2) s4o0), @h(1.5, 2, -1) s4o0);
+> $U[R = 0, 1](s4o1);
+> s4o1;
+> $U(s4o1, s4o1, s4o1);
+"""
+    frames = frames_of(scene)
+    assert [f.volume() for f in frames] == pytest.approx([frames[1].volume()] * 3, abs=1e-9)
+    assert frames[1].volume() == pytest.approx(39.7491591, abs=1e-6)

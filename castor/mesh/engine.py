@@ -373,10 +373,37 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
             result_boxes.append(boxes[group[0]])
         else:
             counter.booleans += 1
-            operands = [_in_engine(parts[i], origins) for i in group]
+            operands = _distinct([_in_engine(parts[i], origins) for i in group])
             result.append(regular(_united(operands)))
             result_boxes.append(np.array([boxes[group, 0].min(axis=0), boxes[group, 1].max(axis=0)]))
     return _solid(_fewer_parts(result, np.array(result_boxes)), origins)
+
+
+def _distinct(manifolds: list) -> list:
+    """The manifolds without exact copies: A with A is A, and the engine,
+    asked to unite a solid with a copy of itself (every face coincident), was
+    seen to lose volume. Copies are found by their counts, box, volume and
+    area, then confirmed vertex for vertex."""
+    kept, seen = [], {}
+    for m in manifolds:
+        key = (m.num_tri(), m.num_vert(), m.bounding_box(), m.volume(), m.surface_area())
+        twins = seen.setdefault(key, [])
+        if any(_same_mesh(m, other) for other in twins):
+            continue
+        twins.append(m)
+        kept.append(m)
+    return kept
+
+
+def _same_mesh(a: manifold3d.Manifold, b: manifold3d.Manifold) -> bool:
+    ga, gb = a.to_mesh64(), b.to_mesh64()
+    va = np.asarray(ga.vert_properties)[:, :3]
+    vb = np.asarray(gb.vert_properties)[:, :3]
+    ta = np.sort(np.sort(va[np.asarray(ga.tri_verts, dtype=np.int64)].reshape(-1, 9).view(
+        [("", np.float64)] * 9), axis=0), axis=0)
+    tb = np.sort(np.sort(vb[np.asarray(gb.tri_verts, dtype=np.int64)].reshape(-1, 9).view(
+        [("", np.float64)] * 9), axis=0), axis=0)
+    return ta.shape == tb.shape and bool(np.all(ta == tb))
 
 
 def _united(operands: list) -> manifold3d.Manifold:
