@@ -146,3 +146,137 @@ def frames_of(scene: str, *args) -> list[Frame]:
     status, out, err = run("--no-cpp", *args, stdin=scene)
     assert status == 0, err
     return parse_stream(out)
+
+
+# --- regularity (LANGUAGE.md §7): judged on the stream alone ---------------
+
+def polygon_defects(polygon: Polygon, slack: float = 1e-7) -> list[str]:
+    """What is wrong with one polygon: too few vertices, a repeated vertex,
+    zero area, not planar, not convex, or winding more than once."""
+    pts = polygon.points
+    n = len(pts)
+    if n < 3:
+        return ["fewer than 3 vertices"]
+    defects = []
+    rounded = [tuple(p) for p in pts.tolist()]
+    if len(set(rounded)) != n:
+        defects.append("a repeated vertex")
+    size = max(float(np.ptp(pts, axis=0).max()), 1e-300)
+    normal = _newell(pts)
+    length = float(np.linalg.norm(normal))
+    if length <= 1e-12 * size * size:
+        return defects + ["zero area"]
+    normal /= length
+    if np.abs((pts - pts.mean(axis=0)) @ normal).max() > slack * max(size, 1.0):
+        defects.append("not planar")
+    edges = np.roll(pts, -1, axis=0) - pts
+    following = np.roll(edges, -1, axis=0)
+    turns = np.cross(edges, following) @ normal
+    lengths = np.linalg.norm(edges, axis=1) * np.linalg.norm(following, axis=1)
+    if np.any(turns < -slack * lengths):
+        defects.append("not convex")
+    # the exterior angles of a simple convex polygon add up to one turn
+    u = edges - np.outer(edges @ normal, normal)
+    angle = np.arctan2(np.cross(u, np.roll(u, -1, axis=0)) @ normal,
+                       np.einsum("ij,ij->i", u, np.roll(u, -1, axis=0)))
+    if abs(angle.sum() - 2 * np.pi) > 1e-6:
+        defects.append(f"winds {angle.sum() / (2 * np.pi):.2f} times")
+    return defects
+
+
+def shells(frame: Frame) -> list[list[int]]:
+    """The polygons of each connected shell (polygons sharing a vertex position)."""
+    parent = {}
+
+    def find(k):
+        while parent.setdefault(k, k) != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+
+    for i, p in enumerate(frame.polygons):
+        for v in p.points.tolist():
+            parent[find(("v", tuple(v)))] = find(("p", i))
+    groups: dict = {}
+    for i in range(len(frame.polygons)):
+        groups.setdefault(find(("p", i)), []).append(i)
+    return list(groups.values())
+
+
+def shell_defects(frame: Frame, thickness: float = 1e-9) -> list[str]:
+    """Shells of (about) zero volume: their volume over half their area, a mean
+    thickness, is below ``thickness`` times the frame's size."""
+    if not frame.polygons:
+        return []
+    size = max(float(np.abs(frame.box()).max()), 1.0)
+    defects = []
+    for members in shells(frame):
+        volume = sum(_fan_volume(frame.polygons[i].points) for i in members)
+        area = sum(np.linalg.norm(_newell(frame.polygons[i].points)) / 2 for i in members)
+        if abs(volume) <= thickness * size * area / 2:  # a cavity's volume is negative
+            defects.append(f"a shell of {len(members)} polygons has volume {volume:.3g} "
+                           f"for area {area:.3g}")
+    return defects
+
+
+def _fan_arrays(frame: Frame) -> np.ndarray:
+    tris = []
+    for p in frame.polygons:
+        for k in range(1, len(p.points) - 1):
+            tris.append((p.points[0], p.points[k], p.points[k + 1]))
+    return np.array(tris, dtype=np.float64).reshape(-1, 3, 3)
+
+
+def winding_numbers(triangles: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """The generalized winding number of a closed triangle surface at each point
+    (Van Oosterom and Strackee's solid angle of each triangle)."""
+    out = np.zeros(len(points))
+    for start in range(0, len(points), 64):
+        q = points[start:start + 64]
+        a = triangles[None, :, 0, :] - q[:, None, :]
+        b = triangles[None, :, 1, :] - q[:, None, :]
+        c = triangles[None, :, 2, :] - q[:, None, :]
+        la, lb, lc = (np.linalg.norm(x, axis=2) for x in (a, b, c))
+        det = np.einsum("qtj,qtj->qt", a, np.cross(b, c))
+        div = (la * lb * lc + np.einsum("qtj,qtj->qt", a, b) * lc
+               + np.einsum("qtj,qtj->qt", b, c) * la + np.einsum("qtj,qtj->qt", c, a) * lb)
+        out[start:start + 64] = np.arctan2(det, div).sum(axis=1) / (2 * np.pi)
+    return out
+
+
+def sheet_defects(frame: Frame, offset: float = 1e-8) -> list[str]:
+    """Polygons that do not part inside from outside: just behind each polygon
+    (at a point inside it) the winding number must be 1, just in front 0. A
+    sheet of two coincident faces, or a face folded back on itself, fails."""
+    if not frame.polygons:
+        return []
+    triangles = _fan_arrays(frame)
+    size = max(float(np.abs(frame.box()).max()), 1.0)
+    points, names = [], []
+    for p in frame.polygons:
+        normal = _newell(p.points)
+        length = np.linalg.norm(normal)
+        if length == 0:
+            continue
+        normal /= length
+        # four points well inside the (convex) polygon: its centre, and three
+        # towards its first corners (one point could lie on another solid's edge)
+        centre = p.points.mean(axis=0)
+        for q in [centre] + [0.6 * p.points[k] + 0.4 * centre for k in range(3)]:
+            points += [q - offset * size * normal, q + offset * size * normal]
+        names.append(p.path)
+    w = winding_numbers(triangles, np.array(points)).reshape(-1, 4, 2)
+    wrong = (np.abs(w[:, :, 0] - 1) > 0.01) | (np.abs(w[:, :, 1]) > 0.01)
+    bad = np.flatnonzero(wrong.sum(axis=1) >= 2)
+    return [f"polygon {i} of {names[i]} has winding {w[i, 0, 0]:.3f} behind and "
+            f"{w[i, 0, 1]:.3f} in front" for i in bad.tolist()]
+
+
+def regularity_defects(frame: Frame, sheets: bool = True) -> list[str]:
+    """Every defect LANGUAGE.md §7 rules out, as readable lines (empty if none)."""
+    defects = [f"polygon {i} of {p.path}: {', '.join(d)}"
+               for i, p in enumerate(frame.polygons) if (d := polygon_defects(p))]
+    defects += shell_defects(frame)
+    if sheets:
+        defects += sheet_defects(frame)
+    return defects

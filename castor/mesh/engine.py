@@ -15,11 +15,74 @@ from typing import NamedTuple
 import manifold3d
 import numpy as np
 
+from castor.mesh import polygons
 from castor.mesh.frame import Origin
 from castor.mesh.primitives import Mesh
 
 _Add = manifold3d.OpType.Add
 _Intersect = manifold3d.OpType.Intersect
+
+
+class Template:
+    """A primitive's shape in the engine, built once, with its own triangles
+    kept as arrays: a copy placed somewhere is written from them directly."""
+
+    __slots__ = ("manifold", "vertices", "triangles", "face_ids", "turned")
+
+    def __init__(self, manifold: manifold3d.Manifold):
+        self.manifold = manifold
+        gl = manifold.to_mesh64()
+        self.vertices = np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64)
+        self.triangles = np.asarray(gl.tri_verts, dtype=np.int64)
+        self.face_ids = np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF
+        self.turned = self.triangles[:, ::-1].copy()  # for mirrored copies
+
+    def num_tri(self) -> int:
+        return len(self.triangles)
+
+
+class Placed:
+    """One use of a primitive: its template and where it stands, not yet in
+    the engine. A copy costs a few hundred bytes, not the engine's mesh; it
+    goes to the engine (as_original, transform) only when a boolean needs it,
+    so that a union of 200,000 cubes that do not meet, or a forest, holds one
+    mesh per kind of primitive. ``id`` names its origin, as the engine's IDs do
+    (taken from the engine's own counter)."""
+
+    __slots__ = ("template", "matrix", "id", "_box")
+
+    def __init__(self, template: Template, matrix: np.ndarray, id: int):
+        self.template = template
+        self.matrix = matrix  # (3, 4)
+        self.id = id
+        self._box = None
+
+    def num_tri(self) -> int:
+        return len(self.template.triangles)
+
+    def is_empty(self) -> bool:
+        return False
+
+    def vertices(self) -> np.ndarray:
+        m = self.matrix
+        return self.template.vertices @ m[:, :3].T + m[:, 3]
+
+    def bounding_box(self) -> tuple:
+        if self._box is None:
+            v = self.vertices()
+            self._box = (*v.min(axis=0).tolist(), *v.max(axis=0).tolist())
+        return self._box
+
+    def moved(self, matrix: np.ndarray) -> "Placed":
+        m = matrix[:3, :3] @ self.matrix
+        m[:, 3] += matrix[:3, 3]
+        return Placed(self.template, m, self.id)
+
+    def in_engine(self) -> tuple[manifold3d.Manifold, int]:
+        """The engine's own copy, and its new ID (to which the caller maps
+        ``id``'s origin)."""
+        original = self.template.manifold.as_original()
+        return original.transform(np.ascontiguousarray(self.matrix)), original.original_id()
 
 
 @dataclass(frozen=True, slots=True)
@@ -33,7 +96,7 @@ class Solid:
     only when a boolean needs it.
     """
 
-    parts: tuple[manifold3d.Manifold, ...]  # never empty manifolds
+    parts: tuple  # never empty: manifolds, and primitives not yet in the engine (Placed)
     origins: dict[int, Origin]
 
     @property
@@ -50,14 +113,30 @@ class Solid:
 
     def box(self) -> np.ndarray:
         """(min xyz, max xyz) as a (2, 3) array."""
+        if len(self.parts) == 1:
+            return np.array(self.parts[0].bounding_box(), dtype=np.float64).reshape(2, 3)
         boxes = self.part_boxes()
         return np.array([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])
 
     def whole(self) -> manifold3d.Manifold:
-        """All parts as one manifold, for a boolean that needs them together."""
+        """All parts as one manifold, for a boolean that needs them together
+        (of a solid whose parts are all in the engine: see ``in_engine``)."""
         if len(self.parts) == 1:
             return self.parts[0]
         return manifold3d.Manifold.compose(list(self.parts))
+
+    def in_engine(self, which=None) -> "Solid":
+        """The same solid with its parts (or those numbered in ``which``) in the
+        engine, their origins under the engine's IDs."""
+        if not any(type(p) is Placed for p in self.parts):
+            return self
+        parts = list(self.parts)
+        origins = dict(self.origins)
+        for i in range(len(parts)) if which is None else which:
+            part = parts[i]
+            if type(part) is Placed:
+                parts[i] = _in_engine(part, origins)
+        return Solid(tuple(parts), origins)
 
     def prefixed(self, prefix: str) -> "Solid":
         """The same solid with ``prefix`` put in front of every path."""
@@ -65,13 +144,46 @@ class Solid:
                                   for i, o in self.origins.items()})
 
     def transformed(self, matrix) -> "Solid":
-        """Moved by an affine map: a 3x4 matrix, or its 12 numbers row by row."""
-        m = np.asarray(matrix, dtype=np.float64).reshape(-1, 4)[:3]
-        return Solid(tuple(part.transform(m) for part in self.parts), self.origins)
+        """Moved by an affine map: a 3x4 or 4x4 matrix, or its 12 numbers row by row."""
+        rows = np.asarray(matrix, dtype=np.float64).reshape(-1, 4)[:3]
+        full = np.eye(4)
+        full[:3] = rows
+        m = np.ascontiguousarray(rows)
+        return Solid(tuple(part.moved(full) if type(part) is Placed else part.transform(m)
+                           for part in self.parts), self.origins)
 
 
 def _solid(manifolds, origins: dict[int, Origin]) -> Solid:
     return Solid(tuple(m for m in manifolds if not m.is_empty()), origins)
+
+
+# A shell thinner than this (its volume over half its area), relative to the
+# size of its coordinates, is a sheet: what solids that only touch leave.
+SHEET = 1e-9
+
+
+def regular(manifold: manifold3d.Manifold) -> manifold3d.Manifold:
+    """A boolean's result without its shells of (about) zero volume.
+
+    manifold3d keeps a result 2-manifold, not regular: solids that only touch
+    intersect into a closed sheet of zero volume, a difference of coincident
+    solids leaves one. Regularization (LANGUAGE.md §4.3, §7) removes them."""
+    if manifold.is_empty():
+        return manifold
+    shells = manifold.decompose()
+    kept = [shell for shell in shells if not _sheet(shell)]
+    if len(kept) == len(shells):
+        return manifold
+    if not kept:
+        return manifold3d.Manifold()
+    return kept[0] if len(kept) == 1 else manifold3d.Manifold.compose(kept)
+
+
+def _sheet(shell: manifold3d.Manifold) -> bool:
+    box = shell.bounding_box()
+    size = max(1.0, max(abs(c) for c in box))
+    # a cavity is a shell of negative volume: as much a part of the solid
+    return abs(shell.volume()) <= SHEET * size * shell.surface_area() / 2
 
 
 EMPTY = Solid((), {})
@@ -81,7 +193,7 @@ class EngineError(Exception):
     """manifold3d refused a mesh (not an oriented 2-manifold)."""
 
 
-def template(mesh: Mesh) -> manifold3d.Manifold:
+def template(mesh: Mesh) -> Template:
     """A primitive's mesh in the engine, built once and instanced many times."""
     gl = manifold3d.Mesh64(
         vert_properties=mesh.vertices,
@@ -91,24 +203,45 @@ def template(mesh: Mesh) -> manifold3d.Manifold:
     manifold = manifold3d.Manifold(gl)
     if manifold.status() != manifold3d.Error.NoError:
         raise EngineError(str(manifold.status()))
-    return manifold
+    return Template(manifold)
 
 
-def instance(shape: manifold3d.Manifold, origin: Origin) -> Solid:
-    """One use of a primitive: the engine gives it a new ID that every output
-    triangle coming from it will carry (as_original is cheap: no rebuilding)."""
-    manifold = shape.as_original()
-    return Solid((manifold,), {manifold.original_id(): origin})
+_IDENTITY = np.eye(4)[:3]
 
 
-def reinstanced(solid: Solid) -> Solid:
-    """A copy of ``solid`` whose origins have new IDs.
+def instance(shape: Template, origin: Origin) -> Solid:
+    """One use of a primitive, with an ID of its own that every output triangle
+    coming from it will carry; it enters the engine only if a boolean needs it."""
+    placed = Placed(shape, _IDENTITY.copy(), manifold3d.Manifold.reserve_ids(1))
+    return Solid((placed,), {placed.id: origin})
+
+
+def reinstanced(solid: Solid) -> Solid | None:
+    """A copy of ``solid`` whose origins have new IDs, or None if the engine
+    cannot give one that is exactly the same solid.
 
     A cached subgraph used twice in one scene must not share IDs with its other
-    uses, or the two uses could not be told apart in the output.
+    uses, or the two uses could not be told apart in the output. The engine
+    gives new IDs only to a mesh it builds afresh, and building cleans up the
+    topology (it swaps and collapses edges it judges degenerate), which can
+    change a solid that holds a fold the boolean left. So the copy is compared
+    with the solid, part by part (triangles, vertices, volume, area and box,
+    all exactly); if any differs, the caller evaluates the object again.
     """
     if solid.empty:
         return solid
+    if any(type(p) is Placed for p in solid.parts):
+        placed = [p for p in solid.parts if type(p) is Placed]
+        first = manifold3d.Manifold.reserve_ids(len(placed))
+        renamed = {p.id: first + k for k, p in enumerate(placed)}
+        rest = reinstanced(Solid(tuple(p for p in solid.parts if type(p) is not Placed),
+                                 {i: o for i, o in solid.origins.items() if i not in renamed}))
+        if rest is None:
+            return None
+        parts = [Placed(p.template, p.matrix, renamed[p.id]) for p in placed]
+        origins = dict(rest.origins)
+        origins.update({renamed[i]: solid.origins[i] for i in renamed})
+        return Solid(tuple(parts) + rest.parts, origins)
     meshes = [part.to_mesh64() for part in solid.parts]
     run_ids = [np.asarray(gl.run_original_id, dtype=np.int64) for gl in meshes]
     unique = np.unique(np.concatenate(run_ids))
@@ -118,8 +251,8 @@ def reinstanced(solid: Solid) -> Solid:
         return np.array(values, dtype=dtype)  # an owned, writable copy: the engine wants one
 
     parts = []
-    for gl, ids in zip(meshes, run_ids):
-        copy = manifold3d.Mesh64(
+    for original, gl, ids in zip(solid.parts, meshes, run_ids):
+        copy = manifold3d.Manifold(manifold3d.Mesh64(
             vert_properties=np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64),
             tri_verts=array(gl.tri_verts, np.uint64),
             run_index=array(gl.run_index, np.uint64),
@@ -127,10 +260,26 @@ def reinstanced(solid: Solid) -> Solid:
             face_id=array(gl.face_id, np.uint64),
             merge_from_vert=array(gl.merge_from_vert, np.uint64),
             merge_to_vert=array(gl.merge_to_vert, np.uint64),
-        )
-        parts.append(manifold3d.Manifold(copy))
+        ))
+        del gl
+        if not _same(original, copy):
+            return None
+        parts.append(copy)
+    del meshes
     mapping = dict(zip(unique.tolist(), range(first, first + len(unique))))
     return _solid(parts, {mapping[i]: o for i, o in solid.origins.items() if i in mapping})
+
+
+def _same(a: manifold3d.Manifold, b: manifold3d.Manifold) -> bool:
+    """Whether two manifolds are the same solid: the same counts and box, and
+    volume and area equal but for the order of summation (an edge swapped
+    across a bend changes them; one swapped within a flat face does not, and
+    leaves the same surface)."""
+    def close(x, y):
+        return abs(x - y) <= 1e-12 * max(abs(x), abs(y), 1e-300)
+    return (a.num_tri() == b.num_tri() and a.num_vert() == b.num_vert()
+            and a.bounding_box() == b.bounding_box()
+            and close(a.volume(), b.volume()) and close(a.surface_area(), b.surface_area()))
 
 
 def _merged_origins(solids) -> dict[int, Origin]:
@@ -141,32 +290,67 @@ def _merged_origins(solids) -> dict[int, Origin]:
 
 
 def _overlap_groups(boxes: np.ndarray) -> list[list[int]]:
-    """Groups of operands whose boxes meet (touching counts), by union-find."""
+    """Groups of operands whose boxes meet (touching counts).
+
+    Boxes go into the cells of a grid twice as large as a typical box; only boxes
+    sharing a cell can meet, so a union of 200,000 cubes that do not meet is a
+    few array operations, not a sweep in Python. A box over very many cells is
+    compared with all the others at once."""
     n = len(boxes)
-    parent = list(range(n))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
     lo, hi = boxes[:, 0, :], boxes[:, 1, :]
-    order = np.argsort(lo[:, 0], kind="stable")
-    # sweep along x: only operands whose x-intervals meet can overlap
-    active: list[int] = []
-    for i in order.tolist():
-        active = [j for j in active if hi[j, 0] >= lo[i, 0]]
-        if active:
-            a = np.array(active)
-            meet = np.all((lo[a] <= hi[i]) & (lo[i] <= hi[a]), axis=1)
-            for j in a[meet].tolist():
-                parent[find(j)] = find(i)
-        active.append(i)
-    groups: dict[int, list[int]] = {}
-    for i in range(n):
-        groups.setdefault(find(i), []).append(i)
-    return list(groups.values())
+    extent = hi - lo
+    cell = np.maximum(2 * np.median(extent, axis=0), 1e-300)
+    cell = np.where(cell > 0, cell, np.maximum(extent.max(axis=0), 1.0))
+    first = np.floor(lo / cell).astype(np.int64)
+    last = np.floor(hi / cell).astype(np.int64)
+    span = last - first + 1
+    cells = np.prod(span, axis=1)
+    big = cells > 64
+    pairs = []
+    small = np.flatnonzero(~big)
+    if len(small):
+        # one entry per (box, cell it covers)
+        counts = cells[small]
+        owner = np.repeat(small, counts)
+        k = np.arange(len(owner)) - np.repeat(np.cumsum(counts) - counts, counts)
+        sx, sy = span[owner, 0], span[owner, 1]
+        cx = first[owner, 0] + k % sx
+        cy = first[owner, 1] + (k // sx) % sy
+        cz = first[owner, 2] + k // (sx * sy)
+        cx, cy, cz = cx - cx.min(), cy - cy.min(), cz - cz.min()
+        key = (cx * (int(cy.max()) + 1) + cy) * (int(cz.max()) + 1) + cz
+        order = np.argsort(key, kind="stable")
+        key, owner = key[order], owner[order]
+        starts = np.flatnonzero(np.r_[True, key[1:] != key[:-1]])
+        sizes = np.diff(np.r_[starts, len(key)])
+        for size in np.unique(sizes[sizes > 1]).tolist():
+            members = owner[starts[sizes == size][:, None] + np.arange(size)]
+            a, b = np.triu_indices(size, 1)
+            pairs.append(np.stack([members[:, a].ravel(), members[:, b].ravel()], axis=1))
+    for i in np.flatnonzero(big).tolist():
+        others = np.arange(n)
+        pairs.append(np.stack([np.full(n, i), others], axis=1)[others != i])
+    label = np.arange(n)
+    if pairs:
+        pairs = np.unique(np.sort(np.concatenate(pairs), axis=1), axis=0)
+        a, b = pairs[:, 0], pairs[:, 1]
+        meet = np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
+        a, b = a[meet], b[meet]
+        while len(a):  # hook each root to the smallest label it meets, then jump
+            la, lb = label[a], label[b]
+            low = np.minimum(la, lb)
+            np.minimum.at(label, la, low)
+            np.minimum.at(label, lb, low)
+            while True:
+                jumped = label[label]
+                if np.array_equal(jumped, label):
+                    break
+                label = jumped
+            if np.array_equal(label[a], label[b]):
+                break
+    order = np.argsort(label, kind="stable")
+    bounds = np.flatnonzero(np.diff(label[order])) + 1
+    return [group.tolist() for group in np.split(order, bounds)]
 
 
 class Counter:
@@ -184,7 +368,8 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
     if len(solids) == 1:
         return solids[0]
     parts = [part for s in solids for part in s.parts]
-    boxes = np.concatenate([s.part_boxes() for s in solids])
+    boxes = np.array([part.bounding_box() for part in parts], dtype=np.float64).reshape(-1, 2, 3)
+    origins = _merged_origins(solids)
     result, result_boxes = [], []
     for group in _overlap_groups(boxes):
         if len(group) == 1:
@@ -192,9 +377,58 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
             result_boxes.append(boxes[group[0]])
         else:
             counter.booleans += 1
-            result.append(manifold3d.Manifold.batch_boolean([parts[i] for i in group], _Add))
+            operands = _distinct([_in_engine(parts[i], origins) for i in group])
+            result.append(regular(_united(operands)))
             result_boxes.append(np.array([boxes[group, 0].min(axis=0), boxes[group, 1].max(axis=0)]))
-    return _solid(_fewer_parts(result, np.array(result_boxes)), _merged_origins(solids))
+    return _solid(_fewer_parts(result, np.array(result_boxes)), origins)
+
+
+def _distinct(manifolds: list) -> list:
+    """The manifolds without exact copies: A with A is A, and the engine,
+    asked to unite a solid with a copy of itself (every face coincident), was
+    seen to lose volume. Copies are found by their counts, box, volume and
+    area, then confirmed vertex for vertex."""
+    kept, seen = [], {}
+    for m in manifolds:
+        key = (m.num_tri(), m.num_vert(), m.bounding_box(), m.volume(), m.surface_area())
+        twins = seen.setdefault(key, [])
+        if any(_same_mesh(m, other) for other in twins):
+            continue
+        twins.append(m)
+        kept.append(m)
+    return kept
+
+
+def _same_mesh(a: manifold3d.Manifold, b: manifold3d.Manifold) -> bool:
+    ga, gb = a.to_mesh64(), b.to_mesh64()
+    va = np.asarray(ga.vert_properties)[:, :3]
+    vb = np.asarray(gb.vert_properties)[:, :3]
+    ta = np.sort(np.sort(va[np.asarray(ga.tri_verts, dtype=np.int64)].reshape(-1, 9).view(
+        [("", np.float64)] * 9), axis=0), axis=0)
+    tb = np.sort(np.sort(vb[np.asarray(gb.tri_verts, dtype=np.int64)].reshape(-1, 9).view(
+        [("", np.float64)] * 9), axis=0), axis=0)
+    return ta.shape == tb.shape and bool(np.all(ta == tb))
+
+
+def _united(operands: list) -> manifold3d.Manifold:
+    """The union of manifolds, two at a time in a balanced tree. (manifold3d's
+    batch_boolean unites them all at once; on operands whose faces coincide,
+    copies of one object side by side, it was seen to lose volume where
+    unions two at a time do not: tests/test_regularize.py.)"""
+    while len(operands) > 1:
+        operands = [operands[k] + operands[k + 1] if k + 1 < len(operands) else operands[k]
+                    for k in range(0, len(operands), 2)]
+    return operands[0]
+
+
+def _in_engine(part, origins: dict[int, Origin]) -> manifold3d.Manifold:
+    """A part as the engine's manifold; a Placed part's origin moves to its new ID."""
+    if type(part) is not Placed:
+        return part
+    manifold, new_id = part.in_engine()
+    if part.id in origins:
+        origins[new_id] = origins[part.id]
+    return manifold
 
 
 # More parts than this are composed into fewer: each part costs the engine a
@@ -203,13 +437,18 @@ MAX_PARTS = 1024
 
 
 def _fewer_parts(parts: list, boxes: np.ndarray) -> list:
-    """Many parts composed into at most MAX_PARTS, neighbours together (by x)."""
-    if len(parts) <= MAX_PARTS:
+    """Many parts of the engine composed into at most MAX_PARTS, neighbours
+    together (by x). Placed primitives stay as they are: they cost little."""
+    engine_parts = [i for i, p in enumerate(parts) if type(p) is not Placed]
+    if len(engine_parts) <= MAX_PARTS:
         return parts
+    placed = [p for p in parts if type(p) is Placed]
+    parts = [parts[i] for i in engine_parts]
+    boxes = boxes[engine_parts]
     order = np.argsort(boxes[:, 0, 0], kind="stable")
     size = -(-len(parts) // MAX_PARTS)
-    return [manifold3d.Manifold.compose([parts[i] for i in order[k:k + size]])
-            for k in range(0, len(parts), size)]
+    return placed + [manifold3d.Manifold.compose([parts[i] for i in order[k:k + size]])
+                     for k in range(0, len(parts), size)]
 
 
 def _apart(a: np.ndarray, b: np.ndarray) -> bool:
@@ -228,7 +467,8 @@ def intersection(solids: list[Solid], counter: Counter) -> Solid:
     if np.any(lo >= hi):
         return EMPTY
     counter.booleans += 1
-    manifold = manifold3d.Manifold.batch_boolean([s.whole() for s in solids], _Intersect)
+    solids = [s.in_engine() for s in solids]
+    manifold = regular(manifold3d.Manifold.batch_boolean([s.whole() for s in solids], _Intersect))
     return _solid([manifold], _merged_origins(solids))
 
 
@@ -242,10 +482,12 @@ def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
     if not touched:
         return a
     counter.booleans += 1
+    a = a.in_engine(touched)
+    b = b.in_engine()
     cutter = b.whole()
     parts = list(a.parts)
     for i in touched:
-        parts[i] = parts[i] - cutter
+        parts[i] = regular(parts[i] - cutter)
     return _solid(parts, _merged_origins((a, b)))
 
 
@@ -282,16 +524,87 @@ def batches(parts, triangles: int = 20_000, count: int = 256):
 
 
 def triangles(parts) -> Triangles:
-    """The triangles of the parts, one vertex list for all."""
-    pieces = [_part_triangles(part) for part in parts]
+    """The triangles of the parts, one vertex list for all, none of them flat."""
+    pieces = []
+    run: list[Placed] = []
+    for part in parts:  # copies of one primitive side by side are placed at once
+        if type(part) is Placed:
+            if run and run[-1].template is not part.template:
+                pieces.append(_placed_triangles(run))
+                run = []
+            run.append(part)
+            continue
+        if run:
+            pieces.append(_placed_triangles(run))
+            run = []
+        pieces.append(_part_triangles(part))
+    if run:
+        pieces.append(_placed_triangles(run))
     if len(pieces) == 1:
-        return pieces[0]
+        return _without_flat(pieces[0])
     base = np.cumsum([0] + [len(p.vertices) for p in pieces[:-1]])
     # faces of different parts must not share a number: the part in the top bits
-    return Triangles(np.concatenate([p.vertices for p in pieces]),
-                     np.concatenate([p.triangles + b for p, b in zip(pieces, base)]),
-                     np.concatenate([p.origin_ids for p in pieces]),
-                     np.concatenate([p.face_ids + (k << 48) for k, p in enumerate(pieces)]))
+    return _without_flat(Triangles(
+        np.concatenate([p.vertices for p in pieces]),
+        np.concatenate([p.triangles + b for p, b in zip(pieces, base)]),
+        np.concatenate([p.origin_ids for p in pieces]),
+        np.concatenate([p.face_ids + (k << 48) for k, p in enumerate(pieces)])))
+
+
+def _placed_triangles(run: list[Placed]) -> Triangles:
+    """The triangles of copies of one primitive, placed with one array operation;
+    a mirrored copy's triangles turn the other way."""
+    template = run[0].template
+    matrices = np.stack([p.matrix for p in run])  # (k, 3, 4)
+    v = template.vertices
+    vertices = (np.einsum("kij,vj->kvi", matrices[:, :, :3], v)
+                + matrices[:, None, :, 3]).reshape(-1, 3)
+    mirrored = np.linalg.det(matrices[:, :, :3]) < 0
+    count = len(template.triangles)
+    tris = np.where(mirrored[:, None, None], template.turned[None], template.triangles[None])
+    tris = (tris + (np.arange(len(run)) * len(v))[:, None, None]).reshape(-1, 3)
+    origin_ids = np.repeat(np.array([p.id for p in run], dtype=np.int64), count)
+    faces = ((np.arange(len(run), dtype=np.int64) << 32)[:, None] | template.face_ids[None]).ravel()
+    return Triangles(vertices, tris, origin_ids, faces)
+
+
+# Parts already found clean, by their triangles and faces: a copy of one
+# object moved by an affine map has no sheet or flat triangle if the first had none.
+_CLEAN: dict[int, bool] = {}
+
+
+def _without_flat(tri: Triangles) -> Triangles:
+    """The engine leaves sheets where faces only touch, and its rounding a few
+    triangles of zero area: both gone (polygons)."""
+    key = None
+    if len(tri.triangles) <= 200_000:
+        key = hash((tri.triangles.tobytes(), tri.face_ids.tobytes()))
+        if key in _CLEAN:
+            return tri
+    cleaned = _cleaned(tri)
+    if key is not None and cleaned is tri:
+        if len(_CLEAN) > 10_000:
+            _CLEAN.clear()
+        _CLEAN[key] = True
+    return cleaned
+
+
+def _cleaned(tri: Triangles) -> Triangles:
+    vertices = tri.vertices
+    triangles, origin_ids, face_ids = polygons.without_flat_triangles(
+        vertices, tri.triangles, tri.origin_ids, tri.face_ids)
+    cut_vertices, cut, origin_cut, face_cut = polygons.without_sheets(
+        vertices, triangles, origin_ids, face_ids)
+    if cut is not triangles:  # cutting can leave slivers of its own
+        cut, origin_cut, face_cut = polygons.without_flat_triangles(
+            cut_vertices, cut, origin_cut, face_cut)
+        # kept only if every edge is still paired and nothing is flat: a
+        # sheet left in place is better than a surface that is not closed
+        if polygons.paired(cut) and not polygons.flat_triangles(cut_vertices, cut).any():
+            return Triangles(cut_vertices, cut, origin_cut, face_cut)
+    if triangles is tri.triangles:
+        return tri  # nothing to do: the same object, so that it is known clean
+    return Triangles(vertices, triangles, origin_ids, face_ids)
 
 
 def _part_triangles(part: manifold3d.Manifold) -> Triangles:

@@ -15,7 +15,7 @@ from castor.csg import tree
 from castor.csg.paths import Path
 from castor.diagnostics import GeometryError, LimitError
 from castor.language.vocabulary import PRIMITIVES
-from castor.mesh import engine, polygons, primitives
+from castor.mesh import engine, memory, polygons, primitives
 from castor.mesh.frame import Frame, FrameObject, Origin, compact
 from castor.options import DEFAULT_MAX_POLYGONS
 
@@ -59,6 +59,11 @@ class Facetizer:
             raise LimitError(f"the frame would need about {estimate:,} polygons, more than "
                              f"--max-polygons {self.max_polygons:,}; is an object used twice "
                              "at every level of a deep chain?", scene.location)
+        short = memory.too_big(estimate)
+        if short is not None:
+            raise LimitError(f"the frame would need about {short[0] / 2 ** 30:.1f} GB of memory, "
+                             f"more than the {short[1] / 2 ** 30:.1f} GB available; simplify the "
+                             "scene or raise TOLERANCE", scene.location)
         total = 0
         merger = polygons.Merger()
         frame = Frame(scene.number, scene.where)
@@ -67,13 +72,14 @@ class Facetizer:
             pieces = []
             for batch in engine.batches(solid.parts):
                 tri = engine.triangles(batch)
-                total += len(tri.triangles)
-                self._check_count(total, scene)
                 if self.merge_polygons:
                     merged = merger.merge(tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
                 else:
                     merged = polygons.as_triangles(tri.triangles, tri.origin_ids)
+                total += len(merged.offsets) - 1  # the limit counts polygons (CLI.md)
+                self._check_count(total, scene)
                 pieces.append((tri.vertices, merged))
+                del tri
             frame.objects.append(compact(pieces, solid.origins, obj.name))
         # the frame's booleans, each shared subtree counted once: the same
         # figure whichever process makes the frame, whatever it had cached
@@ -98,8 +104,9 @@ class Facetizer:
     def _use(self, use: tree.Use) -> engine.Solid:
         shared = use.shared
         cached = self.cache.get(shared.key)
-        if cached is not None:
-            solid = engine.reinstanced(cached[0])
+        # the engine's copy, unless it could not copy it exactly: then built again
+        solid = engine.reinstanced(cached[0]) if cached is not None else None
+        if solid is not None:
             self.primitive_count += cached[1]
         else:
             before = self.primitive_count
@@ -128,7 +135,9 @@ class Facetizer:
             result = engine.intersection(operands, self.counter)
         else:
             result = engine.difference(operands[0], operands[1], self.counter)
-        self._check_count(result.triangle_count(), node)
+        result_triangles = result.triangle_count()
+        if result_triangles > 2 * self.max_polygons:  # polygons are counted when merged
+            self._check_count(result_triangles, node)
         return result
 
     def _primitive(self, leaf: tree.Primitive) -> engine.Solid:

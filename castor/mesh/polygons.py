@@ -175,8 +175,12 @@ def _join(p: list[int], q: list[int], a: int, b: int) -> list[int] | None:
 
 
 def _convex(point: dict, poly: list[int], normal) -> bool:
-    """No corner of ``poly`` turns against ``normal`` (beyond rounding)."""
+    """No corner of ``poly`` turns against ``normal`` (beyond rounding), and
+    its corners turn once around, not twice (an outline that touches itself,
+    two vertices at one place, can turn left at every corner and wind twice)."""
     n = len(poly)
+    length = math.sqrt(normal[0] ** 2 + normal[1] ** 2 + normal[2] ** 2)
+    total = 0.0
     for k in range(n):
         p0, p1, p2 = point[poly[k - 1]], point[poly[k]], point[poly[(k + 1) % n]]
         e1 = _sub(p1, p0)
@@ -189,7 +193,9 @@ def _convex(point: dict, poly: list[int], normal) -> bool:
                     * math.sqrt(normal[0] ** 2 + normal[1] ** 2 + normal[2] ** 2))
             if turn < -_CONVEX_SLACK * size:
                 return False
-    return True
+        if n > 4:
+            total += math.atan2(turn / length, e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2])
+    return n <= 4 or total < 3 * math.pi
 
 
 def _split_off_plane(vertices: np.ndarray, triangles: np.ndarray, group: np.ndarray) -> np.ndarray:
@@ -353,3 +359,525 @@ class Merger:
             self.known.clear()
         self.known[key] = polygons
         return polygons
+
+
+# A triangle whose height is below this fraction of its longest side is flat:
+# the engine's rounding, not a face of the solid.
+_FLAT = 1e-10
+
+
+def flat_triangles(vertices: np.ndarray, triangles: np.ndarray, chunk: int = 1 << 20) -> np.ndarray:
+    """Which triangles have (about) zero area: a repeated vertex, or three in a line."""
+    flat = np.zeros(len(triangles), bool)
+    for start in range(0, len(triangles), chunk):  # in slices: a few temporaries of 3 x chunk
+        t = triangles[start:start + chunk]
+        p = vertices[t]
+        e0, e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 1], p[:, 0] - p[:, 2]
+        twice_area = _norm(_cross(e0, -e2))
+        longest = np.sqrt(np.maximum(np.maximum(np.einsum("ij,ij->i", e0, e0),
+                                                np.einsum("ij,ij->i", e1, e1)),
+                                     np.einsum("ij,ij->i", e2, e2)))
+        flat[start:start + chunk] = (twice_area <= _FLAT * longest * longest) | (
+            (t[:, 0] == t[:, 1]) | (t[:, 1] == t[:, 2]) | (t[:, 2] == t[:, 0]))
+    return flat
+
+
+def without_flat_triangles(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
+                           face_ids: np.ndarray):
+    """The same closed surface with no flat triangle (LANGUAGE.md §7).
+
+    The engine leaves a few: two vertices at one place, or closer than the
+    rounding of the triangle's size (welded into one, and the triangles
+    between them dropped), or three in a line (the triangle's
+    long edge is flipped with the neighbour across it, which splits the
+    neighbour at the middle vertex: the flat triangle's area, zero, goes to a
+    triangle in the neighbour's plane). Every edge stays paired. Returns the
+    arrays unchanged if there is nothing to do.
+    """
+    flat = flat_triangles(vertices, triangles)
+    twins = _coincident(triangles)
+    if twins is not None:  # a sheet of coincident triangles turned towards each other
+        keep = ~twins
+        triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
+        flat = flat[keep]
+    if not flat.any():
+        return triangles, origin_ids, face_ids
+    triangles = triangles.copy()
+    # weld the vertices of flat triangles that are at one place, or closer
+    # than rounding: needles, and fins of two flat triangles back to back
+    corners = np.unique(triangles[flat])
+    points = vertices[corners]
+    scale = max(1.0, float(np.abs(points).max()))
+    remap = {}
+    for i in range(len(corners)):
+        close = np.flatnonzero(np.abs(points[i + 1:] - points[i]).max(axis=1) <= 1e-12 * scale)
+        for j in close.tolist():
+            u, w = int(corners[i]), int(corners[i + 1 + j])
+            ru, rw = remap.get(u, u), remap.get(w, w)
+            if ru != rw:
+                remap[max(ru, rw)] = min(ru, rw)
+    if remap:
+        table = np.arange(len(vertices))
+        for u in sorted(remap):  # chains resolve to their smallest number
+            table[u] = table[remap[u]]
+        triangles = table[triangles]
+    keep = ~((triangles[:, 0] == triangles[:, 1]) | (triangles[:, 1] == triangles[:, 2])
+             | (triangles[:, 2] == triangles[:, 0]))
+    keep &= ~_twins(triangles, corners)
+    triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
+    flat = flat_triangles(vertices, triangles)
+    if flat.any():
+        triangles, origin_ids, face_ids = _flip_flat(vertices, triangles, origin_ids,
+                                                     face_ids, flat)
+    return triangles, origin_ids, face_ids
+
+
+def _coincident(triangles: np.ndarray) -> np.ndarray | None:
+    """Triangles whose three vertices another triangle has, turned the other
+    way (None if there is none: the usual case, found in a few array passes)."""
+    if len(triangles) < 2:
+        return None
+    t = triangles
+    first = np.argmin(t, axis=1)[:, None]
+    rows = np.arange(len(t))[:, None]
+    forward = t[rows, (first + np.arange(3)) % 3]  # each turn from its smallest vertex
+    backward = forward[:, [0, 2, 1]]
+    n = int(t.max()) + 1
+    if n ** 3 < 2 ** 62:
+        key_f = (forward[:, 0] * n + forward[:, 1]) * n + forward[:, 2]
+        key_b = (backward[:, 0] * n + backward[:, 1]) * n + backward[:, 2]
+    else:
+        return None
+    hit = np.isin(key_f, key_b)
+    if not hit.any():
+        return None
+    # pair them one to one, so every edge keeps its partner
+    found = np.zeros(len(t), bool)
+    waiting: dict[int, list[int]] = {}
+    for i in np.flatnonzero(hit).tolist():
+        partners = waiting.get(int(key_b[i]))
+        if partners:
+            found[partners.pop()] = True
+            found[i] = True
+        else:
+            waiting.setdefault(int(key_f[i]), []).append(i)
+    return found if found.any() else None
+
+
+def _twins(triangles: np.ndarray, corners: np.ndarray) -> np.ndarray:
+    """Triangles near ``corners`` paired with another of the same three
+    vertices turned the other way: a sheet of zero thickness, both go."""
+    near = np.flatnonzero(np.isin(triangles, corners).any(axis=1))
+    found = np.zeros(len(triangles), bool)
+    seen: dict[tuple, list[int]] = {}
+    for i in near.tolist():
+        a, b, c = triangles[i].tolist()
+        k = min((a, b, c), (b, c, a), (c, a, b))  # this turn, from its smallest vertex
+        reverse = min((a, c, b), (c, b, a), (b, a, c))
+        partners = seen.get(reverse)
+        if partners:
+            found[partners.pop()] = True
+            found[i] = True
+        else:
+            seen.setdefault(k, []).append(i)
+    return found
+
+
+def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
+    """Flip the long edge of each triangle with three vertices in a line."""
+    corners = np.unique(triangles[flat])
+    near = np.flatnonzero(np.isin(triangles, corners).any(axis=1))
+    tris = {int(i): tuple(triangles[i].tolist()) for i in near}
+    owner = {}
+    for i, (a, b, c) in tris.items():
+        owner[(a, b)] = owner[(b, c)] = owner[(c, a)] = i
+    origin = origin_ids.copy()
+    face = face_ids.copy()
+    todo = [int(i) for i in np.flatnonzero(flat)]
+    point = vertices
+    for _ in range(4 * len(todo) + 16):
+        if not todo:
+            break
+        i = todo.pop()
+        t = tris.get(i)
+        if t is None:
+            continue
+        p = point[list(t)]
+        lengths = [float(np.dot(p[(k + 1) % 3] - p[k], p[(k + 1) % 3] - p[k])) for k in range(3)]
+        k = int(np.argmax(lengths))
+        u, w, m = t[k], t[(k + 1) % 3], t[(k + 2) % 3]  # long edge u->w, m between them
+        n = owner.get((w, u))
+        if n is None or n == i:
+            continue
+        a, b, c = tris[n]
+        x = ({a, b, c} - {u, w}).pop() if len({a, b, c} - {u, w}) == 1 else None
+        if x is None or x == m:
+            continue
+        for tri in (t, tris[n]):
+            for e in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+                owner.pop(e, None)
+        first, second = (m, u, x), (w, m, x)
+        tris[i], tris[n] = first, second
+        origin[i], face[i] = origin[n], face[n]
+        for j, tri in ((i, first), (n, second)):
+            for e in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+                owner[e] = j
+            if flat_triangles(point, np.array([tri]))[0]:
+                todo.append(j)
+    rows = np.array(list(tris.keys()), np.int64)
+    triangles = triangles.copy()
+    triangles[rows] = np.array([tris[r] for r in rows.tolist()], np.int64)
+    return triangles, origin, face
+
+
+# --- sheets: coincident faces turned towards each other ------------------------
+
+def without_sheets(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
+                   face_ids: np.ndarray):
+    """The same solid with no sheet: where triangles of one plane turned one way
+    overlap triangles turned the other way (a fold or an inner sheet that the
+    engine left where faces only touch), the overlap is taken out of both, as
+    regularization requires (LANGUAGE.md §7).
+
+    In each such plane, each triangle keeps what the opposite triangles do not
+    cover (convex pieces, cut along their edges); the points where the cuts
+    meet the edges are put into every triangle along those edges, so that no
+    T-junction is left. Returns the arrays unchanged when there is no sheet,
+    which is found with a few array passes.
+    """
+    if len(triangles) < 2:
+        return vertices, triangles, origin_ids, face_ids
+    planes = _opposed_planes(vertices, triangles)
+    if not planes:
+        return vertices, triangles, origin_ids, face_ids
+    return _Resolver(vertices, triangles, origin_ids, face_ids).resolve(planes)
+
+
+def _opposed_planes(vertices, triangles, chunk: int = 1 << 20) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Groups of triangles in one plane with both orientations: (plane's unit
+    normal, triangle numbers)."""
+    scale = max(1.0, float(np.abs(vertices).max()))
+    keys, signs, normals = [], [], []
+    for start in range(0, len(triangles), chunk):
+        p = vertices[triangles[start:start + chunk]]
+        n = _cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+        length = _norm(n)
+        n = np.divide(n, length[:, None], out=np.zeros_like(n), where=length[:, None] > 0)
+        # one sign for both sides of a plane: its largest component positive
+        big = np.argmax(np.abs(n), axis=1)
+        sign = np.sign(n[np.arange(len(n)), big])
+        sign[sign == 0] = 1
+        u = n * sign[:, None]
+        d = np.einsum("ij,ij->i", u, p.mean(axis=1))
+        key = np.column_stack([np.round(u * 1e9), np.round(d / scale * 1e9)]).astype(np.int64)
+        key[length <= 1e-14 * scale * scale] = np.iinfo(np.int64).min  # flat: no plane
+        keys.append(key)
+        signs.append(sign.astype(np.int8))
+        normals.append(u)
+    key = np.concatenate(keys)
+    sign = np.concatenate(signs)
+    order = np.lexsort(key.T[::-1])
+    key, sign = key[order], sign[order]
+    same = np.all(key[1:] == key[:-1], axis=1)
+    starts = np.flatnonzero(np.r_[True, ~same])
+    ends = np.r_[starts[1:], len(key)]
+    # groups where both signs occur
+    positive = np.add.reduceat((sign > 0).astype(np.int64), starts)
+    sizes = ends - starts
+    mixed = np.flatnonzero((positive > 0) & (positive < sizes) & (key[starts, 0] != np.iinfo(np.int64).min))
+    if not len(mixed):
+        return []
+    normal = np.concatenate(normals)
+    return [(normal[order[starts[g]]], order[starts[g]:ends[g]]) for g in mixed.tolist()]
+
+
+class _Resolver:
+    """Takes the overlaps of opposite triangles out of their planes (see without_sheets)."""
+
+    def __init__(self, vertices, triangles, origin_ids, face_ids):
+        self.vertices = vertices
+        self.triangles = triangles
+        self.origin_ids = origin_ids
+        self.face_ids = face_ids
+        self.scale = max(1.0, float(np.abs(vertices).max()))
+        self.eps = 1e-12 * self.scale
+        self.new_points: list[np.ndarray] = []
+        self.crossings: dict[tuple, int] = {}
+        self.on_edge: dict[tuple[int, int], set[int]] = {}
+
+    # points: original vertices keep their numbers; new ones follow
+    def point(self, v: int) -> np.ndarray:
+        n = len(self.vertices)
+        return self.vertices[v] if v < n else self.new_points[v - n]
+
+    def resolve(self, planes):
+        replaced: dict[int, list[list[int]]] = {}
+        for normal, members in planes:
+            self._plane(normal, members, replaced)
+        if not replaced:
+            return self.vertices, self.triangles, self.origin_ids, self.face_ids
+        # every triangle along an edge that gained points gets them too
+        touched = set(replaced)
+        if self.on_edge:
+            t = self.triangles
+            a = np.minimum(t, np.roll(t, -1, axis=1))
+            b = np.maximum(t, np.roll(t, -1, axis=1))
+            n = len(self.vertices) + len(self.new_points) + 1
+            keys = np.array([i * n + j for i, j in self.on_edge], dtype=np.int64)
+            hit = np.isin(a * n + b, keys).any(axis=1)
+            touched |= set(np.flatnonzero(hit).tolist())
+        rows, origin, face = [], [], []
+        for i in sorted(touched):
+            outlines = replaced.get(i, [self.triangles[i].tolist()])
+            for outline in outlines:
+                for tri in self._fan(self._with_edge_points(outline)):
+                    rows.append(tri)
+                    origin.append(self.origin_ids[i])
+                    face.append(self.face_ids[i])
+        keep = np.ones(len(self.triangles), bool)
+        keep[sorted(touched)] = False
+        vertices = (np.vstack([self.vertices, np.array(self.new_points).reshape(-1, 3)])
+                    if self.new_points else self.vertices)
+        triangles = np.vstack([self.triangles[keep], np.array(rows, np.int64).reshape(-1, 3)])
+        triangles = _welded_seams(vertices, triangles, self.eps)
+        return (vertices, triangles, np.concatenate([self.origin_ids[keep], np.array(origin, np.int64)]),
+                np.concatenate([self.face_ids[keep], np.array(face, np.int64)]))
+
+    def _plane(self, normal, members, replaced):
+        # a 2D frame in the plane, turned so that x, y, normal is right-handed
+        axis = np.eye(3)[int(np.argmin(np.abs(normal)))]
+        e1 = np.cross(normal, axis)
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(normal, e1)
+        self.e1, self.e2 = e1, e2
+        tris = self.triangles[members]
+        p = self.vertices[tris]
+        n = _cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+        up = n @ normal > 0
+        flat = {}
+        for k, i in enumerate(members.tolist()):
+            pts = [self._xy(v) for v in tris[k].tolist()]
+            if not up[k]:
+                pts = pts[::-1]  # counter-clockwise in the plane's frame
+            flat[i] = pts
+        boxes = {i: (min(x for x, _ in q), min(y for _, y in q), max(x for x, _ in q), max(y for _, y in q))
+                 for i, q in flat.items()}
+        ups = [i for k, i in enumerate(members.tolist()) if up[k]]
+        downs = [i for k, i in enumerate(members.tolist()) if not up[k]]
+        for group, others in ((ups, downs), (downs, ups)):
+            for i in group:
+                opposite = [j for j in others if _boxes_meet(boxes[i], boxes[j], self.eps)
+                            and _overlap_area(flat[i], flat[j]) > 1e-12 * self.scale ** 2]
+                if not opposite:
+                    continue
+                tri = self.triangles[i].tolist()
+                turned = not (i in ups)
+                outline = tri[::-1] if turned else tri
+                pieces = [[(outline[k], _edge(outline[k], outline[(k + 1) % 3])) for k in range(3)]]
+                for j in opposite:
+                    cutter = self.triangles[j].tolist()
+                    cutter = cutter if (j in ups) else cutter[::-1]
+                    pieces = [q for piece in pieces for q in self._subtract(piece, cutter)]
+                # back to the triangle's own turn
+                replaced[i] = [[v for v, _ in (piece[::-1] if turned else piece)] for piece in pieces]
+
+    def _xy(self, v):
+        q = self.point(v)
+        return (float(q @ self.e1), float(q @ self.e2))
+
+    def _subtract(self, piece, cutter):
+        """Convex pieces of ``piece`` outside the (counter-clockwise) triangle ``cutter``."""
+        out = []
+        rest = piece
+        for k in range(3):
+            a, b = cutter[k], cutter[(k + 1) % 3]
+            outside = self._clip(rest, a, b, keep_left=False)
+            if outside is not None:
+                out.append(outside)
+            rest = self._clip(rest, a, b, keep_left=True)
+            if rest is None:
+                break
+        return out
+
+    def _clip(self, poly, a, b, keep_left):
+        """The part of a convex polygon ((vertex, support of the edge that
+        leaves it), ...) on one side of the line a->b; None if it has no area."""
+        ax, ay = self._xy(a)
+        bx, by = self._xy(b)
+        dx, dy = bx - ax, by - ay
+        size = math.hypot(dx, dy)
+
+        def side(v):
+            x, y = self._xy(v)
+            s = (dx * (y - ay) - dy * (x - ax)) / size
+            s = s if keep_left else -s
+            return 0.0 if abs(s) <= self.eps else s
+
+        line = _edge(a, b)
+        out = []
+        n = len(poly)
+        sides = [side(v) for v, _ in poly]
+        for k in range(n):
+            (u, su), (v, _) = poly[k], poly[(k + 1) % n]
+            du, dv = sides[k], sides[(k + 1) % n]
+            if du >= 0:
+                out.append([u, line if (du == 0 and dv < 0) else su])
+            if (du > 0 > dv) or (du < 0 < dv):
+                x = self._crossing(su, line)
+                out.append([x, line if du > 0 else su])
+        if len(out) < 3:
+            return None
+        pts = [self._xy(v) for v, _ in out]
+        area = sum(pts[k][0] * pts[(k + 1) % len(pts)][1] - pts[(k + 1) % len(pts)][0] * pts[k][1]
+                   for k in range(len(pts))) / 2
+        if area <= 1e-12 * self.scale ** 2:
+            return None
+        # drop a repeated vertex (a crossing at a corner)
+        cleaned = []
+        for v, s in out:
+            if cleaned and cleaned[-1][0] == v:
+                cleaned[-1][1] = s
+                continue
+            cleaned.append([v, s])
+        if len(cleaned) > 1 and cleaned[0][0] == cleaned[-1][0]:
+            cleaned.pop()
+        return [tuple(x) for x in cleaned] if len(cleaned) >= 3 else None
+
+    def _crossing(self, s1, s2) -> int:
+        """The point where the edges s1 and s2 (as lines) cross, numbered once."""
+        key = (s1, s2) if s1 <= s2 else (s2, s1)
+        known = self.crossings.get(key)
+        if known is not None:
+            return known
+        (i, j), (k, l) = key
+        p, q = self.point(i), self.point(j)
+        (px, py), (qx, qy) = self._xy(i), self._xy(j)
+        (kx, ky), (lx, ly) = self._xy(k), self._xy(l)
+        rx, ry, sx, sy = qx - px, qy - py, lx - kx, ly - ky
+        den = rx * sy - ry * sx
+        t = ((kx - px) * sy - (ky - py) * sx) / den if den != 0 else 0.0
+        point = p + t * (q - p)
+        vertex = None
+        for candidate in (i, j, k, l):
+            if np.abs(self.point(candidate) - point).max() <= self.eps:
+                vertex = candidate
+                break
+        if vertex is None:  # three lines through one point: one point
+            for k, known_point in enumerate(self.new_points):
+                if np.abs(known_point - point).max() <= self.eps:
+                    vertex = len(self.vertices) + k
+                    break
+        if vertex is None:
+            vertex = len(self.vertices) + len(self.new_points)
+            self.new_points.append(point)
+        self.crossings[key] = vertex
+        for s in key:
+            if vertex not in s:
+                self.on_edge.setdefault(s, set()).add(vertex)
+        return vertex
+
+    def _with_edge_points(self, outline: list[int]) -> list[int]:
+        """The outline with the points that lie on its edges put in, in order."""
+        out = []
+        n = len(outline)
+        for k in range(n):
+            u, v = outline[k], outline[(k + 1) % n]
+            out.append(u)
+            points = self.on_edge.get(_edge(u, v))
+            if not points:
+                # an edge of a piece may lie along an original edge without
+                # being one: look along every edge that holds points, its
+                # ends included
+                points = set()
+                for (i, j), extra in self.on_edge.items():
+                    line = {i, j} | extra
+                    if u in line and v in line:
+                        points |= line
+            if points:
+                pu, pv = self.point(u), self.point(v)
+                d = pv - pu
+                length = float(d @ d)
+                inside = []
+                for w in points - {u, v}:
+                    t = float((self.point(w) - pu) @ d) / length
+                    off = self.point(w) - (pu + t * d)
+                    if self.eps < t * math.sqrt(length) < math.sqrt(length) - self.eps \
+                            and np.abs(off).max() <= 1e3 * self.eps:
+                        inside.append((t, w))
+                out.extend(w for _, w in sorted(inside))
+        return out
+
+    def _fan(self, outline: list[int]) -> list[list[int]]:
+        """Triangles of a convex outline; with points on its sides, a fan from
+        a new point at its centre (a fan from a corner would give flat ones)."""
+        if len(outline) == 3:
+            return [outline]
+        centre = np.mean([self.point(v) for v in outline], axis=0)
+        c = len(self.vertices) + len(self.new_points)
+        self.new_points.append(centre)
+        return [[outline[k], outline[(k + 1) % len(outline)], c] for k in range(len(outline))]
+
+
+def paired(triangles: np.ndarray) -> bool:
+    """Whether every edge is used as often one way as the other (closed, oriented)."""
+    if len(triangles) == 0:
+        return True
+    a = triangles.ravel()
+    b = np.roll(triangles, -1, axis=1).ravel()
+    n = int(triangles.max()) + 1
+    forward, fc = np.unique(a * n + b, return_counts=True)
+    backward, bc = np.unique(b * n + a, return_counts=True)
+    return len(forward) == len(backward) and bool(np.all(forward == backward) and np.all(fc == bc))
+
+
+def _welded_seams(vertices: np.ndarray, triangles: np.ndarray, eps: float) -> np.ndarray:
+    """Two shells that met through a sheet now meet edge to edge, where each
+    kept its own vertices (a rounding apart): the vertices of edges left
+    without a partner are welded to those within ``eps``."""
+    a = triangles.ravel()
+    b = np.roll(triangles, -1, axis=1).ravel()
+    n = len(vertices) + 1
+    forward, backward = a * n + b, b * n + a
+    lonely = ~np.isin(forward, backward)
+    if not lonely.any():
+        return triangles
+    ends = np.unique(np.concatenate([a[lonely], b[lonely]]))
+    points = vertices[ends]
+    table = np.arange(len(vertices))
+    for i in range(len(ends)):
+        close = np.flatnonzero(np.abs(points[i + 1:] - points[i]).max(axis=1) <= eps)
+        for j in close.tolist():
+            u, w = int(ends[i]), int(ends[i + 1 + j])
+            table[max(table[u], table[w])] = min(table[u], table[w])
+    table = table[table]
+    return table[triangles]
+
+
+def _edge(a: int, b: int) -> tuple[int, int]:
+    return (a, b) if a < b else (b, a)
+
+
+def _boxes_meet(a, b, eps) -> bool:
+    return a[0] < b[2] - eps and b[0] < a[2] - eps and a[1] < b[3] - eps and b[1] < a[3] - eps
+
+
+def _overlap_area(p: list, q: list) -> float:
+    """Area common to two counter-clockwise convex polygons in 2D."""
+    out = p
+    for k in range(len(q)):
+        (ax, ay), (bx, by) = q[k], q[(k + 1) % len(q)]
+        points, n = [], len(out)
+        for m in range(n):
+            (ux, uy), (vx, vy) = out[m], out[(m + 1) % n]
+            su = (bx - ax) * (uy - ay) - (by - ay) * (ux - ax)
+            sv = (bx - ax) * (vy - ay) - (by - ay) * (vx - ax)
+            if su >= 0:
+                points.append((ux, uy))
+            if (su > 0 > sv) or (su < 0 < sv):
+                t = su / (su - sv)
+                points.append((ux + t * (vx - ux), uy + t * (vy - uy)))
+        out = points
+        if len(out) < 3:
+            return 0.0
+    return sum(out[k][0] * out[(k + 1) % len(out)][1] - out[(k + 1) % len(out)][0] * out[k][1]
+               for k in range(len(out))) / 2

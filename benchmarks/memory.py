@@ -1,0 +1,100 @@
+"""Peak memory per output polygon, for large frames.
+
+Each scene runs in a fresh process; the figure is that process's peak
+resident memory (ru_maxrss) over the polygons of its frame. Two ways:
+
+- "facetize": castor's own pipeline (evaluation, booleans, the engine's
+  triangles, polygon merging, the frame's arrays), the writer replaced by a
+  counter, so the figure is the geometry's alone;
+- "stl": the whole command, `castor --no-cpp -f stl -o /dev/null`.
+
+    python memory.py            # the default set (about a minute, 3 GB at most)
+    python memory.py --large    # also 5 M polygons of spheres (needs ~3 GB)
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+
+from _common import castor_command, table
+
+FACETIZE = r'''
+import json, resource, sys, time
+import castor.formats.output as output
+counts = []
+output.Output.frame = lambda self, frame, location: counts.append(frame.polygon_count)
+output.Output.start = lambda self: None
+output.Output.finish = lambda self, had_errors: True
+from castor import cli
+started = time.perf_counter()
+status = cli.main(["--no-cpp", "-q", *sys.argv[1:]])
+seconds = time.perf_counter() - started
+print(json.dumps({"status": status, "polygons": sum(counts), "seconds": seconds,
+                  "peak": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024}))
+'''
+
+WHOLE = r'''
+import json, resource, subprocess, sys, time
+started = time.perf_counter()
+result = subprocess.run(sys.argv[1:], stderr=subprocess.PIPE, text=True)
+seconds = time.perf_counter() - started
+print(json.dumps({"status": result.returncode, "stderr": result.stderr[-400:], "seconds": seconds,
+                  "peak": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024}))
+'''
+
+
+def spheres(count: int, tolerance: float) -> str:
+    return (f"TOLERANCE = {tolerance};\n"
+            f"> $U[I = 0, {count - 1}](@t(3 * I, 0, 0) !sp(1, 1, 1));\n")
+
+
+def cubes(count: int) -> str:
+    side = 500
+    return (f"> $U[I = 0, {count - 1}](@t(2 * (I % {side}), 2 * floor(I / {side}), 0) "
+            f"!cu(1, 1, 1));\n")
+
+
+def measure(scene: str, how: str) -> dict:
+    with tempfile.NamedTemporaryFile("w", suffix=".cas", delete=False) as handle:
+        handle.write(scene)
+    if how == "facetize":
+        command = [sys.executable, "-c", FACETIZE, handle.name]
+    else:
+        command = [sys.executable, "-c", WHOLE, *castor_command(), "--no-cpp", "-q", "-f", "stl",
+                   "-o", "/dev/null", "--stats", handle.name]
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        raise SystemExit(result.stderr[-2000:])
+    figures = json.loads(result.stdout.strip().splitlines()[-1])
+    if how == "stl":  # --stats: "N polygons"
+        figures["polygons"] = int(figures["stderr"].split(" polygons")[0].split()[-1].replace(",", ""))
+    return figures
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--large", action="store_true")
+    args = parser.parse_args()
+    cases = [
+        ("10 spheres, TOLERANCE 0.0001", spheres(10, 0.0001)),
+        ("30 spheres, TOLERANCE 0.0001", spheres(30, 0.0001)),
+        ("union of 200,000 disjoint cubes", cubes(200_000)),
+    ]
+    if args.large:
+        cases.append(("86 spheres, TOLERANCE 0.0001", spheres(86, 0.0001)))
+    rows = []
+    for name, scene in cases:
+        for how in ("facetize", "stl"):
+            f = measure(scene, how)
+            rows.append([name, how, f"{f['polygons']:,}", f"{f['seconds']:.1f}",
+                         f"{f['peak'] / 1e9:.2f}", f"{f['peak'] / max(f['polygons'], 1):.0f}"])
+            print(rows[-1], file=sys.stderr)
+    print(table(rows, ["scene", "measured", "polygons", "seconds", "peak GB", "B/polygon"]))
+
+
+if __name__ == "__main__":
+    main()

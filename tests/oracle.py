@@ -1,0 +1,722 @@
+"""A differential oracle for castor's geometry (LANGUAGE.md §3-§8).
+
+It generates random valid scenes as Python structures (parameters, a DAG of
+named objects, nested transformations with mirrors and ``@m``, nested
+``$U/$I/$D``, repetitions, several ``>`` with late binding) over the
+primitives whose geometry is known exactly (``!cu !pr !py !ex``), prints each
+as Castor text for castor, and evaluates the same structure itself, written
+apart from castor's modules: its own matrices, its own paths, its own
+primitive meshes, manifold3d called directly with the booleans in another
+order. Each frame is then judged: volume, box and area against the oracle;
+closed and outward; every polygon planar, convex, of positive area, winding
+once; no shell of zero volume, no sheet (a polygon with the same side on both
+faces); every path names a primitive of the frame, every polygon lies on a
+face of that primitive and has its colour.
+
+    python tests/oracle.py --cases 3000 [--seed S] [--batch 40]
+
+prints the figures and the smallest reproduction of each kind of failure.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import random
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+
+import manifold3d
+import numpy as np
+
+try:
+    import meshcheck
+except ImportError:  # run as a script from elsewhere
+    sys.path.insert(0, __import__("os").path.dirname(__file__))
+    import meshcheck
+
+
+# --- the scene as a structure -----------------------------------------------
+
+@dataclass(frozen=True)
+class Param:
+    """coefficient * NAME + constant, printed as an expression for castor."""
+    name: str
+    coefficient: float
+    constant: float
+
+
+@dataclass(frozen=True)
+class Prim:
+    kind: str  # cu pr py ex
+    colour: tuple
+    args: tuple  # N for pr/py; x1, y1, ... for ex
+
+
+@dataclass(frozen=True)
+class Tf:
+    steps: tuple  # (kind, args): t rx ry rz r h m
+    child: object
+
+
+@dataclass(frozen=True)
+class Bool:
+    op: str  # U I D
+    children: tuple
+
+
+@dataclass(frozen=True)
+class Rep:
+    op: str  # U I
+    param: str
+    count: int
+    child: object  # uses param
+
+
+@dataclass(frozen=True)
+class Ref:
+    name: str
+
+
+@dataclass
+class Scene:
+    statements: list = field(default_factory=list)  # ("param", n, v) ("object", n, node) ("frame", [nodes])
+
+    def frames(self) -> int:
+        return sum(1 for s in self.statements if s[0] == "frame")
+
+
+# --- printing for castor ----------------------------------------------------
+
+def number(x: float) -> str:
+    text = repr(float(x))
+    return text if x >= 0 else f"({text})"
+
+
+def expression(value) -> str:
+    if isinstance(value, Param):
+        return f"({number(value.coefficient)} * {value.name} + {number(value.constant)})"
+    return number(value)
+
+
+def text(node) -> str:
+    if isinstance(node, Prim):
+        return f"!{node.kind}({', '.join(number(c) for c in node.colour + node.args)})"
+    if isinstance(node, Tf):
+        steps = " ".join(f"@{k}({', '.join(expression(a) for a in args)})" for k, args in node.steps)
+        return f"{steps} {text(node.child)}"
+    if isinstance(node, Bool):
+        return f"${node.op}({', '.join(text(c) for c in node.children)})"
+    if isinstance(node, Rep):
+        return f"${node.op}[{node.param} = 0, {node.count - 1}]({text(node.child)})"
+    return node.name
+
+
+def scene_text(scene: Scene) -> str:
+    lines = []
+    for s in scene.statements:
+        if s[0] == "param":
+            lines.append(f"{s[1]} = {number(s[2])};")
+        elif s[0] == "object":
+            lines.append(f"{s[1]} = {text(s[2])};")
+        else:
+            lines.append(f"> {', '.join(text(n) for n in s[1])};")
+    return "\n".join(lines) + "\n"
+
+
+# --- the oracle's own evaluation ---------------------------------------------
+
+def _value(v, env) -> float:
+    return v.coefficient * env[v.name] + v.constant if isinstance(v, Param) else v
+
+
+def _rotation(axis, degrees) -> np.ndarray:
+    x, y, z = np.asarray(axis, float) / np.linalg.norm(axis)
+    a = math.radians(degrees)
+    c, s, t = math.cos(a), math.sin(a), 1 - math.cos(a)
+    m = np.eye(4)
+    m[:3, :3] = [[t * x * x + c, t * x * y - s * z, t * x * z + s * y],
+                 [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
+                 [t * x * z - s * y, t * y * z + s * x, t * z * z + c]]
+    return m
+
+
+def step_matrix(kind: str, v: list) -> np.ndarray:
+    m = np.eye(4)
+    if kind == "t":
+        m[:3, 3] = v
+    elif kind in ("rx", "ry", "rz"):
+        m = _rotation({"rx": (1, 0, 0), "ry": (0, 1, 0), "rz": (0, 0, 1)}[kind], v[0])
+    elif kind == "r":
+        m = _rotation(v[:3], v[3])
+    elif kind == "h":
+        m[0, 0], m[1, 1], m[2, 2] = v if len(v) == 3 else v * 3
+    elif kind == "m":
+        m[:3, :] = np.array(v).reshape(3, 4)
+    return m
+
+
+def polygon_points(n: int) -> np.ndarray:
+    a = 2 * np.pi * np.arange(n) / n
+    return np.column_stack([np.cos(a), np.sin(a)])
+
+
+def primitive_faces(prim: Prim) -> list[np.ndarray]:
+    """The flat faces of a primitive in its own coordinates, each an (n, 3) loop."""
+    if prim.kind == "cu":
+        base = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
+        return _prism_faces(base)
+    if prim.kind == "pr":
+        return _prism_faces(polygon_points(int(prim.args[0])))
+    if prim.kind == "ex":
+        return _prism_faces(np.array(prim.args, float).reshape(-1, 2))
+    base = polygon_points(int(prim.args[0]))
+    apex = np.array([0.0, 0.0, 1.0])
+    faces = [np.column_stack([base, np.zeros(len(base))])]
+    for k in range(len(base)):
+        a, b = base[k], base[(k + 1) % len(base)]
+        faces.append(np.array([[*a, 0], [*b, 0], apex]))
+    return faces
+
+
+def _prism_faces(base: np.ndarray) -> list[np.ndarray]:
+    n = len(base)
+    faces = [np.column_stack([base, np.zeros(n)]), np.column_stack([base, np.ones(n)])]
+    for k in range(n):
+        a, b = base[k], base[(k + 1) % n]
+        faces.append(np.array([[*a, 0], [*b, 0], [*b, 1], [*a, 1]]))
+    return faces
+
+
+def primitive_solid(prim: Prim) -> manifold3d.Manifold:
+    """The primitive as a manifold, from its own vertices (no rounding: the
+    engine's 2D sections work on a grid, so they are not used)."""
+    if prim.kind == "py":
+        base = polygon_points(int(prim.args[0]))
+        points = np.vstack([np.column_stack([base, np.zeros(len(base))]), [[0, 0, 1]]])
+        return manifold3d.Manifold.hull_points(points)
+    if prim.kind == "cu":
+        base = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
+    elif prim.kind == "pr":
+        base = polygon_points(int(prim.args[0]))
+    else:
+        base = np.array(prim.args, float).reshape(-1, 2)
+    x, y = base[:, 0], base[:, 1]
+    if (x * np.roll(y, -1) - np.roll(x, -1) * y).sum() < 0:
+        base = base[::-1]  # counter-clockwise
+    n = len(base)
+    cap = np.array(manifold3d.triangulate([base]), dtype=np.int64).reshape(-1, 3)
+    triangles = [cap[:, ::-1], cap + n]
+    k = np.arange(n)
+    following = (k + 1) % n
+    triangles.append(np.column_stack([k, following, following + n]))
+    triangles.append(np.column_stack([k, following + n, k + n]))
+    vertices = np.vstack([np.column_stack([base, np.zeros(n)]), np.column_stack([base, np.ones(n)])])
+    mesh = manifold3d.Mesh64(vert_properties=np.ascontiguousarray(vertices, dtype=np.float64),
+                             tri_verts=np.ascontiguousarray(np.vstack(triangles), dtype=np.uint64))
+    solid = manifold3d.Manifold(mesh)
+    assert solid.status() == manifold3d.Error.NoError, solid.status()
+    return solid
+
+
+def _distinct(solids: list) -> list:
+    kept, seen = [], set()
+    for solid in solids:
+        gl = solid.to_mesh64()
+        key = (np.asarray(gl.vert_properties)[:, :3].tobytes(), np.asarray(gl.tri_verts).tobytes())
+        if key not in seen:
+            seen.add(key)
+            kept.append(solid)
+    return kept
+
+
+def without_thin_shells(solid: manifold3d.Manifold) -> manifold3d.Manifold:
+    """The solid without its shells of (about) zero volume: what touches only
+    leaves a sheet in manifold3d, which regularization removes."""
+    parts = solid.decompose()
+    kept = [p for p in parts if abs(p.volume()) > 1e-9 * p.surface_area()]  # cavities stay
+    if len(kept) == len(parts):
+        return solid
+    return manifold3d.Manifold.compose(kept) if kept else manifold3d.Manifold()
+
+
+@dataclass
+class Use:
+    """One use of a primitive in a frame: its path, colour and faces in place."""
+    path: str
+    colour: tuple
+    faces: list  # (normal, offset, loop (n, 3), 2D axes)
+
+
+def _use(path: str, prim: Prim, matrix: np.ndarray) -> Use:
+    faces = []
+    for loop in primitive_faces(prim):
+        points = loop @ matrix[:3, :3].T + matrix[:3, 3]
+        normal = np.cross(points[1] - points[0], points[2] - points[0])
+        for k in range(2, len(points) - 1):  # a non-degenerate triple
+            if np.linalg.norm(normal) > 1e-9 * np.ptp(points, axis=0).max() ** 2:
+                break
+            normal = np.cross(points[1] - points[0], points[k + 1] - points[0])
+        normal /= np.linalg.norm(normal)
+        faces.append((normal, float(normal @ points[0]), points))
+    return Use(path, tuple(prim.colour), faces)
+
+
+class Oracle:
+    """Evaluates a scene structure with manifold3d directly."""
+
+    def __init__(self, scene: Scene):
+        self.scene = scene
+
+    def frames(self):
+        """For each '>' command: (manifolds of its objects, uses of primitives)."""
+        env: dict[str, float] = {}
+        objects: dict[str, object] = {}
+        for s in self.scene.statements:
+            if s[0] == "param":
+                env[s[1]] = s[2]
+            elif s[0] == "object":
+                objects[s[1]] = s[2]
+            else:
+                self.objects = objects
+                results = []
+                uses: list[Use] = []
+                for node in s[1]:
+                    solid = self.evaluate(node, dict(env), np.eye(4), "", uses)
+                    results.append(solid)
+                yield results, uses
+
+    def evaluate(self, node, env, matrix, path, uses) -> manifold3d.Manifold:
+        """The solid of ``node`` in its own coordinates; ``matrix`` places it in
+        the world, for the faces of its primitives. (Booleans are done where
+        their operands are defined, then moved, as a user reading the scene
+        would: faces that meet there meet exactly.)"""
+        if isinstance(node, Ref):
+            return self.evaluate(self.objects[node.name], env, matrix, f"{path}({node.name})", uses)
+        if isinstance(node, Prim):
+            uses.append(_use(f"{path}!{node.kind}", node, matrix))
+            return primitive_solid(node)
+        if isinstance(node, Tf):
+            m = np.eye(4)
+            for kind, args in node.steps:
+                values = [_value(a, env) for a in args]
+                m = m @ step_matrix(kind, values)
+            return self.evaluate(node.child, env, matrix @ m, path, uses).transform(m[:3, :])
+        dot = "." if path else ""
+        if isinstance(node, Rep):
+            solids = []
+            saved = env.get(node.param)
+            for k in range(node.count):
+                env[node.param] = float(k)
+                solids.append(self.evaluate(node.child, env, matrix, f"{path}{dot}{node.op}{k + 1}",
+                                            uses))
+            if saved is None:
+                env.pop(node.param, None)
+            else:
+                env[node.param] = saved
+            op = node.op
+        else:
+            solids = [self.evaluate(c, env, matrix, f"{path}{dot}{node.op}{k}", uses)
+                      for k, c in enumerate(node.children, 1)]
+            op = node.op
+        # A with A is A: the engine is not asked to unite or intersect a solid
+        # with an exact copy of itself (its coincident faces are the hardest case)
+        if op in "UI":
+            solids = _distinct(solids)
+        result = solids[0]
+        for other in solids[1:]:  # one by one, left to right: not castor's order
+            if op == "U":
+                result = result + other
+            elif op == "I":
+                result = result ^ other
+            else:
+                result = result - other
+            result = without_thin_shells(result)
+        return result
+
+
+# --- random scenes ----------------------------------------------------------
+
+class Generator:
+    def __init__(self, rng: random.Random, prefix: str):
+        self.rng = rng
+        self.prefix = prefix
+        self.params = [f"{prefix.upper()}P{k}" for k in range(3)]
+        self.names: list[str] = []
+
+    def colour(self):
+        r = self.rng
+        return (r.choice([0.0, 0.25, 0.5, 1.0]), r.choice([0.0, 0.5, 1.0]), r.choice([0.0, 0.5, 1.0]))
+
+    def coordinate(self, scale=1.0):
+        r = self.rng
+        if r.random() < 0.6:  # on a grid: faces that touch and coincide
+            return r.choice([-1.0, -0.5, 0.0, 0.5, 1.0, 1.5]) * scale
+        return round(r.uniform(-1.5, 1.5), 3) * scale
+
+    def maybe_param(self, value):
+        r = self.rng
+        if r.random() < 0.25:
+            return Param(r.choice(self.params), r.choice([0.5, 1.0, -0.5, 0.25]), value)
+        return value
+
+    def primitive(self):
+        r = self.rng
+        kind = r.choice(["cu", "cu", "pr", "py", "ex"])
+        if kind in ("pr", "py"):
+            return Prim(kind, self.colour(), (float(r.choice([3, 4, 5, 6, 8])),))
+        if kind == "ex":
+            shape = r.choice([
+                [0, 0, 2, 0, 2, 1, 1, 1, 1, 2, 0, 2],  # L
+                [0, 0, 0, 2, 1, 2, 1, 1, 2, 1, 2, 0],  # L, clockwise
+                [0, 0, 1, 0, 0.5, 0.8],
+                [0, 0, 2, 0, 2, 2, 1.5, 2, 1.5, 0.5, 0.5, 0.5, 0.5, 2, 0, 2],  # U
+            ])
+            return Prim(kind, self.colour(), tuple(float(x) for x in shape))
+        return Prim(kind, self.colour(), ())
+
+    def steps(self):
+        r = self.rng
+        steps = []
+        for _ in range(r.choice([1, 1, 1, 2, 3])):
+            kind = r.choice(["t", "t", "t", "rx", "ry", "rz", "h", "h", "m", "r"])
+            if kind == "t":
+                steps.append(("t", tuple(self.maybe_param(self.coordinate()) for _ in range(3))))
+            elif kind in ("rx", "ry", "rz"):
+                angle = r.choice([90.0, 180.0, -90.0, 45.0, 30.0]) if r.random() < 0.7 else round(r.uniform(-180, 180), 2)
+                steps.append((kind, (self.maybe_param(angle),)))
+            elif kind == "r":
+                steps.append(("r", (r.choice([1.0, 0.0]), 1.0, r.choice([0.0, 1.0, -1.0]),
+                                    r.choice([90.0, 60.0, round(r.uniform(-90, 90), 1)]))))
+            elif kind == "h":
+                factors = [-1.0, 2.0, 0.5, 1.5, -2.0, 1.0]
+                if r.random() < 0.4:
+                    steps.append(("h", (r.choice(factors),)))
+                else:
+                    steps.append(("h", tuple(r.choice(factors) for _ in range(3))))
+            else:
+                a = _rotation((r.uniform(-1, 1), r.uniform(-1, 1), 1.0), r.uniform(-180, 180))[:3, :3]
+                a = a @ np.diag([r.choice([1.0, -1.0, 1.5]), r.choice([1.0, 0.5]), 1.0])
+                a[0, 1] += r.choice([0.0, 0.0, 0.3])  # a shear now and then
+                rows = np.column_stack([np.round(a, 4), [self.coordinate() for _ in range(3)]])
+                steps.append(("m", tuple(float(x) for x in rows.ravel())))
+        return tuple(steps)
+
+    def node(self, depth: int, rep_param: str | None = None):
+        r = self.rng
+        choice = r.random()
+        if depth <= 0 or choice < 0.25:
+            leaf = Ref(r.choice(self.names)) if self.names and r.random() < 0.4 else self.primitive()
+            if rep_param is not None:
+                return Tf((("t", (Param(rep_param, r.choice([1.0, 0.5, 0.25]), 0.0), 0.0,
+                                  Param(rep_param, r.choice([0.0, 0.5]), 0.0))),), leaf)
+            return leaf if r.random() < 0.3 else Tf(self.steps(), leaf)
+        if choice < 0.45:
+            return Tf(self.steps(), self.node(depth - 1, rep_param))
+        if choice < 0.55 and rep_param is None:
+            param = f"{self.prefix.upper()}R{depth}"
+            return Rep(r.choice(["U", "U", "I"]), param, r.choice([2, 3]),
+                       self.node(depth - 1, param) if r.random() < 0.5
+                       else Tf((("t", (Param(param, r.choice([1.0, 0.5]), 0.0), 0.0, 0.0)),),
+                               self.node(depth - 1)))
+        op = r.choice(["U", "U", "I", "D", "D"])
+        count = 2 if op == "D" else r.choice([2, 2, 3, 4])
+        children = tuple(self.node(depth - 1, rep_param if k == 0 else None) for k in range(count))
+        if op == "I":  # mostly meeting operands: move them near the first
+            children = children[:1] + tuple(c if r.random() < 0.5 else Tf((("t", (0.25, 0.25, 0.0)),), c)
+                                            for c in children[1:])
+        return Bool(op, children)
+
+    def scene(self) -> Scene:
+        r = self.rng
+        scene = Scene()
+        for name in self.params:
+            scene.statements.append(("param", name, self.coordinate()))
+        for k in range(r.choice([1, 2, 3])):
+            name = f"{self.prefix}o{k}"
+            scene.statements.append(("object", name, self.node(r.choice([1, 2, 3]))))
+            self.names.append(name)
+        for _ in range(r.choice([1, 2, 3])):
+            if r.random() < 0.5:  # late binding: the objects see the new value
+                scene.statements.append(("param", r.choice(self.params), self.coordinate()))
+            objects = [Ref(r.choice(self.names)) if r.random() < 0.6 else self.node(2)
+                       for _ in range(r.choice([1, 1, 2]))]
+            scene.statements.append(("frame", objects))
+        return scene
+
+
+# --- judging a frame --------------------------------------------------------
+
+def lies_on_face(points: np.ndarray, use: Use, tol: float) -> bool:
+    for normal, offset, loop in use.faces:
+        if np.abs(points @ normal - offset).max() > tol:
+            continue
+        # inside the face: the polygon's centre, in the face's plane
+        centre = (points.mean(axis=0) + points[:3].mean(axis=0)) / 2
+        u = loop[1] - loop[0]
+        u /= np.linalg.norm(u)
+        v = np.cross(normal, u)
+        q = np.column_stack([(loop - loop[0]) @ u, (loop - loop[0]) @ v])
+        c = np.array([(centre - loop[0]) @ u, (centre - loop[0]) @ v])
+        if _inside(q, c, tol):
+            return True
+    return False
+
+
+def _inside(polygon: np.ndarray, point: np.ndarray, tol: float) -> bool:
+    """Point in a simple polygon (crossings), or within tol of its outline."""
+    x, y = point
+    inside = False
+    n = len(polygon)
+    for k in range(n):
+        (x1, y1), (x2, y2) = polygon[k], polygon[(k + 1) % n]
+        d = np.array([x2 - x1, y2 - y1])
+        t = np.clip(((x - x1) * d[0] + (y - y1) * d[1]) / max(d @ d, 1e-300), 0, 1)
+        if math.hypot(x1 + t * d[0] - x, y1 + t * d[1] - y) <= tol:
+            return True
+        if (y1 > y) != (y2 > y) and x < x1 + (y - y1) * (x2 - x1) / (y2 - y1):
+            inside = not inside
+    return inside
+
+
+def closed_defects(frame) -> list[str]:
+    """Every edge (by exact positions) has as many uses one way as the other:
+    closed, and consistently oriented. Twice each way is allowed: solids that
+    touch along an edge (two cubes corner to corner) meet there."""
+    from collections import Counter
+    edges = Counter()
+    for p in frame.polygons:
+        pts = [tuple(v) for v in p.points.tolist()]
+        for i in range(len(pts)):
+            edges[(pts[i], pts[(i + 1) % len(pts)])] += 1
+    return [f"not closed: edge {a}->{b} used {n} times, {edges.get((b, a), 0)} the other way"
+            for (a, b), n in edges.items() if edges.get((b, a), 0) != n][:3]
+
+
+UNSURE: list[int] = []  # frames where manifold3d's own result had a sheet
+
+
+def has_sheets(solid: manifold3d.Manifold) -> bool:
+    """Whether manifold3d's own result holds a fold or sheet (a triangle with
+    the same side on both faces): then its area and box are not the truth,
+    and only castor's own surface is judged."""
+    if solid.is_empty():
+        return False
+    gl = solid.to_mesh64()
+    v = np.asarray(gl.vert_properties)[:, :3]
+    t = np.asarray(gl.tri_verts, dtype=np.int64)
+    p = v[t]
+    normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    length = np.linalg.norm(normal, axis=1)
+    keep = length > 1e-12 * max(1.0, float(np.abs(v).max())) ** 2
+    normal = normal[keep] / length[keep, None]
+    offset = 1e-8 * max(1.0, float(np.abs(v).max()))
+    # the centre and a point near each corner: a triangle half on a sheet shows
+    weights = np.array([[1 / 3, 1 / 3, 1 / 3], [0.8, 0.1, 0.1], [0.1, 0.8, 0.1], [0.1, 0.1, 0.8]])
+    centre = np.einsum("sk,tkj->stj", weights, p[keep]).reshape(-1, 3)
+    normal = np.tile(normal, (len(weights), 1))
+    w = meshcheck.winding_numbers(p, np.vstack([centre - offset * normal, centre + offset * normal]))
+    w = w.reshape(2, -1)
+    return bool(np.any(np.abs(w[0] - 1) > 0.01) or np.any(np.abs(w[1]) > 0.01))
+
+
+def judge(frame, solids, uses, sheets: bool = True) -> list[str]:
+    """Every way ``frame`` (read from castor's stream) differs from the oracle.
+
+    The stream does not say where one object of a '>' command ends and the
+    next begins, and objects may overlap: a frame of several objects is judged
+    as a whole (volume, area, box, polygons, origins), its surface only when
+    it holds one."""
+    problems = []
+    volume = sum(s.volume() for s in solids)
+    area = sum(s.surface_area() for s in solids)
+    boxes = [s.bounding_box() for s in solids if not s.is_empty()]
+    size = 1.0
+    if boxes:
+        b = np.array(boxes).reshape(-1, 2, 3)
+        box = np.array([b[:, 0].min(axis=0), b[:, 1].max(axis=0)])
+        size = max(1.0, float(np.abs(box).max()))
+    if not frame.polygons:
+        if volume > 1e-9 * size ** 3:
+            problems.append(f"castor's frame is empty, the oracle's volume is {volume:.6g}")
+        return problems
+    got = frame.volume()
+    if abs(got - volume) > 1e-7 * size ** 3:
+        problems.append(f"volume {got:.9g}, oracle {volume:.9g}")
+    sure = not any(has_sheets(s) for s in solids)
+    if not sure:
+        UNSURE.append(frame.number)
+    got_area = frame.area()
+    if sure and abs(got_area - area) > 1e-7 * size ** 2:
+        problems.append(f"area {got_area:.9g}, oracle {area:.9g}")
+    if sure and boxes and np.abs(frame.box() - box).max() > 1e-9 * size:
+        problems.append(f"box {frame.box().round(9).tolist()}, oracle {box.round(9).tolist()}")
+    if len(solids) == 1:
+        problems += closed_defects(frame)
+        if got <= 0:
+            problems.append("not outward")
+        problems += meshcheck.regularity_defects(frame, sheets=sheets)
+    else:
+        problems += [f"polygon {i} of {p.path}: {', '.join(d)}"
+                     for i, p in enumerate(frame.polygons) if (d := meshcheck.polygon_defects(p))]
+    by_path: dict[str, list[Use]] = {}
+    for use in uses:
+        by_path.setdefault(use.path, []).append(use)
+    tol = 1e-7 * size
+    for i, p in enumerate(frame.polygons):
+        candidates = by_path.get(p.path)
+        if not candidates:
+            problems.append(f"polygon {i}: path {p.path} names no primitive of the frame")
+            continue
+        if not any(u.colour == p.colour for u in candidates):
+            problems.append(f"polygon {i} of {p.path}: colour {p.colour}, the primitive's "
+                            f"{candidates[0].colour}")
+        if not any(lies_on_face(p.points, u, tol) for u in candidates):
+            problems.append(f"polygon {i} of {p.path} lies on no face of that primitive")
+    return problems
+
+
+# --- running castor on many scenes at once ------------------------------------
+
+def castor_frames(text: str):
+    """castor's frames for a scene text (one process), and its stderr."""
+    result = subprocess.run([sys.executable, "-m", "castor", "--no-cpp", "-q"], input=text,
+                            capture_output=True, text=True, timeout=600)
+    if result.returncode != 0 or "Traceback" in result.stderr:
+        raise RuntimeError(result.stderr[-2000:])
+    return meshcheck.parse_stream(result.stdout), result.stderr
+
+
+def check_scenes(scenes: list[Scene], sheets: bool = True) -> list[tuple[Scene, int, list[str]]]:
+    """Run castor once on all the scenes; the failures as (scene, frame, problems)."""
+    text = "".join(scene_text(s) for s in scenes)
+    frames, _ = castor_frames(text)
+    expected = sum(s.frames() for s in scenes)
+    if len(frames) != expected:
+        raise RuntimeError(f"castor wrote {len(frames)} frames, the scenes have {expected}")
+    failures = []
+    k = 0
+    for scene in scenes:
+        for number, (solids, uses) in enumerate(Oracle(scene).frames(), 1):
+            problems = judge(frames[k], solids, uses, sheets)
+            k += 1
+            if problems:
+                failures.append((scene, number, problems))
+    return failures
+
+
+def scenes(count: int, seed: int) -> list[Scene]:
+    rng = random.Random(seed)
+    return [Generator(rng, f"s{k}").scene() for k in range(count)]
+
+
+def kind_of(problem: str) -> str:
+    for word in ("zero area", "volume", "area", "box", "closed", "outward", "repeated",
+                 "winds", "planar", "convex", "shell", "winding", "names no", "colour",
+                 "lies on no", "empty"):
+        if word in problem:
+            return word
+    return problem[:20]
+
+
+def shrink(scene: Scene, kind: str, sheets: bool = True) -> Scene:
+    """A smaller scene that still fails the same way: drop statements, frames'
+    extra objects, operands and transformation steps while it does."""
+    def fails(candidate: Scene) -> bool:
+        try:
+            found = check_scenes([candidate], sheets)
+        except (RuntimeError, KeyError, ValueError, IndexError, ZeroDivisionError):
+            return False
+        return any(kind_of(p) == kind for _, _, ps in found for p in ps)
+
+    def smaller_nodes(node):
+        if isinstance(node, Tf):
+            yield node.child
+            for k in range(len(node.steps)):
+                if len(node.steps) > 1:
+                    yield Tf(node.steps[:k] + node.steps[k + 1:], node.child)
+            for c in smaller_nodes(node.child):
+                yield Tf(node.steps, c)
+        elif isinstance(node, Bool):
+            for c in node.children:
+                yield c
+            if node.op != "D" and len(node.children) > 2:
+                for k in range(len(node.children)):
+                    yield Bool(node.op, node.children[:k] + node.children[k + 1:])
+            for k, child in enumerate(node.children):
+                for c in smaller_nodes(child):
+                    yield Bool(node.op, node.children[:k] + (c,) + node.children[k + 1:])
+        elif isinstance(node, Rep):
+            if node.count > 2:
+                yield Rep(node.op, node.param, node.count - 1, node.child)
+            for c in smaller_nodes(node.child):
+                yield Rep(node.op, node.param, node.count, c)
+
+    def candidates(s: Scene):
+        st = s.statements
+        for k in range(len(st)):
+            if st[k][0] != "param":
+                yield Scene(st[:k] + st[k + 1:])
+        for k, item in enumerate(st):
+            if item[0] == "frame":
+                if len(item[1]) > 1:
+                    for j in range(len(item[1])):
+                        yield Scene(st[:k] + [("frame", item[1][:j] + item[1][j + 1:])] + st[k + 1:])
+                for j, node in enumerate(item[1]):
+                    for c in smaller_nodes(node):
+                        yield Scene(st[:k] + [("frame", item[1][:j] + [c] + item[1][j + 1:])] + st[k + 1:])
+            elif item[0] == "object":
+                for c in smaller_nodes(item[2]):
+                    yield Scene(st[:k] + [("object", item[1], c)] + st[k + 1:])
+
+    improved = True
+    tries = 0
+    while improved and tries < 400:
+        improved = False
+        for candidate in candidates(scene):
+            tries += 1
+            if candidate.frames() and fails(candidate):
+                scene = candidate
+                improved = True
+                break
+            if tries >= 400:
+                break
+    return scene
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--cases", type=int, default=300)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--batch", type=int, default=50)
+    parser.add_argument("--no-sheets", action="store_true", help="skip the winding test")
+    parser.add_argument("--no-shrink", action="store_true")
+    args = parser.parse_args()
+    started = time.time()
+    failures = []
+    frames = 0
+    for start in range(0, args.cases, args.batch):
+        batch = scenes(min(args.batch, args.cases - start), args.seed * 1_000_003 + start)
+        frames += sum(s.frames() for s in batch)
+        failures += check_scenes(batch, sheets=not args.no_sheets)
+        print(f"{start + len(batch)} scenes, {frames} frames, {len(failures)} failing frames, "
+              f"{time.time() - started:.0f} s", file=sys.stderr)
+    kinds: dict[str, list] = {}
+    for scene, number, problems in failures:
+        for p in problems:
+            kinds.setdefault(kind_of(p), []).append((scene, number, p))
+    print(f"{args.cases} scenes, {frames} frames, {len(failures)} failing frames "
+          f"({time.time() - started:.0f} s); in {len(UNSURE)} frames manifold3d's own result "
+          "held a sheet, and only castor's surface was judged (no area or box)")
+    for kind, items in sorted(kinds.items(), key=lambda kv: -len(kv[1])):
+        scenes_failing = len({id(s) for s, _, _ in items})
+        print(f"\n== {kind}: {scenes_failing} scenes; e.g. frame {items[0][1]}: {items[0][2]}")
+        if not args.no_shrink:
+            small = shrink(items[0][0], kind, not args.no_sheets)
+            print(scene_text(small))
+
+
+if __name__ == "__main__":
+    main()
