@@ -182,10 +182,7 @@ class Evaluator:
         return tree.Use(matrix, rel.steps(), shared)
 
     def _transformed(self, node: Transformed, env, matrix, stretch, tolerance, trail, rel):
-        import numpy as np
-
-        local = np.eye(4)
-        moved = False
+        local = tree.IDENTITY
         failed = False
         for step in node.steps:
             values = self._values(step.args, env)
@@ -199,18 +196,22 @@ class Evaluator:
                 # in scene units; inside a named object used at a scale, in its units
                 tolerance = values[0]
                 continue
-            m, factor = step_matrix(step.kind, values, step.location, trail)
-            local = local @ m
-            stretch *= factor
-            moved = True
+            if step.kind == "t":  # the commonest step, without numpy
+                x, y, z = values
+                m = (1.0, 0.0, 0.0, x, 0.0, 1.0, 0.0, y, 0.0, 0.0, 1.0, z)
+            else:
+                full, factor = step_matrix(step.kind, values, step.location, trail)
+                m = _matrix(full)
+                stretch *= factor
+            local = tree.compose(local, m)
         if failed:
             return None
-        if moved:
-            if not np.all(np.abs(local) <= MAX_COORDINATE):
+        if local is not tree.IDENTITY:
+            if not all(abs(v) <= MAX_COORDINATE for v in local):
                 raise GeometryError(f"the transformations of {trail} reach beyond "
                                     f"{MAX_COORDINATE:g}, the largest coordinate castor handles",
                                     node.location)
-            matrix = tree.compose(matrix, _matrix(local))
+            matrix = tree.compose(matrix, local)
         return self._node(node.child, env, matrix, stretch, tolerance, trail, rel)
 
     def _boolean(self, node: Boolean, env, matrix, stretch, tolerance, trail, rel):

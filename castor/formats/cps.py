@@ -17,13 +17,24 @@ from castor.mesh.frame import Frame
 HEADER = "castor-polygons 1\n"
 
 
-def number_strings(values: np.ndarray) -> list[str]:
-    """Shortest round-trip text of each value; -0 is written 0."""
-    out = list(map(repr, (np.asarray(values, dtype=np.float64).ravel() + 0.0).tolist()))
+def _texts(values: list[float]) -> list[str]:
+    out = list(map(repr, values))
     for i, text in enumerate(out):
         if text[-2:] == ".0":
             out[i] = text[:-2]
     return out
+
+
+def number_strings(values: np.ndarray) -> list[str]:
+    """Shortest round-trip text of each value; -0 is written 0. Where values
+    repeat (walls on a grid, copies in rows), each is written once and looked up."""
+    flat = np.asarray(values, dtype=np.float64).ravel() + 0.0
+    if len(flat) < 4096:
+        return _texts(flat.tolist())
+    unique, index = np.unique(flat, return_inverse=True)
+    if 2 * len(unique) > len(flat):
+        return _texts(flat.tolist())
+    return list(map(_texts(unique.tolist()).__getitem__, index.ravel().tolist()))
 
 
 _UNSAFE = re.compile(r"[%\x00-\x20\x7f-\x9f\s]")
@@ -47,8 +58,12 @@ def format_frame(frame: Frame) -> str:
         numbers = number_strings(obj.vertices)
         points = list(map(" ".join, zip(numbers[0::3], numbers[1::3], numbers[2::3])))
         heads = []
+        colours: dict[tuple, str] = {}
         for origin in obj.origins:
-            colour = " ".join(number_strings(np.array(origin.colour, dtype=np.float64)))
+            colour = colours.get(origin.colour)
+            if colour is None:
+                colour = colours[origin.colour] = " ".join(_texts(
+                    (np.array(origin.colour, dtype=np.float64) + 0.0).tolist()))
             heads.append(f"poly {origin.path} {colour} ")
         sizes = np.diff(obj.offsets)
         # every polygon as its head, its size and its points, in one pass

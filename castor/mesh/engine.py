@@ -108,6 +108,7 @@ class Solid:
 
     def part_boxes(self) -> np.ndarray:
         """(parts, 2, 3): each part's (min xyz, max xyz)."""
+        _fill_boxes(self.parts)
         return np.array([part.bounding_box() for part in self.parts],
                         dtype=np.float64).reshape(-1, 2, 3)
 
@@ -209,11 +210,35 @@ def template(mesh: Mesh) -> Template:
 _IDENTITY = np.eye(4)[:3]
 
 
-def instance(shape: Template, origin: Origin) -> Solid:
-    """One use of a primitive, with an ID of its own that every output triangle
-    coming from it will carry; it enters the engine only if a boolean needs it."""
-    placed = Placed(shape, _IDENTITY.copy(), manifold3d.Manifold.reserve_ids(1))
+def instance(shape: Template, origin: Origin, matrix=None) -> Solid:
+    """One use of a primitive, placed by ``matrix`` (its 12 numbers row by row, or
+    None), with an ID of its own that every output triangle coming from it will
+    carry; it enters the engine only if a boolean needs it."""
+    rows = (_IDENTITY.copy() if matrix is None
+            else np.array(matrix, dtype=np.float64).reshape(3, 4))
+    placed = Placed(shape, rows, manifold3d.Manifold.reserve_ids(1))
     return Solid((placed,), {placed.id: origin})
+
+
+def _fill_boxes(parts) -> None:
+    """The boxes of many placed copies at once (one array operation for the
+    copies of each template, not a small one for each)."""
+    waiting: dict[int, list] = {}
+    for part in parts:
+        if type(part) is Placed and part._box is None:
+            waiting.setdefault(id(part.template), []).append(part)
+    for group in waiting.values():
+        if len(group) < 8:
+            continue  # one at a time is as quick
+        corners = group[0].template.vertices
+        step = max(1, 4_000_000 // max(1, len(corners)))
+        for k in range(0, len(group), step):
+            chunk = group[k:k + step]
+            m = np.stack([part.matrix for part in chunk])
+            points = np.einsum("nij,kj->nki", m[:, :, :3], corners) + m[:, None, :, 3]
+            low, high = points.min(axis=1).tolist(), points.max(axis=1).tolist()
+            for part, lo, hi in zip(chunk, low, high):
+                part._box = (*lo, *hi)
 
 
 def reinstanced(solid: Solid) -> Solid | None:
@@ -368,6 +393,7 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
     if len(solids) == 1:
         return solids[0]
     parts = [part for s in solids for part in s.parts]
+    _fill_boxes(parts)
     boxes = np.array([part.bounding_box() for part in parts], dtype=np.float64).reshape(-1, 2, 3)
     origins = _merged_origins(solids)
     result, result_boxes = [], []

@@ -141,12 +141,11 @@ class Facetizer:
         return result
 
     def _primitive(self, leaf: tree.Primitive) -> engine.Solid:
-        curved = PRIMITIVES[leaf.kind].curved
-        self._check_count(primitives.estimate_triangles(leaf.kind, leaf.shape, leaf.tolerance),
-                          leaf)
-        key = (leaf.kind, leaf.shape, leaf.tolerance if curved else None)
+        key = (leaf.kind, leaf.shape, leaf.tolerance if PRIMITIVES[leaf.kind].curved else None)
         shape_in_engine = self.shape_cache.get(key)
         if shape_in_engine is None:
+            self._check_count(primitives.estimate_triangles(leaf.kind, leaf.shape,
+                                                            leaf.tolerance), leaf)
             mesh = primitives.build(leaf.kind, leaf.shape, leaf.tolerance)
             try:
                 shape_in_engine = engine.template(mesh)
@@ -157,10 +156,8 @@ class Facetizer:
                 self.shape_cache.clear()
             self.shape_cache[key] = shape_in_engine
         self.primitive_count += 1
-        solid = engine.instance(shape_in_engine, Origin(Path(leaf.path), leaf.colour))
-        if leaf.matrix != tree.IDENTITY:
-            solid = solid.transformed(leaf.matrix)
-        return solid
+        return engine.instance(shape_in_engine, Origin(Path(leaf.path), leaf.colour),
+                               None if leaf.matrix == tree.IDENTITY else leaf.matrix)
 
 
 def tree_figures(scene: tree.Frame) -> tuple[int, int]:
