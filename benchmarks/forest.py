@@ -17,25 +17,16 @@ rangee = $U[J = 0, 19](@t(2.5 * J, 0, 0) arbre);
 
 
 def main() -> None:
-    from castor.mesh.facetize import Facetizer
-    from castor.language.parse import Parser
-    from castor.language.reader import Chunk
-    from castor.language.scene import Tables
     from castor.formats import cps
+    from castor.mesh.facetize import Facetizer
+    from castor.run import evaluated_frames
 
     best = None
     for _ in range(RUNS):
-        tables = Tables(parameters={"TOLERANCE": 0.01})
-        parser = Parser(tables)
-        statements = []
-        for number, line in enumerate(SCENE.strip().splitlines(), 1):
-            for statement in parser.parse(Chunk(line, (("forest", number),), 0)):
-                if hasattr(statement, "node"):
-                    tables.objects[statement.name] = statement.node
-                statements.append(statement)
+        [scene], said = evaluated_frames(SCENE, "forest")
         facetizer = Facetizer()
         started = time.perf_counter()
-        frame = facetizer.frame(statements[-1].objects, {"TOLERANCE": 0.01}, 1, "forest:3", None)
+        frame = facetizer.frame(scene)
         facetize = time.perf_counter() - started
         started = time.perf_counter()
         cps.export(frame)

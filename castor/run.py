@@ -201,6 +201,10 @@ def executor_for(jobs: int, scheduler: str | None):
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
+    # one engine thread in each worker: the workers share the cores between them
+    # (manifold3d spreads a boolean over every core with OpenMP otherwise, and
+    # N workers times N threads only wait on each other)
+    os.environ.setdefault("OMP_NUM_THREADS", "1")
     context = multiprocessing.get_context("forkserver")
     context.set_forkserver_preload(["castor.jobs", "castor.mesh.facetize"])
     return ProcessPoolExecutor(max_workers=jobs, mp_context=context), jobs
