@@ -97,7 +97,7 @@ def is_device(path: str) -> bool:
 
     try:
         mode = os.stat(path).st_mode
-    except OSError:
+    except (OSError, ValueError):  # no such path, a NUL in the name
         return False
     return not stat.S_ISREG(mode) and not stat.S_ISDIR(mode)
 
