@@ -14,6 +14,7 @@ from typing import NamedTuple
 import numpy as np
 
 from castor.mesh.frame import Frame, FrameObject
+from castor.mesh.polygons import components
 
 
 class Figures(NamedTuple):
@@ -45,18 +46,8 @@ def shell_count(obj: FrameObject) -> int:
     following = np.arange(1, len(obj.indices) + 1)
     following[obj.offsets[1:] - 1] = obj.offsets[:-1]
     a, b = obj.indices, obj.indices[following]
-    label = np.arange(len(obj.vertices))
-    while True:
-        low = np.minimum(label[a], label[b])
-        np.minimum.at(label, label[a], low)
-        np.minimum.at(label, label[b], low)
-        while True:
-            jumped = label[label]
-            if np.array_equal(jumped, label):
-                break
-            label = jumped
-        if np.array_equal(label[a], label[b]):
-            return len(np.unique(label[used]))
+    label = components(len(obj.vertices), a, b)
+    return len(np.unique(label[used]))
 
 
 def object_figures(obj: FrameObject, name: str) -> Figures:

@@ -361,18 +361,7 @@ def _overlap_groups(boxes: np.ndarray) -> list[list[int]]:
         a, b = pairs[:, 0], pairs[:, 1]
         meet = np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
         a, b = a[meet], b[meet]
-        while len(a):  # hook each root to the smallest label it meets, then jump
-            la, lb = label[a], label[b]
-            low = np.minimum(la, lb)
-            np.minimum.at(label, la, low)
-            np.minimum.at(label, lb, low)
-            while True:
-                jumped = label[label]
-                if np.array_equal(jumped, label):
-                    break
-                label = jumped
-            if np.array_equal(label[a], label[b]):
-                break
+        label = polygons.components(n, a, b)
     order = np.argsort(label, kind="stable")
     bounds = np.flatnonzero(np.diff(label[order])) + 1
     return [group.tolist() for group in np.split(order, bounds)]

@@ -881,3 +881,23 @@ def _overlap_area(p: list, q: list) -> float:
             return 0.0
     return sum(out[k][0] * out[(k + 1) % len(out)][1] - out[(k + 1) % len(out)][0] * out[k][1]
                for k in range(len(out))) / 2
+
+
+def components(count: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """For ``count`` items joined in pairs (a[i], b[i]), the label of each item's
+    connected group (its smallest member), by label propagation with pointer
+    jumping: array operations, no Python loop over the items."""
+    label = np.arange(count)
+    while len(a):  # hook each root to the smallest label it meets, then jump
+        la, lb = label[a], label[b]
+        low = np.minimum(la, lb)
+        np.minimum.at(label, la, low)
+        np.minimum.at(label, lb, low)
+        while True:
+            jumped = label[label]
+            if np.array_equal(jumped, label):
+                break
+            label = jumped
+        if np.array_equal(label[a], label[b]):
+            break
+    return label
