@@ -14,7 +14,7 @@ import sys
 import threading
 
 from castor import __version__
-from castor.diagnostics import CastorError, Reporter, TooManyErrors
+from castor.diagnostics import CastorError, Reporter
 from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
                             DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
                             parse_point, parse_scale, parse_section, parse_size, parse_sun,

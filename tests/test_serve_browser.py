@@ -9,7 +9,6 @@ from __future__ import annotations
 import io
 import os
 import shutil
-import time
 
 import numpy as np
 import pytest

@@ -16,7 +16,7 @@ from castor.csg.paths import Path
 from castor.diagnostics import GeometryError, LimitError
 from castor.language.vocabulary import PRIMITIVES
 from castor.mesh import engine, memory, polygons, primitives
-from castor.mesh.frame import Frame, FrameObject, Origin, compact
+from castor.mesh.frame import Frame, Origin, compact
 from castor.options import DEFAULT_MAX_POLYGONS
 
 # A frame whose estimate is this many times --max-polygons is refused before

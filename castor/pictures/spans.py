@@ -271,8 +271,7 @@ def _torus_spans(shape, o, d):
     pu = np.einsum("ij,ij->i", p, u)
     pp = np.einsum("ij,ij->i", p, p)
     e = pp + 1 - k * k
-    c4 = np.ones(n)
-    c3 = 4 * pu
+    c3 = 4 * pu  # the quartic is monic: its s^4 coefficient is 1
     c2 = 2 * e + 4 * pu * pu - 4 * (u[:, 0] ** 2 + u[:, 1] ** 2)
     c1 = 4 * pu * e - 8 * (p[:, 0] * u[:, 0] + p[:, 1] * u[:, 1])
     c0 = e * e - 4 * (p[:, 0] ** 2 + p[:, 1] ** 2)
@@ -428,7 +427,6 @@ def _extrusion_box(shape):
 def _revolution_spans(shape, o, d):
     a, b = _outline(shape)
     crossings, faces = [], []
-    rho2 = None
     ox, oy, oz = o[:, 0], o[:, 1], o[:, 2]
     dx, dy, dz = d[:, 0], d[:, 1], d[:, 2]
     qa = dx * dx + dy * dy
