@@ -15,23 +15,19 @@ import tempfile
 import time
 
 from _common import castor_command, runs_from_env, table
+from houses import CASTOR
 
 RUNS = runs_from_env(1)
 
-SCENE = """
-L = 10; P = 8; H = 3; E = 0.3;
-murs = $D(@h(L, P, H) !cu(0.9, 0.9, 0.8), @t(E, E, -1) @h(L - 2 * E, P - 2 * E, H + 2) !cu(0.9, 0.9, 0.8));
-fen_s = @t(1 + K * 1.8 + 0.02 * T + 0.01 * I, -1, 1) @h(1, 3, 1.2) !cu(0.2, 0.4, 0.9);
-fen_n = @t(1 + K * 1.8 - 0.02 * T + 0.01 * J, P - 2, 1) @h(1, 3, 1.2) !cu(0.2, 0.4, 0.9);
-ouvertures = $U($U[K = 0, 4](fen_s), $U[K = 0, 4](fen_n),
-                @t(-1, 3, 1) @h(3, 1, 1.2) !cu(0.2, 0.4, 0.9), @t(L - 2, 3, 1) @h(3, 1, 1.2) !cu(0.2, 0.4, 0.9),
-                @t(4.5, -1, -0.5) @h(1, 3, 2.6) !cu(0.2, 0.4, 0.9));
-toit = @t(L / 2, P / 2, H) @rz(45) @h(7.5, 7.5, 2.5) !py(0.7, 0.2, 0.1, 4);
-colonne = @t(1 + C * 2.6, -1.5, 0) @h(0.2, 0.2, H) !pr(0.8, 0.8, 0.8, 16);
-maison = $U($D(murs, ouvertures), toit, $U[C = 0, 3](colonne));
-bloc = $U[I = 0, 7]($U[J = 0, 7](@t(15 * I, 15 * J, 0) maison));
->[T = 0, 23] bloc;
-"""
+# the 64 houses of houses.py, their windows sliding with the frame (T) and the house (I, J)
+SCENE = (CASTOR
+         .replace("fen_s = @t(1 + K * 1.8, -1, 1)",
+                  "fen_s = @t(1 + K * 1.8 + 0.02 * T + 0.01 * I, -1, 1)")
+         .replace("fen_n = @t(1 + K * 1.8, P - 2, 1)",
+                  "fen_n = @t(1 + K * 1.8 - 0.02 * T + 0.01 * J, P - 2, 1)")
+         .replace("> $U[I = 0, 7]($U[J = 0, 7](@t(15 * I, 15 * J, 0) maison));",
+                  "bloc = $U[I = 0, 7]($U[J = 0, 7](@t(15 * I, 15 * J, 0) maison));\n"
+                  ">[T = 0, 23] bloc;"))
 
 
 def free_port() -> int:
