@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import random
 import subprocess
 import sys
@@ -34,7 +35,7 @@ import numpy as np
 try:
     import meshcheck
 except ImportError:  # run as a script from elsewhere
-    sys.path.insert(0, __import__("os").path.dirname(__file__))
+    sys.path.insert(0, os.path.dirname(__file__))
     import meshcheck
 
 
@@ -693,6 +694,7 @@ def main() -> None:
     parser.add_argument("--batch", type=int, default=50)
     parser.add_argument("--no-sheets", action="store_true", help="skip the winding test")
     parser.add_argument("--no-shrink", action="store_true")
+    parser.add_argument("--save", metavar="DIR", help="write each failing scene and its problems there")
     args = parser.parse_args()
     started = time.time()
     failures = []
@@ -703,6 +705,12 @@ def main() -> None:
         failures += check_scenes(batch, sheets=not args.no_sheets)
         print(f"{start + len(batch)} scenes, {frames} frames, {len(failures)} failing frames, "
               f"{time.time() - started:.0f} s", file=sys.stderr)
+    if args.save:
+        os.makedirs(args.save, exist_ok=True)
+        for k, (scene, number, problems) in enumerate(failures):
+            with open(os.path.join(args.save, f"failure-{k:03d}.cas"), "w") as f:
+                f.write("".join(f"// frame {number}: {p}\n" for p in problems))
+                f.write(scene_text(scene))
     kinds: dict[str, list] = {}
     for scene, number, problems in failures:
         for p in problems:

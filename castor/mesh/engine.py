@@ -27,11 +27,16 @@ class Template:
     """A primitive's shape in the engine, built once, with its own triangles
     kept as arrays: a copy placed somewhere is written from them directly."""
 
-    __slots__ = ("manifold", "vertices", "triangles", "face_ids", "turned")
+    __slots__ = ("manifold", "vertices", "triangles", "face_ids", "turned", "spare")
 
     def __init__(self, manifold: manifold3d.Manifold):
         self.manifold = manifold
         gl = manifold.to_mesh64()
+        # The first copy to enter the engine takes the template's own manifold
+        # and ID (as_original, which gives the others theirs, costs as much as
+        # a boolean on a large sphere); a list, whose pop is atomic. The ID of
+        # a manifold built from a mesh is its run's (original_id() says -1).
+        self.spare = [(manifold, int(np.asarray(gl.run_original_id)[0]))]
         self.vertices = np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64)
         self.triangles = np.asarray(gl.tri_verts, dtype=np.int64)
         self.face_ids = np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF
@@ -81,8 +86,12 @@ class Placed:
     def in_engine(self) -> tuple[manifold3d.Manifold, int]:
         """The engine's own copy, and its new ID (to which the caller maps
         ``id``'s origin)."""
-        original = self.template.manifold.as_original()
-        return original.transform(np.ascontiguousarray(self.matrix)), original.original_id()
+        try:
+            original, id = self.template.spare.pop()
+        except IndexError:
+            original = self.template.manifold.as_original()
+            id = original.original_id()
+        return original.transform(np.ascontiguousarray(self.matrix)), id
 
 
 @dataclass(frozen=True, slots=True)

@@ -448,6 +448,12 @@ def _coincident(triangles: np.ndarray) -> np.ndarray | None:
         key_b = (backward[:, 0] * n + backward[:, 1]) * n + backward[:, 2]
     else:
         return None
+    # a triangle and its twin have the same corners: look for a repeated set
+    # first (one sort), the usual case being that there is none
+    corners = np.sort(t, axis=1)
+    same = np.sort((corners[:, 0] * n + corners[:, 1]) * n + corners[:, 2])
+    if not (same[1:] == same[:-1]).any():
+        return None
     hit = np.isin(key_f, key_b)
     if not hit.any():
         return None
@@ -576,8 +582,26 @@ def _opposed_planes(vertices, triangles, chunk: int = 1 << 20) -> list[tuple[np.
         normals.append(u)
     key = np.concatenate(keys)
     sign = np.concatenate(signs)
-    order = np.lexsort(key.T[::-1])
-    key, sign = key[order], sign[order]
+    # sorted on one number made of the four (a multiplicative hash, wrapping),
+    # then each group that holds both signs is sorted on the four themselves,
+    # which parts the rare triangles of other planes that share its number
+    with np.errstate(over="ignore"):
+        mixed_key = (((key[:, 0] * np.int64(-7046029254386353131) + key[:, 1])
+                      * np.int64(-4658895280553007687) + key[:, 2])
+                     * np.int64(-7723592293110705685) + key[:, 3])
+    order = np.argsort(mixed_key)
+    mixed_key, sign = mixed_key[order], sign[order]
+    same = mixed_key[1:] == mixed_key[:-1]
+    starts = np.flatnonzero(np.r_[True, ~same])
+    ends = np.r_[starts[1:], len(mixed_key)]
+    positive = np.add.reduceat((sign > 0).astype(np.int64), starts)
+    both = (positive > 0) & (positive < ends - starts)
+    if not both.any():
+        return []
+    order = order[np.repeat(both, ends - starts)]
+    key, sign = key[order], np.concatenate(signs)[order]
+    within = np.lexsort(key.T[::-1])
+    order, key, sign = order[within], key[within], sign[within]
     same = np.all(key[1:] == key[:-1], axis=1)
     starts = np.flatnonzero(np.r_[True, ~same])
     ends = np.r_[starts[1:], len(key)]
