@@ -259,10 +259,13 @@ def sheet_defects(frame: Frame, offset: float = 1e-8) -> list[str]:
         if length == 0:
             continue
         normal /= length
-        # four points well inside the (convex) polygon: its centre, and three
-        # towards its first corners (one point could lie on another solid's edge)
+        # four points well inside the (convex) polygon, none on a line through
+        # its centre and a corner: solids that touch along a line (which is no
+        # sheet) often touch along a diagonal, and one point may lie on it
         centre = p.points.mean(axis=0)
-        for q in [centre] + [0.6 * p.points[k] + 0.4 * centre for k in range(3)]:
+        n = len(p.points)
+        for q in [0.47 * p.points[k % n] + 0.31 * p.points[(k + 1) % n] + 0.22 * centre
+                  for k in range(4)]:
             points += [q - offset * size * normal, q + offset * size * normal]
         names.append(p.path)
     w = winding_numbers(triangles, np.array(points)).reshape(-1, 4, 2)

@@ -1,9 +1,12 @@
 """The boolean engine, manifold3d, behind one small adapter.
 
-A ``Solid`` is a manifold plus the table of its origins: manifold3d gives
-every input mesh an ID and records, for each output triangle, which input it
-came from; castor maps that ID to the primitive's path and colour. That is how
-colours and paths survive any depth of booleans without guessing by geometry.
+A ``Solid`` is a manifold plus the table of its origins. manifold3d gives
+every primitive's mesh an ID and records, for each run of output triangles,
+the ID of the mesh it came from and the transformation that placed it there;
+castor maps that pair to the use of the primitive, its path and colour. That
+is how colours and paths survive any depth of booleans without guessing by
+geometry, and why an object used many times is the engine's one solid moved,
+never a copy rebuilt from its mesh (which the engine may rebuild differently).
 Everything that touches manifold3d is in this file.
 """
 
@@ -27,16 +30,14 @@ class Template:
     """A primitive's shape in the engine, built once, with its own triangles
     kept as arrays: a copy placed somewhere is written from them directly."""
 
-    __slots__ = ("manifold", "vertices", "triangles", "face_ids", "turned", "spare")
+    __slots__ = ("manifold", "id", "vertices", "triangles", "face_ids", "turned")
 
     def __init__(self, manifold: manifold3d.Manifold):
         self.manifold = manifold
         gl = manifold.to_mesh64()
-        # The first copy to enter the engine takes the template's own manifold
-        # and ID (as_original, which gives the others theirs, costs as much as
-        # a boolean on a large sphere); a list, whose pop is atomic. The ID of
-        # a manifold built from a mesh is its run's (original_id() says -1).
-        self.spare = [(manifold, int(np.asarray(gl.run_original_id)[0]))]
+        # every copy enters the engine as this manifold moved, under its ID
+        # (that of its run: original_id() says -1 for a manifold built from a mesh)
+        self.id = int(np.asarray(gl.run_original_id)[0])
         self.vertices = np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64)
         self.triangles = np.asarray(gl.tri_verts, dtype=np.int64)
         self.face_ids = np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF
@@ -49,18 +50,20 @@ class Template:
 class Placed:
     """One use of a primitive: its template and where it stands, not yet in
     the engine. A copy costs a few hundred bytes, not the engine's mesh; it
-    goes to the engine (as_original, transform) only when a boolean needs it,
+    goes to the engine (the template moved) only when a boolean needs it,
     so that a union of 200,000 cubes that do not meet, or a forest, holds one
-    mesh per kind of primitive. ``id`` names its origin, as the engine's IDs do
-    (taken from the engine's own counter)."""
+    mesh per kind of primitive."""
 
-    __slots__ = ("template", "matrix", "id", "_box")
+    __slots__ = ("template", "matrix", "_box")
 
-    def __init__(self, template: Template, matrix: np.ndarray, id: int):
+    def __init__(self, template: Template, matrix: np.ndarray):
         self.template = template
         self.matrix = matrix  # (3, 4)
-        self.id = id
         self._box = None
+
+    @property
+    def id(self) -> int:
+        return self.template.id
 
     def num_tri(self) -> int:
         return len(self.template.triangles)
@@ -81,17 +84,89 @@ class Placed:
     def moved(self, matrix: np.ndarray) -> "Placed":
         m = matrix[:3, :3] @ self.matrix
         m[:, 3] += matrix[:3, 3]
-        return Placed(self.template, m, self.id)
+        return Placed(self.template, m)
 
-    def in_engine(self) -> tuple[manifold3d.Manifold, int]:
-        """The engine's own copy, and its new ID (to which the caller maps
-        ``id``'s origin)."""
-        try:
-            original, id = self.template.spare.pop()
-        except IndexError:
-            original = self.template.manifold.as_original()
-            id = original.original_id()
-        return original.transform(np.ascontiguousarray(self.matrix)), id
+    def in_engine(self) -> manifold3d.Manifold:
+        """The engine's copy: the template moved (its runs keep the template's
+        ID, with this matrix as their transformation)."""
+        return self.template.manifold.transform(np.ascontiguousarray(self.matrix))
+
+
+class Origins:
+    """Where a solid's triangles come from: one entry per use of a primitive,
+    the engine's ID of its template, the matrix that places that template in
+    the solid, and its Origin (path and colour).
+
+    The engine reports each run of a result's triangles with the same pair
+    (its ID and its accumulated transformation), so ``find`` names the use of
+    every run. Two uses at one place give the same triangles, and either name
+    is true of them."""
+
+    __slots__ = ("ids", "matrices", "table")
+
+    def __init__(self, ids: np.ndarray, matrices: np.ndarray, table: tuple):
+        self.ids = ids  # (E,) int64
+        self.matrices = matrices  # (E, 3, 4)
+        self.table = table  # E Origins
+
+    @staticmethod
+    def one(id: int, matrix: np.ndarray, origin: Origin) -> "Origins":
+        return Origins(np.array([id], np.int64), matrix.reshape(1, 3, 4), (origin,))
+
+    @staticmethod
+    def merged(all_origins) -> "Origins":
+        all_origins = [o for o in all_origins if len(o.table)]
+        if len(all_origins) == 1:
+            return all_origins[0]
+        if not all_origins:
+            return NO_ORIGINS
+        return Origins(np.concatenate([o.ids for o in all_origins]),
+                       np.concatenate([o.matrices for o in all_origins]),
+                       tuple(t for o in all_origins for t in o.table))
+
+    def __len__(self) -> int:
+        return len(self.table)
+
+    def __getitem__(self, entry: int) -> Origin:
+        return self.table[entry]
+
+    def prefixed(self, prefix: str) -> "Origins":
+        return Origins(self.ids, self.matrices,
+                       tuple(Origin(o.steps.under(prefix), o.colour) for o in self.table))
+
+    def transformed(self, matrix: np.ndarray) -> "Origins":
+        """The entries of a solid moved by a 3x4 ``matrix``."""
+        moved = np.einsum("ij,ejk->eik", matrix[:, :3], self.matrices)
+        moved[:, :, 3] += matrix[:, 3]
+        return Origins(self.ids, moved, self.table)
+
+    def find(self, ids: np.ndarray, matrices: np.ndarray) -> np.ndarray:
+        """The entry of each run (its engine ID, its (R, 3, 4) placement): the
+        entry of that ID whose matrix is nearest (the engine composes
+        transformations in its own order, so they agree to rounding)."""
+        order = np.argsort(self.ids, kind="stable")
+        sorted_ids = self.ids[order]
+        low = np.searchsorted(sorted_ids, ids, "left")
+        high = np.searchsorted(sorted_ids, ids, "right")
+        if np.any(high == low):
+            raise KeyError(f"no origin for the engine's ID {int(ids[high == low][0])}")
+        found = order[low]
+        several = np.flatnonzero(high - low > 1)
+        if len(several):
+            flat = self.matrices.reshape(-1, 12)
+            wanted = matrices.reshape(-1, 12)
+            for start in np.unique(low[several]).tolist():
+                runs = several[low[several] == start]
+                candidates = order[start:high[runs[0]]]
+                step = max(1, 4_000_000 // (12 * len(candidates)))
+                for k in range(0, len(runs), step):
+                    chunk = runs[k:k + step]
+                    distance = np.abs(wanted[chunk][:, None, :] - flat[candidates][None]).max(axis=2)
+                    found[chunk] = candidates[np.argmin(distance, axis=1)]
+        return found
+
+
+NO_ORIGINS = Origins(np.zeros(0, np.int64), np.zeros((0, 3, 4)), ())
 
 
 @dataclass(frozen=True, slots=True)
@@ -106,7 +181,7 @@ class Solid:
     """
 
     parts: tuple  # never empty: manifolds, and primitives not yet in the engine (Placed)
-    origins: dict[int, Origin]
+    origins: Origins
 
     @property
     def empty(self) -> bool:
@@ -136,22 +211,17 @@ class Solid:
         return manifold3d.Manifold.compose(list(self.parts))
 
     def in_engine(self, which=None) -> "Solid":
-        """The same solid with its parts (or those numbered in ``which``) in the
-        engine, their origins under the engine's IDs."""
+        """The same solid with its parts (or those numbered in ``which``) in the engine."""
         if not any(type(p) is Placed for p in self.parts):
             return self
         parts = list(self.parts)
-        origins = dict(self.origins)
         for i in range(len(parts)) if which is None else which:
-            part = parts[i]
-            if type(part) is Placed:
-                parts[i] = _in_engine(part, origins)
-        return Solid(tuple(parts), origins)
+            parts[i] = _in_engine(parts[i])
+        return Solid(tuple(parts), self.origins)
 
     def prefixed(self, prefix: str) -> "Solid":
         """The same solid with ``prefix`` put in front of every path."""
-        return Solid(self.parts, {i: Origin(o.steps.under(prefix), o.colour)
-                                  for i, o in self.origins.items()})
+        return Solid(self.parts, self.origins.prefixed(prefix))
 
     def transformed(self, matrix) -> "Solid":
         """Moved by an affine map: a 3x4 or 4x4 matrix, or its 12 numbers row by row."""
@@ -160,10 +230,10 @@ class Solid:
         full[:3] = rows
         m = np.ascontiguousarray(rows)
         return Solid(tuple(part.moved(full) if type(part) is Placed else part.transform(m)
-                           for part in self.parts), self.origins)
+                           for part in self.parts), self.origins.transformed(m))
 
 
-def _solid(manifolds, origins: dict[int, Origin]) -> Solid:
+def _solid(manifolds, origins: Origins) -> Solid:
     return Solid(tuple(m for m in manifolds if not m.is_empty()), origins)
 
 
@@ -196,7 +266,7 @@ def _sheet(shell: manifold3d.Manifold) -> bool:
     return abs(shell.volume()) <= SHEET * size * shell.surface_area() / 2
 
 
-EMPTY = Solid((), {})
+EMPTY = Solid((), NO_ORIGINS)
 
 
 class EngineError(Exception):
@@ -221,12 +291,10 @@ _IDENTITY = np.eye(4)[:3]
 
 def instance(shape: Template, origin: Origin, matrix=None) -> Solid:
     """One use of a primitive, placed by ``matrix`` (its 12 numbers row by row, or
-    None), with an ID of its own that every output triangle coming from it will
-    carry; it enters the engine only if a boolean needs it."""
+    None); it enters the engine only if a boolean needs it."""
     rows = (_IDENTITY.copy() if matrix is None
             else np.array(matrix, dtype=np.float64).reshape(3, 4))
-    placed = Placed(shape, rows, manifold3d.Manifold.reserve_ids(1))
-    return Solid((placed,), {placed.id: origin})
+    return Solid((Placed(shape, rows),), Origins.one(shape.id, rows.copy(), origin))
 
 
 def _fill_boxes(parts) -> None:
@@ -250,77 +318,8 @@ def _fill_boxes(parts) -> None:
                 part._box = (*lo, *hi)
 
 
-def reinstanced(solid: Solid) -> Solid | None:
-    """A copy of ``solid`` whose origins have new IDs, or None if the engine
-    cannot give one that is exactly the same solid.
-
-    A cached subgraph used twice in one scene must not share IDs with its other
-    uses, or the two uses could not be told apart in the output. The engine
-    gives new IDs only to a mesh it builds afresh, and building cleans up the
-    topology (it swaps and collapses edges it judges degenerate), which can
-    change a solid that holds a fold the boolean left. So the copy is compared
-    with the solid, part by part (triangles, vertices, volume, area and box,
-    all exactly); if any differs, the caller evaluates the object again.
-    """
-    if solid.empty:
-        return solid
-    if any(type(p) is Placed for p in solid.parts):
-        placed = [p for p in solid.parts if type(p) is Placed]
-        first = manifold3d.Manifold.reserve_ids(len(placed))
-        renamed = {p.id: first + k for k, p in enumerate(placed)}
-        rest = reinstanced(Solid(tuple(p for p in solid.parts if type(p) is not Placed),
-                                 {i: o for i, o in solid.origins.items() if i not in renamed}))
-        if rest is None:
-            return None
-        parts = [Placed(p.template, p.matrix, renamed[p.id]) for p in placed]
-        origins = dict(rest.origins)
-        origins.update({renamed[i]: solid.origins[i] for i in renamed})
-        return Solid(tuple(parts) + rest.parts, origins)
-    meshes = [part.to_mesh64() for part in solid.parts]
-    run_ids = [np.asarray(gl.run_original_id, dtype=np.int64) for gl in meshes]
-    unique = np.unique(np.concatenate(run_ids))
-    first = manifold3d.Manifold.reserve_ids(len(unique))
-
-    def array(values, dtype):
-        return np.array(values, dtype=dtype)  # an owned, writable copy: the engine wants one
-
-    parts = []
-    for original, gl, ids in zip(solid.parts, meshes, run_ids):
-        copy = manifold3d.Manifold(manifold3d.Mesh64(
-            vert_properties=np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64),
-            tri_verts=array(gl.tri_verts, np.uint64),
-            run_index=array(gl.run_index, np.uint64),
-            run_original_id=array(first + np.searchsorted(unique, ids), np.uint32),
-            face_id=array(gl.face_id, np.uint64),
-            merge_from_vert=array(gl.merge_from_vert, np.uint64),
-            merge_to_vert=array(gl.merge_to_vert, np.uint64),
-        ))
-        del gl
-        if not _same(original, copy):
-            return None
-        parts.append(copy)
-    del meshes
-    mapping = dict(zip(unique.tolist(), range(first, first + len(unique))))
-    return _solid(parts, {mapping[i]: o for i, o in solid.origins.items() if i in mapping})
-
-
-def _same(a: manifold3d.Manifold, b: manifold3d.Manifold) -> bool:
-    """Whether two manifolds are the same solid: the same counts and box, and
-    volume and area equal but for the order of summation (an edge swapped
-    across a bend changes them; one swapped within a flat face does not, and
-    leaves the same surface)."""
-    def close(x, y):
-        return abs(x - y) <= 1e-12 * max(abs(x), abs(y), 1e-300)
-    return (a.num_tri() == b.num_tri() and a.num_vert() == b.num_vert()
-            and a.bounding_box() == b.bounding_box()
-            and close(a.volume(), b.volume()) and close(a.surface_area(), b.surface_area()))
-
-
-def _merged_origins(solids) -> dict[int, Origin]:
-    origins: dict[int, Origin] = {}
-    for s in solids:
-        origins.update(s.origins)
-    return origins
+def _merged_origins(solids) -> Origins:
+    return Origins.merged([s.origins for s in solids])
 
 
 def _overlap_groups(boxes: np.ndarray) -> list[list[int]]:
@@ -401,7 +400,7 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
             result_boxes.append(boxes[group[0]])
         else:
             counter.booleans += 1
-            operands = _distinct([_in_engine(parts[i], origins) for i in group])
+            operands = _distinct([_in_engine(parts[i]) for i in group])
             result.append(regular(_united(operands)))
             result_boxes.append(np.array([boxes[group, 0].min(axis=0), boxes[group, 1].max(axis=0)]))
     return _solid(_fewer_parts(result, np.array(result_boxes)), origins)
@@ -445,14 +444,9 @@ def _united(operands: list) -> manifold3d.Manifold:
     return operands[0]
 
 
-def _in_engine(part, origins: dict[int, Origin]) -> manifold3d.Manifold:
-    """A part as the engine's manifold; a Placed part's origin moves to its new ID."""
-    if type(part) is not Placed:
-        return part
-    manifold, new_id = part.in_engine()
-    if part.id in origins:
-        origins[new_id] = origins[part.id]
-    return manifold
+def _in_engine(part) -> manifold3d.Manifold:
+    """A part as the engine's manifold."""
+    return part.in_engine() if type(part) is Placed else part
 
 
 # More parts than this are composed into fewer: each part costs the engine a
@@ -518,7 +512,7 @@ def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
 class Triangles(NamedTuple):
     vertices: np.ndarray  # (V, 3) float64
     triangles: np.ndarray  # (T, 3) int64
-    origin_ids: np.ndarray  # (T,) int64
+    origin_ids: np.ndarray  # (T,) int64: the entry of the solid's Origins
     face_ids: np.ndarray  # (T,) int64: the flat face (of one primitive) each lies on
 
 
@@ -547,23 +541,24 @@ def batches(parts, triangles: int = 20_000, count: int = 256):
         yield batch
 
 
-def triangles(parts) -> Triangles:
-    """The triangles of the parts, one vertex list for all, none of them flat."""
+def triangles(parts, origins: Origins) -> Triangles:
+    """The triangles of the parts of a solid whose origins are ``origins``, one
+    vertex list for all, none of them flat."""
     pieces = []
     run: list[Placed] = []
     for part in parts:  # copies of one primitive side by side are placed at once
         if type(part) is Placed:
             if run and run[-1].template is not part.template:
-                pieces.append(_placed_triangles(run))
+                pieces.append(_placed_triangles(run, origins))
                 run = []
             run.append(part)
             continue
         if run:
-            pieces.append(_placed_triangles(run))
+            pieces.append(_placed_triangles(run, origins))
             run = []
-        pieces.append(_part_triangles(part))
+        pieces.append(_part_triangles(part, origins))
     if run:
-        pieces.append(_placed_triangles(run))
+        pieces.append(_placed_triangles(run, origins))
     if len(pieces) == 1:
         return _without_flat(pieces[0])
     base = np.cumsum([0] + [len(p.vertices) for p in pieces[:-1]])
@@ -575,7 +570,7 @@ def triangles(parts) -> Triangles:
         np.concatenate([p.face_ids + (k << 48) for k, p in enumerate(pieces)])))
 
 
-def _placed_triangles(run: list[Placed]) -> Triangles:
+def _placed_triangles(run: list[Placed], origins: Origins) -> Triangles:
     """The triangles of copies of one primitive, placed with one array operation;
     a mirrored copy's triangles turn the other way."""
     template = run[0].template
@@ -587,7 +582,8 @@ def _placed_triangles(run: list[Placed]) -> Triangles:
     count = len(template.triangles)
     tris = np.where(mirrored[:, None, None], template.turned[None], template.triangles[None])
     tris = (tris + (np.arange(len(run)) * len(v))[:, None, None]).reshape(-1, 3)
-    origin_ids = np.repeat(np.array([p.id for p in run], dtype=np.int64), count)
+    entries = origins.find(np.full(len(run), template.id, np.int64), matrices)
+    origin_ids = np.repeat(entries, count)
     faces = ((np.arange(len(run), dtype=np.int64) << 32)[:, None] | template.face_ids[None]).ravel()
     return Triangles(vertices, tris, origin_ids, faces)
 
@@ -631,7 +627,7 @@ def _cleaned(tri: Triangles) -> Triangles:
     return Triangles(vertices, triangles, origin_ids, face_ids)
 
 
-def _part_triangles(part: manifold3d.Manifold) -> Triangles:
+def _part_triangles(part: manifold3d.Manifold, origins: Origins) -> Triangles:
     """A part's triangles in double precision, with each one's origin and face."""
     gl = part.to_mesh64()
     vertices = np.asarray(gl.vert_properties, dtype=np.float64)[:, :3]
@@ -644,12 +640,15 @@ def _part_triangles(part: manifold3d.Manifold) -> Triangles:
         tris = remap[tris]
     run_index = np.asarray(gl.run_index, dtype=np.int64) // 3
     run_ids = np.asarray(gl.run_original_id, dtype=np.int64)
+    # the engine's transformations are (R, 4, 3), the columns of our 3x4 rows
+    placements = np.asarray(gl.run_transform, dtype=np.float64).transpose(0, 2, 1)
+    entries = origins.find(run_ids, placements)
     counts = np.diff(run_index)
-    origin_ids = np.repeat(run_ids, counts)
-    # one number for each flat face of each primitive: the rank of its origin
-    # in this part, then its face. Copies of one object (whose IDs keep their
-    # order) number their faces alike, so their polygons can be reused.
-    rank = np.searchsorted(np.unique(run_ids), run_ids)
+    origin_ids = np.repeat(entries, counts)
+    # one number for each flat face of each use of a primitive: the rank of its
+    # entry in this part, then its face. Copies of one object (whose entries
+    # keep their order) number their faces alike, so their polygons can be reused.
+    rank = np.searchsorted(np.unique(entries), entries)
     faces = (np.repeat(rank, counts) << 32) | (np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF)
     return Triangles(vertices, tris, origin_ids, faces)
 

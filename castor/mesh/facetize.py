@@ -71,7 +71,7 @@ class Facetizer:
             solid = self.solid(obj.root) if obj.root is not None else engine.EMPTY
             pieces = []
             for batch in engine.batches(solid.parts):
-                tri = engine.triangles(batch)
+                tri = engine.triangles(batch, solid.origins)
                 if self.merge_polygons:
                     merged = merger.merge(tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
                 else:
@@ -104,9 +104,10 @@ class Facetizer:
     def _use(self, use: tree.Use) -> engine.Solid:
         shared = use.shared
         cached = self.cache.get(shared.key)
-        # the engine's copy, unless it could not copy it exactly: then built again
-        solid = engine.reinstanced(cached[0]) if cached is not None else None
-        if solid is not None:
+        # the engine's own solid, as it was computed: never a copy rebuilt from
+        # its mesh, which the engine may rebuild differently
+        if cached is not None:
+            solid = cached[0]
             self.primitive_count += cached[1]
         else:
             before = self.primitive_count

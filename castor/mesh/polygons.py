@@ -553,66 +553,73 @@ def without_sheets(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.n
     """
     if len(triangles) < 2:
         return vertices, triangles, origin_ids, face_ids
-    planes = _opposed_planes(vertices, triangles)
+    planes = _opposed_planes(vertices, triangles, face_ids)
     if not planes:
         return vertices, triangles, origin_ids, face_ids
     return _Resolver(vertices, triangles, origin_ids, face_ids).resolve(planes)
 
 
-def _opposed_planes(vertices, triangles, chunk: int = 1 << 20) -> list[tuple[np.ndarray, np.ndarray]]:
+def _opposed_planes(vertices, triangles, face_ids,
+                    chunk: int = 1 << 20) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
     """Groups of triangles in one plane with both orientations: (plane's unit
-    normal, triangle numbers)."""
+    normal, triangle numbers, which of them face along the normal).
+
+    The triangles of one face number lie on one flat face of a primitive, so
+    a plane is found per face, from its largest triangle (a sliver's normal is
+    mostly rounding). Faces whose planes agree to 1e-7 (of the scene's size)
+    are one plane: faces that coincide on paper but differ by rounding."""
     scale = max(1.0, float(np.abs(vertices).max()))
-    keys, signs, normals = [], [], []
+    normals, areas = [], []
     for start in range(0, len(triangles), chunk):
-        p = vertices[triangles[start:start + chunk]]
-        n = _cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-        length = _norm(n)
-        n = np.divide(n, length[:, None], out=np.zeros_like(n), where=length[:, None] > 0)
-        # one sign for both sides of a plane: its largest component positive
-        big = np.argmax(np.abs(n), axis=1)
-        sign = np.sign(n[np.arange(len(n)), big])
-        sign[sign == 0] = 1
-        u = n * sign[:, None]
-        d = np.einsum("ij,ij->i", u, p.mean(axis=1))
-        key = np.column_stack([np.round(u * 1e9), np.round(d / scale * 1e9)]).astype(np.int64)
-        key[length <= 1e-14 * scale * scale] = np.iinfo(np.int64).min  # flat: no plane
-        keys.append(key)
-        signs.append(sign.astype(np.int8))
-        normals.append(u)
-    key = np.concatenate(keys)
-    sign = np.concatenate(signs)
-    # sorted on one number made of the four (a multiplicative hash, wrapping),
-    # then each group that holds both signs is sorted on the four themselves,
-    # which parts the rare triangles of other planes that share its number
-    with np.errstate(over="ignore"):
-        mixed_key = (((key[:, 0] * np.int64(-7046029254386353131) + key[:, 1])
-                      * np.int64(-4658895280553007687) + key[:, 2])
-                     * np.int64(-7723592293110705685) + key[:, 3])
-    order = np.argsort(mixed_key)
-    mixed_key, sign = mixed_key[order], sign[order]
-    same = mixed_key[1:] == mixed_key[:-1]
-    starts = np.flatnonzero(np.r_[True, ~same])
-    ends = np.r_[starts[1:], len(mixed_key)]
-    positive = np.add.reduceat((sign > 0).astype(np.int64), starts)
-    both = (positive > 0) & (positive < ends - starts)
-    if not both.any():
+        t = triangles[start:start + chunk]
+        p0 = vertices[t[:, 0]]
+        n = _cross(vertices[t[:, 1]] - p0, vertices[t[:, 2]] - p0)
+        normals.append(n)
+        areas.append(_norm(n))
+    n = np.concatenate(normals) if len(normals) > 1 else normals[0]
+    area = np.concatenate(areas) if len(areas) > 1 else areas[0]
+    _, face = np.unique(face_ids, return_inverse=True)
+    face = face.ravel()
+    # each face's largest triangle: sorted by face, then by area, largest first
+    order = np.lexsort((-area, face))
+    first = order[np.r_[True, face[order][1:] != face[order][:-1]]]
+    big_area = area[first]
+    u = n[first] / np.where(big_area > 0, big_area, 1.0)[:, None]
+    d = np.einsum("ij,ij->i", u, vertices[triangles[first]].mean(axis=1))
+    # one sign for both sides of a plane: its largest component positive
+    big = np.argmax(np.abs(u), axis=1)
+    sign = np.sign(u[np.arange(len(u)), big])
+    sign[sign == 0] = 1
+    u = u * sign[:, None]
+    d = d * sign
+    key = np.column_stack([np.round(u * 1e7), np.round(d / scale * 1e7)]).astype(np.int64)
+    solid_face = big_area > 1e-14 * scale * scale  # a face of only flat triangles has no plane
+    key_order = np.lexsort(key.T[::-1])
+    key_order = key_order[solid_face[key_order]]
+    if len(key_order) < 2:
         return []
-    order = order[np.repeat(both, ends - starts)]
-    key, sign = key[order], np.concatenate(signs)[order]
-    within = np.lexsort(key.T[::-1])
-    order, key, sign = order[within], key[within], sign[within]
-    same = np.all(key[1:] == key[:-1], axis=1)
-    starts = np.flatnonzero(np.r_[True, ~same])
-    ends = np.r_[starts[1:], len(key)]
-    # groups where both signs occur
-    positive = np.add.reduceat((sign > 0).astype(np.int64), starts)
-    sizes = ends - starts
-    mixed = np.flatnonzero((positive > 0) & (positive < sizes) & (key[starts, 0] != np.iinfo(np.int64).min))
+    k = key[key_order]
+    starts = np.flatnonzero(np.r_[True, np.any(k[1:] != k[:-1], axis=1)])
+    ends = np.r_[starts[1:], len(k)]
+    positive = np.add.reduceat((sign[key_order] > 0).astype(np.int64), starts)
+    mixed = np.flatnonzero((positive > 0) & (positive < ends - starts))
     if not len(mixed):
         return []
-    normal = np.concatenate(normals)
-    return [(normal[order[starts[g]]], order[starts[g]:ends[g]]) for g in mixed.tolist()]
+    # the triangles of each mixed plane's faces
+    plane_of_face = np.full(len(first), -1, np.int64)
+    for g in mixed.tolist():
+        plane_of_face[key_order[starts[g]:ends[g]]] = g
+    plane = plane_of_face[face]
+    members = np.flatnonzero(plane >= 0)
+    members = members[np.argsort(plane[members], kind="stable")]
+    bounds = np.flatnonzero(np.diff(plane[members])) + 1
+    out = []
+    for group in np.split(members, bounds):
+        g = int(plane[group[0]])
+        normal = u[key_order[starts[g]]]
+        up = sign[face[group]] > 0
+        out.append((normal, group, up))
+    return out
 
 
 class _Resolver:
@@ -636,8 +643,8 @@ class _Resolver:
 
     def resolve(self, planes):
         replaced: dict[int, list[list[int]]] = {}
-        for normal, members in planes:
-            self._plane(normal, members, replaced)
+        for normal, members, up in planes:
+            self._plane(normal, members, up, replaced)
         if not replaced:
             return self.vertices, self.triangles, self.origin_ids, self.face_ids
         # every triangle along an edge that gained points gets them too
@@ -667,7 +674,7 @@ class _Resolver:
         return (vertices, triangles, np.concatenate([self.origin_ids[keep], np.array(origin, np.int64)]),
                 np.concatenate([self.face_ids[keep], np.array(face, np.int64)]))
 
-    def _plane(self, normal, members, replaced):
+    def _plane(self, normal, members, up, replaced):
         # a 2D frame in the plane, turned so that x, y, normal is right-handed
         axis = np.eye(3)[int(np.argmin(np.abs(normal)))]
         e1 = np.cross(normal, axis)
@@ -675,9 +682,6 @@ class _Resolver:
         e2 = np.cross(normal, e1)
         self.e1, self.e2 = e1, e2
         tris = self.triangles[members]
-        p = self.vertices[tris]
-        n = _cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-        up = n @ normal > 0
         flat = {}
         for k, i in enumerate(members.tolist()):
             pts = [self._xy(v) for v in tris[k].tolist()]
@@ -688,6 +692,7 @@ class _Resolver:
                  for i, q in flat.items()}
         ups = [i for k, i in enumerate(members.tolist()) if up[k]]
         downs = [i for k, i in enumerate(members.tolist()) if not up[k]]
+        facing = set(ups)
         for group, others in ((ups, downs), (downs, ups)):
             for i in group:
                 opposite = [j for j in others if _boxes_meet(boxes[i], boxes[j], self.eps)
@@ -695,12 +700,12 @@ class _Resolver:
                 if not opposite:
                     continue
                 tri = self.triangles[i].tolist()
-                turned = not (i in ups)
+                turned = i not in facing
                 outline = tri[::-1] if turned else tri
                 pieces = [[(outline[k], _edge(outline[k], outline[(k + 1) % 3])) for k in range(3)]]
                 for j in opposite:
                     cutter = self.triangles[j].tolist()
-                    cutter = cutter if (j in ups) else cutter[::-1]
+                    cutter = cutter if j in facing else cutter[::-1]
                     pieces = [q for piece in pieces for q in self._subtract(piece, cutter)]
                 # back to the triangle's own turn
                 replaced[i] = [[v for v, _ in (piece[::-1] if turned else piece)] for piece in pieces]
