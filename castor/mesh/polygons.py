@@ -187,12 +187,14 @@ def _convex(point: dict, poly: list[int], normal) -> bool:
         e2 = _sub(p2, p1)
         c = _cross3(e1, e2)
         turn = c[0] * normal[0] + c[1] * normal[1] + c[2] * normal[2]
-        if turn < 0:
+        ahead = e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]
+        if turn <= 0:
             size = (math.sqrt(e1[0] ** 2 + e1[1] ** 2 + e1[2] ** 2)
-                    * math.sqrt(e2[0] ** 2 + e2[1] ** 2 + e2[2] ** 2)
-                    * math.sqrt(normal[0] ** 2 + normal[1] ** 2 + normal[2] ** 2))
-            if turn < -_CONVEX_SLACK * size:
-                return False
+                    * math.sqrt(e2[0] ** 2 + e2[1] ** 2 + e2[2] ** 2) * length)
+            if size == 0 or turn < -_CONVEX_SLACK * size:
+                return False  # two corners at one place, or a turn the wrong way
+            if ahead < 0 and turn <= _CONVEX_SLACK * size:
+                return False  # a spike: the outline goes back the way it came
         if n > 4:
             total += math.atan2(turn / length, e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2])
     return n <= 4 or total < 3 * math.pi
@@ -671,8 +673,9 @@ class _Resolver:
                     if self.new_points else self.vertices)
         triangles = np.vstack([self.triangles[keep], np.array(rows, np.int64).reshape(-1, 3)])
         triangles = _welded_seams(vertices, triangles, self.eps)
-        return (vertices, triangles, np.concatenate([self.origin_ids[keep], np.array(origin, np.int64)]),
-                np.concatenate([self.face_ids[keep], np.array(face, np.int64)]))
+        origin_ids = np.concatenate([self.origin_ids[keep], np.array(origin, np.int64)])
+        face_ids = np.concatenate([self.face_ids[keep], np.array(face, np.int64)])
+        return _without_t_junctions(vertices, triangles, origin_ids, face_ids, self.eps)
 
     def _plane(self, normal, members, up, replaced):
         # a 2D frame in the plane, turned so that x, y, normal is right-handed
@@ -880,6 +883,66 @@ def _welded_seams(vertices: np.ndarray, triangles: np.ndarray, eps: float) -> np
             table[max(table[u], table[w])] = min(table[u], table[w])
     table = table[table]
     return table[triangles]
+
+
+def _without_t_junctions(vertices, triangles, origin_ids, face_ids, eps):
+    """Where a cut put points along one side of an edge and not the other, the
+    triangle on the other side is split at them, so that every edge is paired
+    again: an edge left without a partner gets the ends of the other lonely
+    edges that lie on it, in order, and its triangle becomes a fan from its
+    opposite corner (or, with points on more than one side, from its centre)."""
+    a = triangles.ravel()
+    b = np.roll(triangles, -1, axis=1).ravel()
+    n = len(vertices) + 1
+    lonely = np.flatnonzero(~np.isin(a * n + b, b * n + a))
+    if not len(lonely):
+        return vertices, triangles, origin_ids, face_ids
+    ends = np.unique(np.concatenate([a[lonely], b[lonely]]))
+    points = vertices[ends]
+    inserted: dict[int, dict[int, list[int]]] = {}  # triangle -> side -> points on it
+    for e in lonely.tolist():
+        u, v = int(a[e]), int(b[e])
+        pu = vertices[u]
+        d = vertices[v] - pu
+        length = math.sqrt(float(d @ d))
+        if length == 0:
+            continue
+        t = (points - pu) @ d / (length * length)
+        off = np.abs(points - (pu + t[:, None] * d)).max(axis=1)
+        on = (off <= 1e3 * eps) & (t * length > eps) & ((1 - t) * length > eps)
+        on &= (ends != u) & (ends != v)
+        if on.any():
+            inside = ends[on][np.argsort(t[on], kind="stable")]
+            inserted.setdefault(e // 3, {})[e % 3] = inside.tolist()
+    if not inserted:
+        return vertices, triangles, origin_ids, face_ids
+    new_points: list[np.ndarray] = []
+    rows, origin, face = [], [], []
+    for i, sides in inserted.items():
+        tri = triangles[i].tolist()
+        if len(sides) == 1:
+            (k, inside), = sides.items()
+            chain = [tri[k], *inside, tri[(k + 1) % 3]]
+            apex = tri[(k + 2) % 3]
+            fan = [[chain[j], chain[j + 1], apex] for j in range(len(chain) - 1)]
+        else:
+            outline = []
+            for k in range(3):
+                outline.append(tri[k])
+                outline.extend(sides.get(k, []))
+            centre = len(vertices) + len(new_points)
+            new_points.append(vertices[tri].mean(axis=0))
+            fan = [[outline[j], outline[(j + 1) % len(outline)], centre] for j in range(len(outline))]
+        rows.extend(fan)
+        origin.extend([origin_ids[i]] * len(fan))
+        face.extend([face_ids[i]] * len(fan))
+    keep = np.ones(len(triangles), bool)
+    keep[list(inserted)] = False
+    if new_points:
+        vertices = np.vstack([vertices, np.array(new_points)])
+    return (vertices, np.vstack([triangles[keep], np.array(rows, np.int64)]),
+            np.concatenate([origin_ids[keep], np.array(origin, np.int64)]),
+            np.concatenate([face_ids[keep], np.array(face, np.int64)]))
 
 
 def _edge(a: int, b: int) -> tuple[int, int]:
