@@ -83,18 +83,20 @@ class Evaluator:
                 yield [self.node(n, dict(env)) for n in s[1]]
 
     def node(self, node, env):
-        if isinstance(node, oracle.Ref):
+        # by the class's name: the scene may be made by oracle.py run as __main__
+        kind = type(node).__name__
+        if kind == "Ref":
             return self.node(self.objects[node.name], env)
-        if isinstance(node, oracle.Prim):
+        if kind == "Prim":
             return _primitive(node)
-        if isinstance(node, oracle.Tf):
+        if kind == "Tf":
             m = np.eye(4)
             for kind, args in node.steps:
                 m = m @ oracle.step_matrix(kind, [oracle._value(a, env) for a in args])
             v, t = self.node(node.child, env)
             v = v @ m[:3, :3].T + m[:3, 3]
             return (v, t[:, ::-1].copy()) if np.linalg.det(m[:3, :3]) < 0 else (v, t)
-        if isinstance(node, oracle.Rep):
+        if kind == "Rep":
             children = []
             saved = env.get(node.param)
             for k in range(node.count):
