@@ -14,12 +14,16 @@ Used by ``oracle.py --exact``; needs pymeshlab.
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 try:
     import oracle
 except ImportError:  # imported as tests.exact
     from tests import oracle
+if hasattr(sys.modules.get("__main__"), "Oracle"):  # oracle.py run as a script: its classes
+    oracle = sys.modules["__main__"]
 
 EMPTY = (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
 

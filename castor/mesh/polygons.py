@@ -397,6 +397,8 @@ def without_flat_triangles(vertices: np.ndarray, triangles: np.ndarray, origin_i
     arrays unchanged if there is nothing to do.
     """
     flat = flat_triangles(vertices, triangles)
+    triangles, origin_ids, face_ids, flat = _without_twins_at_one_place(
+        vertices, triangles, origin_ids, face_ids, flat)
     twins = _coincident(triangles)
     if twins is not None:  # a sheet of coincident triangles turned towards each other
         keep = ~twins
@@ -432,6 +434,43 @@ def without_flat_triangles(vertices: np.ndarray, triangles: np.ndarray, origin_i
         triangles, origin_ids, face_ids = _flip_flat(vertices, triangles, origin_ids,
                                                      face_ids, flat)
     return triangles, origin_ids, face_ids
+
+
+def same_place(vertices: np.ndarray) -> np.ndarray | None:
+    """For each vertex, the first vertex at exactly its place; None if no two
+    vertices share a place (the usual case, found with one sort)."""
+    if len(vertices) < 2:
+        return None
+    bits = np.ascontiguousarray(vertices + 0.0).view(np.int64).reshape(-1, 3)  # -0 is 0
+    with np.errstate(over="ignore"):
+        key = ((bits[:, 0] * np.int64(-7046029254386353131) + bits[:, 1])
+               * np.int64(-4658895280553007687) + bits[:, 2])
+    order = np.argsort(key, kind="stable")
+    sorted_key = key[order]
+    repeated = np.flatnonzero(sorted_key[1:] == sorted_key[:-1])
+    if not len(repeated):
+        return None
+    candidates = np.unique(np.concatenate([order[repeated], order[repeated + 1]]))
+    _, first, group = np.unique(bits[candidates], axis=0, return_index=True, return_inverse=True)
+    table = np.arange(len(vertices))
+    table[candidates] = candidates[first][group.ravel()]
+    return table if np.any(table != np.arange(len(vertices))) else None
+
+
+def _without_twins_at_one_place(vertices, triangles, origin_ids, face_ids, flat):
+    """Triangles that would be coincident twins turned the other way, but for
+    a vertex the engine left twice at one place: both go, and those vertices
+    are welded (the sheet they made is gone, and the surface closes there)."""
+    table = same_place(vertices)
+    if table is None:
+        return triangles, origin_ids, face_ids, flat
+    twins = _coincident(table[triangles])
+    if twins is None:
+        return triangles, origin_ids, face_ids, flat
+    involved = np.isin(table, table[np.unique(triangles[twins])])
+    weld = np.where(involved, table, np.arange(len(vertices)))
+    keep = ~twins
+    return weld[triangles[keep]], origin_ids[keep], face_ids[keep], flat[keep]
 
 
 def _coincident(triangles: np.ndarray) -> np.ndarray | None:
