@@ -320,7 +320,12 @@ def regular(manifold: manifold3d.Manifold) -> manifold3d.Manifold:
         return manifold
     if not kept:
         return manifold3d.Manifold()
-    return kept[0] if len(kept) == 1 else manifold3d.Manifold.compose(kept)
+    outer = [shell for shell in kept if shell.volume() > 0]
+    if len(outer) == len(kept):
+        return kept[0] if len(kept) == 1 else manifold3d.Manifold.compose(kept)
+    # a cavity is a shell turned inside out, which compose drops: the sheets
+    # are cut off instead, by the solid's own outer shells
+    return manifold ^ (outer[0] if len(outer) == 1 else manifold3d.Manifold.compose(outer))
 
 
 def _sheet(shell: manifold3d.Manifold) -> bool:
@@ -502,9 +507,26 @@ def _united(operands: list) -> manifold3d.Manifold:
     batch_boolean unites them all at once; on operands whose faces coincide,
     copies of one object side by side, it was seen to lose volume where
     unions two at a time do not: tests/test_regularize.py.)"""
+    united = _balanced(operands)
+    if not off_faces(united):
+        return united
+    # some union went wrong (off_faces): again, two at a time, each checked and
+    # computed the other way round if need be
     while len(operands) > 1:
-        operands = [_checked(operands[k] + operands[k + 1], lambda k=k: operands[k + 1] + operands[k])
-                    if k + 1 < len(operands) else operands[k]
+        operands = [_checked_union(operands[k], operands[k + 1]) if k + 1 < len(operands)
+                    else operands[k] for k in range(0, len(operands), 2)]
+    return operands[0]
+
+
+def _checked_union(a: manifold3d.Manifold, b: manifold3d.Manifold) -> manifold3d.Manifold:
+    """a + b, or the same union computed another way if the engine's is off
+    its faces: b + a, then (a - b) + b and (b - a) + a."""
+    return _checked(a + b, lambda: b + a, lambda: _checked(a - b) + b, lambda: _checked(b - a) + a)
+
+
+def _balanced(operands: list) -> manifold3d.Manifold:
+    while len(operands) > 1:
+        operands = [operands[k] + operands[k + 1] if k + 1 < len(operands) else operands[k]
                     for k in range(0, len(operands), 2)]
     return operands[0]
 
