@@ -116,18 +116,21 @@ class Placed:
     the engine. A copy costs a few hundred bytes, not the engine's mesh; it
     goes to the engine (the template moved) only when a boolean needs it,
     so that a union of 200,000 cubes that do not meet, or a forest, holds one
-    mesh per kind of primitive."""
+    mesh per kind of primitive. A use that stands exactly where another use
+    of its template stands, in one boolean, has a copy of its own with an ID
+    of its own (``distinguished``), or the two could not be told apart."""
 
-    __slots__ = ("template", "matrix", "_box")
+    __slots__ = ("template", "matrix", "own", "_box")
 
-    def __init__(self, template: Template, matrix: np.ndarray):
+    def __init__(self, template: Template, matrix: np.ndarray, own=None):
         self.template = template
         self.matrix = matrix  # (3, 4)
+        self.own = own  # None, or (the engine's copy of the template, its ID)
         self._box = None
 
     @property
     def id(self) -> int:
-        return self.template.id
+        return self.template.id if self.own is None else self.own[1]
 
     def num_tri(self) -> int:
         return len(self.template.triangles)
@@ -148,12 +151,20 @@ class Placed:
     def moved(self, matrix: np.ndarray) -> "Placed":
         m = matrix[:3, :3] @ self.matrix
         m[:, 3] += matrix[:3, 3]
-        return Placed(self.template, m)
+        return Placed(self.template, m, self.own)
 
     def in_engine(self) -> manifold3d.Manifold:
         """The engine's copy: the template moved (its runs keep the template's
-        ID, with this matrix as their transformation)."""
-        return self.template.manifold.transform(np.ascontiguousarray(self.matrix))
+        ID, or this use's own, with this matrix as their transformation)."""
+        manifold = self.template.manifold if self.own is None else self.own[0]
+        return manifold.transform(np.ascontiguousarray(self.matrix))
+
+    def distinguished(self) -> "Placed":
+        """The same use with a copy of the template of its own, under a new ID."""
+        copy = self.template.manifold.as_original()
+        id = copy.original_id()
+        _TEMPLATES[id] = self.template
+        return Placed(self.template, self.matrix, (copy, id))
 
 
 class Origins:
@@ -204,6 +215,19 @@ class Origins:
         moved[:, :, 3] += matrix[:, 3]
         return Origins(self.ids, moved, self.table)
 
+    def keys(self) -> set:
+        """(ID, placement rounded to 1e-9) of every entry."""
+        return {(i, m) for i, m in zip(self.ids.tolist(), map(_place_key, self.matrices))}
+
+    def renamed(self, changes: dict) -> "Origins":
+        """The entries whose (ID, rounded placement) is in ``changes``, under the new ID."""
+        ids = self.ids.copy()
+        for e, (i, m) in enumerate(zip(self.ids.tolist(), self.matrices)):
+            new = changes.get((i, _place_key(m)))
+            if new is not None:
+                ids[e] = new
+        return Origins(ids, self.matrices, self.table)
+
     def find(self, ids: np.ndarray, matrices: np.ndarray) -> np.ndarray:
         """The entry of each run (its engine ID, its (R, 3, 4) placement): the
         entry of that ID whose matrix is nearest (the engine composes
@@ -228,6 +252,54 @@ class Origins:
                     distance = np.abs(wanted[chunk][:, None, :] - flat[candidates][None]).max(axis=2)
                     found[chunk] = candidates[np.argmin(distance, axis=1)]
         return found
+
+
+def _place_key(matrix: np.ndarray) -> bytes:
+    return np.round(matrix.ravel() * 1e9).tobytes()
+
+
+def _distinguished(solids: list) -> list:
+    """The operands of one boolean, with every use of a primitive that stands
+    where a use in an earlier operand stands given an ID of its own (its
+    triangles would otherwise be told apart by neither ID nor placement: a
+    cube cut away and the same cube added back have different paths and
+    colours). Uses inside a result of the engine keep theirs."""
+    if len(solids) < 2 or not _may_clash(solids):
+        return solids
+    taken: set = set()
+    out = []
+    for solid in solids:
+        keys = solid.origins.keys()
+        clash = keys & taken
+        if clash:
+            parts, changes = [], {}
+            for part in solid.parts:
+                key = (part.id, _place_key(part.matrix)) if type(part) is Placed else None
+                if key is not None and key in clash:
+                    part = part.distinguished()
+                    changes[key] = part.id
+                    keys.add((part.id, key[1]))
+                parts.append(part)
+            solid = Solid(tuple(parts), solid.origins.renamed(changes))
+        taken |= keys
+        out.append(solid)
+    return out
+
+
+def _may_clash(solids: list) -> bool:
+    """Whether two operands may have a use of one template at one place: one
+    number per entry (its ID and rounded placement, hashed), sorted."""
+    ids = np.concatenate([s.origins.ids for s in solids])
+    rows = np.round(np.concatenate([s.origins.matrices for s in solids]).reshape(-1, 12) * 1e9)
+    owner = np.repeat(np.arange(len(solids)), [len(s.origins) for s in solids])
+    with np.errstate(over="ignore", invalid="ignore"):
+        key = ids * np.int64(-7046029254386353131)
+        for column in rows.astype(np.int64).T:
+            key = key * np.int64(-4658895280553007687) + column
+    order = np.argsort(key, kind="stable")
+    key, owner = key[order], owner[order]
+    same = key[1:] == key[:-1]
+    return bool(np.any(same & (owner[1:] != owner[:-1])))
 
 
 NO_ORIGINS = Origins(np.zeros(0, np.int64), np.zeros((0, 3, 4)), ())
@@ -458,6 +530,7 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
         return EMPTY
     if len(solids) == 1:
         return solids[0]
+    solids = _distinguished(solids)
     parts = [part for s in solids for part in s.parts]
     _fill_boxes(parts)
     boxes = np.array([part.bounding_box() for part in parts], dtype=np.float64).reshape(-1, 2, 3)
@@ -589,7 +662,7 @@ def intersection(solids: list[Solid], counter: Counter) -> Solid:
     if np.any(lo >= hi):
         return EMPTY
     counter.booleans += 1
-    solids = [s.in_engine() for s in solids]
+    solids = [s.in_engine() for s in _distinguished(solids)]
     wholes = [s.whole() for s in solids]
     manifold = regular(_checked(manifold3d.Manifold.batch_boolean(wholes, _Intersect),
                                 lambda: manifold3d.Manifold.batch_boolean(wholes[::-1], _Intersect)))
@@ -606,6 +679,7 @@ def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
     if not touched:
         return a
     counter.booleans += 1
+    a, b = _distinguished([a, b])
     a = a.in_engine(touched)
     b = b.in_engine()
     cutter = b.whole()
@@ -690,7 +764,7 @@ def _placed_triangles(run: list[Placed], origins: Origins) -> Triangles:
     count = len(template.triangles)
     tris = np.where(mirrored[:, None, None], template.turned[None], template.triangles[None])
     tris = (tris + (np.arange(len(run)) * len(v))[:, None, None]).reshape(-1, 3)
-    entries = origins.find(np.full(len(run), template.id, np.int64), matrices)
+    entries = origins.find(np.array([p.id for p in run], np.int64), matrices)
     origin_ids = np.repeat(entries, count)
     faces = ((np.arange(len(run), dtype=np.int64) << 32)[:, None] | template.face_ids[None]).ravel()
     return Triangles(vertices, tris, origin_ids, faces)

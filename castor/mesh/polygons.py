@@ -735,10 +735,20 @@ class _Resolver:
         ups = [i for k, i in enumerate(members.tolist()) if up[k]]
         downs = [i for k, i in enumerate(members.tolist()) if not up[k]]
         facing = set(ups)
+        tiny = 1e-12 * self.scale ** 2
+        overlaps = {}  # (up, down) -> area in common
+        for i in ups:
+            for j in downs:
+                if _boxes_meet(boxes[i], boxes[j], self.eps):
+                    area = _overlap_area(flat[i], flat[j])
+                    if area > tiny:
+                        overlaps[(i, j)] = area
+        allowed = self._pairing(overlaps, flat, boxes, ups, downs)
         for group, others in ((ups, downs), (downs, ups)):
             for i in group:
-                opposite = [j for j in others if _boxes_meet(boxes[i], boxes[j], self.eps)
-                            and _overlap_area(flat[i], flat[j]) > 1e-12 * self.scale ** 2]
+                opposite = [j for j in others
+                            if (pair := ((i, j) if i in facing else (j, i))) in overlaps
+                            and (self.face_ids[pair[0]], self.face_ids[pair[1]]) in allowed]
                 if not opposite:
                     continue
                 tri = self.triangles[i].tolist()
@@ -751,6 +761,48 @@ class _Resolver:
                     pieces = [q for piece in pieces for q in self._subtract(piece, cutter)]
                 # back to the triangle's own turn
                 replaced[i] = [[v for v, _ in (piece[::-1] if turned else piece)] for piece in pieces]
+
+    def _pairing(self, overlaps, flat, boxes, ups, downs) -> set:
+        """Which faces facing up cancel which facing down, as (up face, down
+        face) numbers. Usually every pair that overlaps; but where two faces
+        of one side overlap each other (the engine left a surface twice over
+        one place, and one face of the other side to cancel one of them),
+        each face of the other side cancels only as many layers as it is:
+        those it overlaps most, the closest in area first, that do not overlap
+        each other."""
+        tiny = 1e-12 * self.scale ** 2
+        faces = self.face_ids
+        layer_area: dict[tuple, float] = {}
+        for (i, j), area in overlaps.items():
+            layer_area[(faces[i], faces[j])] = layer_area.get((faces[i], faces[j]), 0.0) + area
+        allowed = set(layer_area)
+        size: dict = {}
+        for i in ups + downs:
+            size[faces[i]] = size.get(faces[i], 0.0) + abs(_area(flat[i]))
+        members: dict = {}
+        for i in ups + downs:
+            members.setdefault(faces[i], []).append(i)
+
+        def layers_overlap(f, g) -> bool:
+            return any(_boxes_meet(boxes[a], boxes[b], self.eps) and _overlap_area(flat[a], flat[b]) > tiny
+                       for a in members[f] for b in members[g])
+
+        for side in (0, 1):  # a face facing down against the faces up that meet it, then the reverse
+            partners: dict = {}
+            for pair in layer_area:
+                partners.setdefault(pair[1 - side], []).append(pair[side])
+            for face, candidates in partners.items():
+                if len(candidates) < 2:
+                    continue
+                candidates.sort(key=lambda f: (-layer_area[(f, face) if side == 0 else (face, f)],
+                                               abs(size[f] - size[face])))
+                chosen = []
+                for f in candidates:
+                    if any(layers_overlap(f, g) for g in chosen):
+                        allowed.discard((f, face) if side == 0 else (face, f))
+                    else:
+                        chosen.append(f)
+        return allowed
 
     def _xy(self, v):
         q = self.point(v)
@@ -990,6 +1042,11 @@ def _edge(a: int, b: int) -> tuple[int, int]:
 
 def _boxes_meet(a, b, eps) -> bool:
     return a[0] < b[2] - eps and b[0] < a[2] - eps and a[1] < b[3] - eps and b[1] < a[3] - eps
+
+
+def _area(p: list) -> float:
+    return sum(p[k][0] * p[(k + 1) % len(p)][1] - p[(k + 1) % len(p)][0] * p[k][1]
+               for k in range(len(p))) / 2
 
 
 def _overlap_area(p: list, q: list) -> float:
