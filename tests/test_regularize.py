@@ -272,3 +272,29 @@ def test_solids_touching_along_a_diagonal_are_no_sheet():
     (frame,) = frames_of("> $U(!cu(0, 0, 1), @r(0, 1, -1, 90) !cu(0, 0.5, 1));\n")
     assert regularity_defects(frame) == []
     assert frame.area() == pytest.approx(12.0, abs=1e-9)
+
+
+def test_a_cube_cut_away_and_added_back_keeps_its_colour_and_no_sheet():
+    """Two uses of one primitive at one place in one boolean: each gets an ID
+    of its own, so the added cube's faces have its path and colour."""
+    (frame,) = frames_of("> $U($D(@rz(-90) !pr(0.5, 0.5, 0, 4), !cu(0.25, 0, 0)), !cu(1, 0, 1));\n")
+    assert frame.area() == pytest.approx(11.2426407, abs=1e-6)
+    assert regularity_defects(frame) == []
+    assert {p.path: p.colour for p in frame.polygons}["U2!cu"] == (1.0, 0.0, 1.0)
+
+
+def test_an_object_united_with_what_it_cut_leaves_no_sheet():
+    (frame,) = frames_of("o = @rx(-136.34) !py(0, 1, 0, 3);\n"
+                         "> $U(o, $D(@ry(-88.69) !pr(0, 0.5, 0.5, 3), o));\n")
+    assert regularity_defects(frame) == []
+    assert frame.volume() == pytest.approx(1.541988127, abs=1e-8)
+
+
+def test_a_fin_between_two_uses_of_one_face_is_taken_out():
+    """Both sides of the fin come from one pyramid at one place, used inside
+    two results of the engine: one face number, both orientations."""
+    (frame,) = frames_of("o = $I[R = 0, 1](@t(0.25 * R, 0, 0) !py(0, 0.5, 0.5, 6));\n"
+                         "> $D(o, $I[R = 0, 1](@t(0.5 * R, 0, 0) o));\n")
+    assert regularity_defects(frame) == []
+    assert frame.volume() == pytest.approx(0.374375565, abs=1e-8)
+    assert frame.area() == pytest.approx(4.090534814, abs=1e-8)

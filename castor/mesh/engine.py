@@ -266,22 +266,33 @@ def _distinguished(solids: list) -> list:
     colours). Uses inside a result of the engine keep theirs."""
     if len(solids) < 2 or not _may_clash(solids):
         return solids
-    taken: set = set()
+    keys = [s.origins.keys() for s in solids]
+    placed = [{(p.id, _place_key(p.matrix)) for p in s.parts if type(p) is Placed} for s in solids]
+    owners: dict = {}
+    for k, operand_keys in enumerate(keys):
+        for key in operand_keys:
+            owners.setdefault(key, []).append(k)
+    renew: list[set] = [set() for _ in solids]
+    for key, where in owners.items():
+        if len(where) < 2:
+            continue
+        # the use inside a result of the engine keeps the ID (it cannot change);
+        # uses not yet in the engine take new ones
+        fixed = [k for k in where if key not in placed[k]]
+        keep = fixed[0] if fixed else where[0]
+        for k in where:
+            if k != keep and key in placed[k]:
+                renew[k].add(key)
     out = []
-    for solid in solids:
-        keys = solid.origins.keys()
-        clash = keys & taken
-        if clash:
+    for solid, wanted in zip(solids, renew):
+        if wanted:
             parts, changes = [], {}
             for part in solid.parts:
-                key = (part.id, _place_key(part.matrix)) if type(part) is Placed else None
-                if key is not None and key in clash:
+                if type(part) is Placed and (key := (part.id, _place_key(part.matrix))) in wanted:
                     part = part.distinguished()
                     changes[key] = part.id
-                    keys.add((part.id, key[1]))
                 parts.append(part)
             solid = Solid(tuple(parts), solid.origins.renamed(changes))
-        taken |= keys
         out.append(solid)
     return out
 

@@ -642,8 +642,15 @@ def _opposed_planes(vertices, triangles, face_ids,
     k = key[key_order]
     starts = np.flatnonzero(np.r_[True, np.any(k[1:] != k[:-1], axis=1)])
     ends = np.r_[starts[1:], len(k)]
+    # each triangle's own side, where it is no sliver: one face number can hold
+    # both (two uses of one primitive at one place, inside results of the engine)
+    facing = np.einsum("ij,ij->i", n, u[face]) * sign[face]
+    turned = facing < -1e-6 * big_area[face]
+    face_turns = np.zeros(len(first), bool)
+    face_turns[face[turned]] = True
     positive = np.add.reduceat((sign[key_order] > 0).astype(np.int64), starts)
-    mixed = np.flatnonzero((positive > 0) & (positive < ends - starts))
+    both = np.add.reduceat(face_turns[key_order].astype(np.int64), starts) > 0
+    mixed = np.flatnonzero(((positive > 0) & (positive < ends - starts)) | both)
     if not len(mixed):
         return []
     # the triangles of each mixed plane's faces
@@ -658,7 +665,7 @@ def _opposed_planes(vertices, triangles, face_ids,
     for group in np.split(members, bounds):
         g = int(plane[group[0]])
         normal = u[key_order[starts[g]]]
-        up = sign[face[group]] > 0
+        up = (sign[face[group]] > 0) != turned[group]
         out.append((normal, group, up))
     return out
 
