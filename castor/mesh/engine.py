@@ -31,7 +31,7 @@ class Template:
     """A primitive's shape in the engine, built once, with its own triangles
     kept as arrays: a copy placed somewhere is written from them directly."""
 
-    __slots__ = ("manifold", "id", "vertices", "triangles", "face_ids", "turned", "planes",
+    __slots__ = ("manifold", "id", "vertices", "triangles", "face_ids", "turned", "_planes",
                  "__weakref__")
 
     def __init__(self, manifold: manifold3d.Manifold):
@@ -44,8 +44,15 @@ class Template:
         self.triangles = np.asarray(gl.tri_verts, dtype=np.int64)
         self.face_ids = np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF
         self.turned = self.triangles[:, ::-1].copy()  # for mirrored copies
-        self.planes = _face_planes(self.vertices, self.triangles, self.face_ids)
+        self._planes = None
         _TEMPLATES[self.id] = self
+
+    @property
+    def planes(self) -> np.ndarray:
+        """(faces, 4): each flat face's unit normal and offset (made when first asked for)."""
+        if self._planes is None:
+            self._planes = _face_planes(self.vertices, self.triangles, self.face_ids)
+        return self._planes
 
     def num_tri(self) -> int:
         return len(self.triangles)
@@ -65,6 +72,11 @@ def _face_planes(vertices, triangles, face_ids) -> np.ndarray:
     return planes
 
 
+# Results larger than this are not checked (off_faces): the check costs a
+# quarter of a boolean, and large results are mostly of curved primitives,
+# whose faces seldom coincide exactly.
+CHECKED_TRIANGLES = 200_000
+
 # the templates by their engine ID, for the check of a boolean's result
 _TEMPLATES: "weakref.WeakValueDictionary[int, Template]" = weakref.WeakValueDictionary()
 
@@ -77,7 +89,7 @@ def off_faces(manifold: manifold3d.Manifold) -> int:
     wrong (tests/test_regularize.py): a few vertices moved off their faces
     and volume lost. The engine reports each run's template and placement,
     so each triangle's plane is known without trusting its vertices."""
-    if manifold.is_empty():
+    if manifold.is_empty() or manifold.num_tri() > CHECKED_TRIANGLES:
         return 0
     gl = manifold.to_mesh64()
     vertices = np.asarray(gl.vert_properties, dtype=np.float64)[:, :3]

@@ -621,9 +621,12 @@ def _opposed_planes(vertices, triangles, face_ids,
     area = np.concatenate(areas) if len(areas) > 1 else areas[0]
     _, face = np.unique(face_ids, return_inverse=True)
     face = face.ravel()
-    # each face's largest triangle: sorted by face, then by area, largest first
-    order = np.lexsort((-area, face))
-    first = order[np.r_[True, face[order][1:] != face[order][:-1]]]
+    # each face's largest triangle (the first of them, if several)
+    largest = np.zeros(int(face.max()) + 1)
+    np.maximum.at(largest, face, area)
+    best = np.flatnonzero(area == largest[face])[::-1]
+    first = np.empty(len(largest), np.int64)
+    first[face[best]] = best
     big_area = area[first]
     u = n[first] / np.where(big_area > 0, big_area, 1.0)[:, None]
     d = np.einsum("ij,ij->i", u, vertices[triangles[first]].mean(axis=1))
