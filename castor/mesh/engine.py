@@ -189,12 +189,13 @@ class Origins:
     every run. Two uses at one place give the same triangles, and either name
     is true of them."""
 
-    __slots__ = ("ids", "matrices", "table")
+    __slots__ = ("ids", "matrices", "table", "_index")
 
     def __init__(self, ids: np.ndarray, matrices: np.ndarray, table: tuple):
         self.ids = ids  # (E,) int64
         self.matrices = matrices  # (E, 3, 4)
         self.table = table  # E Origins
+        self._index = None  # for find: sorted keys, and sorted IDs, made once
 
     @staticmethod
     def one(id: int, matrix: np.ndarray, origin: Origin) -> "Origins":
@@ -243,27 +244,48 @@ class Origins:
     def find(self, ids: np.ndarray, matrices: np.ndarray) -> np.ndarray:
         """The entry of each run (its engine ID, its (R, 3, 4) placement): the
         entry of that ID whose matrix is nearest (the engine composes
-        transformations in its own order, so they agree to rounding)."""
-        order = np.argsort(self.ids, kind="stable")
-        sorted_ids = self.ids[order]
-        low = np.searchsorted(sorted_ids, ids, "left")
-        high = np.searchsorted(sorted_ids, ids, "right")
-        if np.any(high == low):
-            raise KeyError(f"no origin for the engine's ID {int(ids[high == low][0])}")
-        found = order[low]
-        several = np.flatnonzero(high - low > 1)
-        if len(several):
-            flat = self.matrices.reshape(-1, 12)
-            wanted = matrices.reshape(-1, 12)
-            for start in np.unique(low[several]).tolist():
-                runs = several[low[several] == start]
-                candidates = order[start:high[runs[0]]]
+        transformations in its own order, so they agree to rounding).
+
+        Runs and entries are first matched on their ID and placement rounded
+        to 10⁻⁶ (one sort, for 200,000 copies of one cube); a run whose
+        rounding fell the other way is matched among all entries of its ID."""
+        wanted = matrices.reshape(-1, 12)
+        flat = self.matrices.reshape(-1, 12)
+        if self._index is None:
+            entry_keys = _coarse_keys(self.ids, flat)
+            order = np.argsort(entry_keys, kind="stable")
+            by_id = np.argsort(self.ids, kind="stable")
+            self._index = (order, entry_keys[order], by_id, self.ids[by_id])
+        order, sorted_keys, by_id, sorted_ids = self._index
+        at = np.minimum(np.searchsorted(sorted_keys, _coarse_keys(ids, wanted)), len(order) - 1)
+        found = order[at]
+        close = (self.ids[found] == ids) & (np.abs(flat[found] - wanted).max(axis=1)
+                                            <= 1e-6 * np.maximum(1.0, np.abs(wanted).max(axis=1)))
+        rest = np.flatnonzero(~close)
+        if len(rest):
+            low = np.searchsorted(sorted_ids, ids[rest], "left")
+            high = np.searchsorted(sorted_ids, ids[rest], "right")
+            if np.any(high == low):
+                raise KeyError(f"no origin for the engine's ID {int(ids[rest][high == low][0])}")
+            for start in np.unique(low).tolist():
+                runs = rest[low == start]
+                candidates = by_id[start:high[low == start][0]]
                 step = max(1, 4_000_000 // (12 * len(candidates)))
                 for k in range(0, len(runs), step):
                     chunk = runs[k:k + step]
                     distance = np.abs(wanted[chunk][:, None, :] - flat[candidates][None]).max(axis=2)
                     found[chunk] = candidates[np.argmin(distance, axis=1)]
         return found
+
+
+def _coarse_keys(ids: np.ndarray, flat: np.ndarray) -> np.ndarray:
+    """One number per (ID, placement rounded to 10⁻⁶): a multiplicative hash."""
+    rows = np.round(flat * 1e6).astype(np.int64)
+    with np.errstate(over="ignore"):
+        key = ids.astype(np.int64) * np.int64(-7046029254386353131)
+        for column in rows.T:
+            key = key * np.int64(-4658895280553007687) + column
+    return key
 
 
 def _place_key(matrix: np.ndarray) -> bytes:
