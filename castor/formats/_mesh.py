@@ -4,7 +4,7 @@ that every reader takes, and names a person recognises for objects and materials
 from __future__ import annotations
 
 import re
-from typing import NamedTuple
+from typing import Iterator, NamedTuple
 
 import numpy as np
 
@@ -21,6 +21,52 @@ class Combined(NamedTuple):
     indices: np.ndarray  # vertex numbers of the polygons, counter-clockwise from outside
     colours: np.ndarray  # (P, 3) float64 in 0..1
     objects: np.ndarray  # (P,) object number of each polygon
+
+
+# polygons formatted at a time by the writers that write in pieces: a piece's
+# temporaries (texts, corners) are a few megabytes, freed before the next
+CHUNK = 32768
+
+
+class Piece(NamedTuple):
+    """Polygons ``first`` to ``first + count`` of one object of a frame, numbered
+    as in the object: its whole vertex list, offsets from 0, their indices."""
+
+    number: int  # the object's place in the frame
+    obj: FrameObject
+    first: int
+    offsets: np.ndarray
+    indices: np.ndarray
+
+    @property
+    def vertices(self) -> np.ndarray:
+        return self.obj.vertices
+
+    @property
+    def polygon_count(self) -> int:
+        return len(self.offsets) - 1
+
+    def colours(self) -> np.ndarray:
+        """(P, 3) the colour of each polygon of the piece."""
+        table = np.array([o.colour for o in self.obj.origins], dtype=np.float64).reshape(-1, 3)
+        origin_of = self.obj.origin_of[self.first:self.first + self.polygon_count]
+        return table[origin_of] if len(origin_of) else np.zeros((0, 3))
+
+
+def pieces(frame: Frame, size: int | None = None) -> Iterator[Piece]:
+    """The frame's polygons, object after object, ``size`` (``CHUNK``) polygons at a time."""
+    size = size or CHUNK
+    for number, obj in enumerate(frame.objects):
+        for first in range(0, obj.polygon_count, size):
+            last = min(first + size, obj.polygon_count)
+            start, end = int(obj.offsets[first]), int(obj.offsets[last])
+            yield Piece(number, obj, first, obj.offsets[first:last + 1] - start,
+                        obj.indices[start:end])
+
+
+def vertex_bases(frame: Frame) -> list[int]:
+    """The number of each object's first vertex in the frame's combined vertex list."""
+    return np.cumsum([0] + [len(o.vertices) for o in frame.objects]).tolist()
 
 
 class Material(NamedTuple):
@@ -104,12 +150,25 @@ def materials(frame: Frame) -> tuple[list[Material], list[np.ndarray]]:
     per_object = []
     for obj in frame.objects:
         origin_material = np.zeros(len(obj.origins), np.int64)
-        # votes by area, so that every format (polygons or triangles) names alike
-        tris, polygon = fan_triangles(obj.offsets, obj.indices)
-        corners = obj.vertices[tris]
-        areas = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0],
-                                        corners[:, 2] - corners[:, 0]), axis=1)
-        counts = np.bincount(obj.origin_of[polygon], weights=areas, minlength=len(obj.origins))
+        # votes by area, so that every format (polygons or triangles) names alike;
+        # the fan's triangles are made a piece at a time, their areas added up
+        # in one pass in triangle order
+        fan_sizes = np.maximum(np.diff(obj.offsets) - 2, 0)
+        areas = np.empty(int(fan_sizes.sum()))
+        origin_of_triangle = np.empty(len(areas), np.int64)
+        done = 0
+        for first in range(0, obj.polygon_count, CHUNK):
+            last = min(first + CHUNK, obj.polygon_count)
+            start, end = obj.offsets[first], obj.offsets[last]
+            tris, polygon = fan_triangles(obj.offsets[first:last + 1] - start,
+                                          obj.indices[start:end])
+            corners = obj.vertices[tris]
+            areas[done:done + len(tris)] = np.linalg.norm(np.cross(
+                corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+            origin_of_triangle[done:done + len(tris)] = obj.origin_of[first + polygon]
+            done += len(tris)
+        counts = np.bincount(origin_of_triangle, weights=areas, minlength=len(obj.origins))
+        del areas, origin_of_triangle
         for i, origin in enumerate(obj.origins):
             key = tuple(float(c) for c in origin.colour)
             if key not in keys:
@@ -154,6 +213,16 @@ def straight_corners(vertices: np.ndarray, offsets: np.ndarray,
     straight = turn <= _STRAIGHT * np.linalg.norm(incoming, axis=1) * np.linalg.norm(outgoing, axis=1)
     # a triangle keeps even a flat corner: cutting it would leave a hole
     return np.logical_or.reduceat(straight, starts) & (sizes > 3)
+
+
+def triangle_counts(vertices: np.ndarray, offsets: np.ndarray,
+                    indices: np.ndarray) -> np.ndarray:
+    """(P,) how many triangles ``triangles`` cuts each polygon into, without
+    making them: what a header that gives the count needs before the first."""
+    counts = np.maximum(np.diff(offsets) - 2, 0)
+    for p in np.flatnonzero(straight_corners(vertices, offsets, indices)).tolist():
+        counts[p] = len(_clip_ears(vertices, indices[offsets[p]:offsets[p + 1]].tolist()))
+    return counts
 
 
 def triangles(vertices: np.ndarray, offsets: np.ndarray,
