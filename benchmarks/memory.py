@@ -6,10 +6,15 @@ resident memory (ru_maxrss) over the polygons of its frame. Four ways:
 - "facetize": castor's own pipeline (evaluation, booleans, the engine's
   triangles, polygon merging, the frame's arrays), the writer replaced by a
   counter, so the figure is the geometry's alone;
-- "stl": the whole command, `castor --no-cpp -f stl -o /dev/null`;
+- "stl": the whole command, `castor --no-cpp -f stl -o scene.stl` (its
+  count is of triangles, read from the file);
 - "cps file": the whole command writing the polygon stream (the default
   format) to a file, `castor --no-cpp -o scene.cps`;
-- "cps pipe": the same to standard output, `castor --no-cpp | wc -c`.
+- "cps pipe": the same to standard output, `castor --no-cpp | tail -n 1`
+  (tail reads all of it, as wc would, and keeps the count of 'endframe').
+
+No --stats: its figures (volume, area, shells of each object) take memory
+of their own, as much again as the writers for large frames.
 
     python memory.py            # the default set (about a minute, 3 GB at most)
     python memory.py --large    # also 5 M polygons of spheres (needs ~3 GB)
@@ -34,7 +39,8 @@ counts = []
 def encode(frame, name, target=None):
     counts.append(frame.polygon_count)
     return b"", {}
-output.encode = encode  # castor.jobs imports it when it encodes a frame
+output.encode = encode  # what castor.jobs calls when it encodes a frame (before)
+output.encode_pieces = lambda frame, name, target=None: (iter([encode(frame, name)[0]]), {})
 output.Output.start = lambda self: None
 output.Output.put = lambda self, *args: None
 output.Output.finish = lambda self, had_errors: True
@@ -73,29 +79,41 @@ def cubes(count: int) -> str:
 def measure(scene: str, how: str) -> dict:
     with tempfile.NamedTemporaryFile("w", suffix=".cas", delete=False) as handle:
         handle.write(scene)
-    castor = [*castor_command(), "--no-cpp", "-q", "--stats", handle.name]
-    written = handle.name[:-4] + ".cps"
+    # no --stats: its figures (volume, area, shells) cost memory of their own
+    castor = [*castor_command(), "--no-cpp", "-q", handle.name]
+    written = handle.name[:-4] + (".stl" if how == "stl" else ".cps")
     if how == "facetize":
         command = [sys.executable, "-c", FACETIZE, handle.name]
     else:
-        # WHOLE's peak is its children's largest: castor's (wc's is tiny)
-        shell = {"stl": shlex.join([*castor, "-f", "stl", "-o", "/dev/null"]),
+        # WHOLE's peak is its children's largest: castor's (tail's is tiny)
+        shell = {"stl": shlex.join([*castor, "-f", "stl", "-o", written]),
                  "cps file": shlex.join([*castor, "-o", written]),
-                 "cps pipe": shlex.join(castor) + " | wc -c >/dev/null"}[how]
+                 "cps pipe": shlex.join(castor) + " | tail -n 1"}[how]
         command = [sys.executable, "-c", WHOLE, shell]
+    polygons = None
     try:
         result = subprocess.run(command, capture_output=True, text=True)
+        if how == "stl" and os.path.exists(written):  # the triangle count in its header
+            with open(written, "rb") as stl:
+                polygons = int.from_bytes(stl.read(84)[80:], "little")
+        elif how == "cps file" and os.path.exists(written):
+            with open(written, "rb") as stream:
+                stream.seek(-100, os.SEEK_END)
+                polygons = int(stream.read().splitlines()[-1].split()[-1])
     finally:
         for name in (handle.name, written):
             if os.path.exists(name):
                 os.unlink(name)
     if result.returncode != 0:
         raise SystemExit(result.stderr[-2000:])
-    figures = json.loads(result.stdout.strip().splitlines()[-1])
+    lines = result.stdout.strip().splitlines()
+    figures = json.loads(lines[-1])
     if figures["status"] != 0:
         raise SystemExit(figures.get("stderr", "")[-2000:])
-    if how != "facetize":  # --stats: "N polygons"
-        figures["polygons"] = int(figures["stderr"].split(" polygons")[0].split()[-1].replace(",", ""))
+    if how == "cps pipe":  # tail's line: "endframe 1 COUNT"
+        polygons = int(lines[-2].split()[-1])
+    if polygons is not None:
+        figures["polygons"] = polygons
     return figures
 
 
