@@ -15,14 +15,6 @@ from castor.mesh.frame import Frame, FrameObject
 _STRAIGHT = 1e-9
 
 
-class Combined(NamedTuple):
-    vertices: np.ndarray  # (V, 3) float64
-    offsets: np.ndarray  # (P + 1,)
-    indices: np.ndarray  # vertex numbers of the polygons, counter-clockwise from outside
-    colours: np.ndarray  # (P, 3) float64 in 0..1
-    objects: np.ndarray  # (P,) object number of each polygon
-
-
 # polygons formatted at a time by the writers that write in pieces: a piece's
 # temporaries (texts, corners) are a few megabytes, freed before the next
 CHUNK = 32768
@@ -37,6 +29,7 @@ class Piece(NamedTuple):
     first: int
     offsets: np.ndarray
     indices: np.ndarray
+    colour_table: np.ndarray  # (origins, 3) the colour of each of the object's origins
 
     @property
     def vertices(self) -> np.ndarray:
@@ -48,20 +41,20 @@ class Piece(NamedTuple):
 
     def colours(self) -> np.ndarray:
         """(P, 3) the colour of each polygon of the piece."""
-        table = np.array([o.colour for o in self.obj.origins], dtype=np.float64).reshape(-1, 3)
         origin_of = self.obj.origin_of[self.first:self.first + self.polygon_count]
-        return table[origin_of] if len(origin_of) else np.zeros((0, 3))
+        return self.colour_table[origin_of] if len(origin_of) else np.zeros((0, 3))
 
 
 def pieces(frame: Frame, size: int | None = None) -> Iterator[Piece]:
     """The frame's polygons, object after object, ``size`` (``CHUNK``) polygons at a time."""
     size = size or CHUNK
     for number, obj in enumerate(frame.objects):
+        table = np.array([o.colour for o in obj.origins], dtype=np.float64).reshape(-1, 3)
         for first in range(0, obj.polygon_count, size):
             last = min(first + size, obj.polygon_count)
             start, end = int(obj.offsets[first]), int(obj.offsets[last])
             yield Piece(number, obj, first, obj.offsets[first:last + 1] - start,
-                        obj.indices[start:end])
+                        obj.indices[start:end], table)
 
 
 def vertex_bases(frame: Frame) -> list[int]:
@@ -72,31 +65,6 @@ def vertex_bases(frame: Frame) -> list[int]:
 class Material(NamedTuple):
     name: str
     colour: tuple[float, float, float]
-
-
-def combine(frame: Frame) -> Combined:
-    vertices, offsets, indices, colours, objects = [], [np.zeros(1, np.int64)], [], [], []
-    base_vertex = 0
-    base_index = 0
-    for number, obj in enumerate(frame.objects):
-        vertices.append(obj.vertices)
-        indices.append(obj.indices + base_vertex)
-        offsets.append(obj.offsets[1:] + base_index)
-        colours.append(polygon_colours(obj))
-        objects.append(np.full(obj.polygon_count, number, np.int64))
-        base_vertex += len(obj.vertices)
-        base_index += len(obj.indices)
-    if not frame.objects:
-        return Combined(np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64),
-                        np.zeros((0, 3)), np.zeros(0, np.int64))
-    return Combined(np.concatenate(vertices), np.concatenate(offsets), np.concatenate(indices),
-                    np.concatenate(colours), np.concatenate(objects))
-
-
-def polygon_colours(obj: FrameObject) -> np.ndarray:
-    """(P, 3) the colour of each polygon of ``obj``."""
-    table = np.array([o.colour for o in obj.origins], dtype=np.float64).reshape(-1, 3)
-    return table[obj.origin_of] if len(obj.origin_of) else np.zeros((0, 3))
 
 
 def byte_colours(colours: np.ndarray) -> np.ndarray:
