@@ -58,10 +58,18 @@ def test_pieces_join_to_the_whole_frame(frame, name, size):
         assert max(map(len, pieces)) < len(whole) / 10
 
 
-def test_writers_that_cannot_cut_give_one_piece(frame):
-    for name in ("glb", "3mf"):
-        pieces, _ = encode_pieces(frame, name)
-        assert b"".join(pieces) == encode(frame, name)[0]
+def test_writers_made_whole_are_handed_on_in_pieces_or_one(frame):
+    # GLB's buffer views are all made before its first byte (the JSON gives
+    # their lengths and bounds); 3MF's package is compressed whole
+    glb = list(encode_pieces(frame, "glb")[0])
+    import json
+
+    views = json.loads(glb[0][20:20 + int.from_bytes(glb[0][12:16], "little")])["bufferViews"]
+    assert len(glb) == 2 + len(views)  # the header and JSON, the binary's header, each view
+    assert b"".join(glb) == encode(frame, "glb")[0]
+    assert glb[0][:4] == b"glTF" and int.from_bytes(glb[0][8:12], "little") == len(b"".join(glb))
+    (package,) = encode_pieces(frame, "3mf")[0]
+    assert package == encode(frame, "3mf")[0]
 
 
 def test_a_stream_file_is_written_as_its_frames_come(tmp_path, frame):

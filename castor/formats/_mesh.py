@@ -45,16 +45,23 @@ class Piece(NamedTuple):
         return self.colour_table[origin_of] if len(origin_of) else np.zeros((0, 3))
 
 
+def object_pieces(obj: FrameObject,
+                  size: int | None = None) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
+    """The object's polygons ``size`` (``CHUNK``) at a time: the number of the
+    first, offsets from 0, their vertex numbers (the object's)."""
+    size = size or CHUNK
+    for first in range(0, obj.polygon_count, size):
+        last = min(first + size, obj.polygon_count)
+        start, end = int(obj.offsets[first]), int(obj.offsets[last])
+        yield first, obj.offsets[first:last + 1] - start, obj.indices[start:end]
+
+
 def pieces(frame: Frame, size: int | None = None) -> Iterator[Piece]:
     """The frame's polygons, object after object, ``size`` (``CHUNK``) polygons at a time."""
-    size = size or CHUNK
     for number, obj in enumerate(frame.objects):
         table = np.array([o.colour for o in obj.origins], dtype=np.float64).reshape(-1, 3)
-        for first in range(0, obj.polygon_count, size):
-            last = min(first + size, obj.polygon_count)
-            start, end = int(obj.offsets[first]), int(obj.offsets[last])
-            yield Piece(number, obj, first, obj.offsets[first:last + 1] - start,
-                        obj.indices[start:end], table)
+        for first, offsets, indices in object_pieces(obj, size):
+            yield Piece(number, obj, first, offsets, indices, table)
 
 
 def vertex_bases(frame: Frame) -> list[int]:
@@ -125,11 +132,8 @@ def materials(frame: Frame) -> tuple[list[Material], list[np.ndarray]]:
         areas = np.empty(int(fan_sizes.sum()))
         origin_of_triangle = np.empty(len(areas), np.int64)
         done = 0
-        for first in range(0, obj.polygon_count, CHUNK):
-            last = min(first + CHUNK, obj.polygon_count)
-            start, end = obj.offsets[first], obj.offsets[last]
-            tris, polygon = fan_triangles(obj.offsets[first:last + 1] - start,
-                                          obj.indices[start:end])
+        for first, offsets, indices in object_pieces(obj):
+            tris, polygon = fan_triangles(offsets, indices)
             corners = obj.vertices[tris]
             areas[done:done + len(tris)] = np.linalg.norm(np.cross(
                 corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
