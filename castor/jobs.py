@@ -44,6 +44,7 @@ class Spec:
     # into a file in ``spool`` when the frame is large, or else as bytes
     pieces: bool = False
     spool: str | None = None
+    spool_owner: int = 0  # the driver's process: a worker left alone removes its file
 
 
 @dataclass(frozen=True)
@@ -184,4 +185,19 @@ def _spooled(pieces, frame, spec: Spec):
         if not isinstance(exc, OSError):
             raise
         return b"".join(output.encode_pieces(frame, spec.format, spec.target)[0])
+    if spec.spool_owner and not _alive(spec.spool_owner):
+        os.unlink(path)  # the driver was stopped: nobody will write or remove the file
+        return b""
     return output.Spooled(path)
+
+
+def _alive(pid: int) -> bool:
+    import os
+
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:
+        pass
+    return True

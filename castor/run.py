@@ -97,6 +97,10 @@ class Sequencer:
         future.add_done_callback(self._done)
 
     def _done(self, future) -> None:
+        if not future.cancelled() and future.exception() is None:
+            from castor.formats.output import track
+
+            track(future.result().data)  # removed if the run is interrupted
         with self.lock:
             self.in_flight -= 1
             self.drain()
@@ -254,7 +258,7 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
     if executor is None:
         spec = replace(spec, pieces=True)  # made as they are written: one piece in memory
     elif args.scheduler is None:
-        spec = replace(spec, spool=_spool_directory(args.output))
+        spec = replace(spec, spool=_spool_directory(args.output), spool_owner=os.getpid())
     sequencer = Sequencer(reporter, output, spec, executor, window=2 * max(1, workers or 1))
     interpreter = Interpreter(settings, reporter, None if args.check else sequencer.submit)
     if output is not None:

@@ -158,3 +158,20 @@ def test_a_spooled_frame_to_standard_output(tmp_path, monkeypatch, capfdbinary):
     Output(None, "stl").put(result.number, result.data, {}, result.location)
     assert capfdbinary.readouterr().out == expected
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_worker_whose_driver_has_gone_leaves_no_spooled_file(tmp_path, monkeypatch):
+    import subprocess
+    import sys
+
+    from castor import jobs
+    from castor.run import evaluated_frames
+
+    gone = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
+                          capture_output=True, text=True, check=True)
+    monkeypatch.setattr(jobs, "SPOOL_POLYGONS", 0)
+    (scene,), _ = evaluated_frames(SCENE)
+    result = jobs.make(jobs.Job(scene, jobs.Spec(format="stl", spool=str(tmp_path),
+                                                 spool_owner=int(gone.stdout))))
+    assert result.data == b""
+    assert list(tmp_path.iterdir()) == []

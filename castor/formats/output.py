@@ -141,9 +141,31 @@ def pieces_of(data: Data) -> Iterator[bytes]:
         yield from data
 
 
+# files being written beside their final names, and spooled frames not yet
+# written: what an interrupted run removes (castor.cli, on Ctrl-C)
+_temporaries: set[str] = set()
+
+
+def track(data: Data | None) -> None:
+    """Count a spooled file among the temporaries until it is written."""
+    if isinstance(data, Spooled):
+        _temporaries.add(data.path)
+
+
+def remove_temporaries() -> None:
+    """Remove every file being written: an interrupted run leaves no half file."""
+    for path in list(_temporaries):
+        try:
+            os.unlink(path)
+        except OSError:
+            pass
+    _temporaries.clear()
+
+
 def discard(data: Data | None) -> None:
     """Remove a spooled file that will not be written anywhere."""
     if isinstance(data, Spooled):
+        _temporaries.discard(data.path)
         try:
             os.unlink(data.path)
         except OSError:
@@ -167,6 +189,7 @@ class AtomicFile:
                 return
             directory = os.path.dirname(os.path.abspath(path))
             fd, self.temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
+            _temporaries.add(self.temporary)
             self.handle = os.fdopen(fd, "wb")
         except OSError as exc:
             raise Unwritable(f"cannot write '{path}': {_reason(exc)}") from None
@@ -184,6 +207,7 @@ class AtomicFile:
             if self.temporary is not None:
                 os.chmod(self.temporary, _file_mode())  # mkstemp makes it private
                 os.replace(self.temporary, self.path)
+                _temporaries.discard(self.temporary)
                 self.temporary = None
         except OSError as exc:
             self.discard()
@@ -196,6 +220,7 @@ class AtomicFile:
         except OSError:
             pass
         if self.temporary is not None:
+            _temporaries.discard(self.temporary)
             try:
                 os.unlink(self.temporary)
             except OSError:
@@ -215,6 +240,7 @@ def write_atomically(path: str, data: Data) -> None:
         try:
             os.chmod(data.path, _file_mode())
             os.replace(data.path, path)
+            _temporaries.discard(data.path)
             return
         except OSError:
             pass  # copied below
