@@ -216,6 +216,9 @@ def main(argv=None) -> int:
             thread.join(0.2)
     except KeyboardInterrupt:
         sys.stderr.write("castor: interrupted\n")
+        from castor.formats.output import remove_temporaries
+
+        remove_temporaries()  # a file being written, spooled frames: no half file left
         os._exit(130)
     outcome = result[0] if result else 1
     if isinstance(outcome, BrokenPipeError):

@@ -39,6 +39,12 @@ class Spec:
     edges: bool = False
     section: object = None  # castor.options.Section
     scale: float = DEFAULT_SCALE
+    # how a frame's bytes are handed on: made a piece at a time as they are
+    # written (``pieces``, in the process that writes them), written by a worker
+    # into a file in ``spool`` when the frame is large, or else as bytes
+    pieces: bool = False
+    spool: str | None = None
+    spool_owner: int = 0  # the driver's process: a worker left alone removes its file
 
 
 @dataclass(frozen=True)
@@ -51,7 +57,7 @@ class Job:
 class Result:
     number: int
     location: Location
-    data: bytes | None = None  # the frame in its format (None: nothing to write)
+    data: object = None  # the frame in its format: castor.formats.output.Data (None: nothing)
     companions: dict[str, bytes] = field(default_factory=dict)  # files beside it (.mtl)
     errors: list[CastorError] = field(default_factory=list)
     warnings: list[tuple[str, Location | None]] = field(default_factory=list)
@@ -60,6 +66,11 @@ class Result:
     picture: object = None  # an image array, for an animation gathered by the driver
     mesh: object = None  # the mesh frame, when the spec keeps it
 
+
+# a frame of more polygons than this, made in a worker process, is written to
+# a file in Spec.spool rather than handed back as bytes through a pipe (a
+# 5 M-polygon stream is about 700 MB, pickled and held twice on its way)
+SPOOL_POLYGONS = 100_000
 
 _facetizers: dict[tuple, object] = {}
 
@@ -131,9 +142,15 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
 
         result.data = drawing(scene, frame, spec)
     elif chosen is not None:
-        from castor.formats.output import encode
+        from castor.formats import output
 
-        result.data, result.companions = encode(frame, spec.format, spec.target)
+        pieces, result.companions = output.encode_pieces(frame, spec.format, spec.target)
+        if spec.pieces:
+            result.data = pieces  # made as they are written
+        elif spec.spool is not None and frame.polygon_count > SPOOL_POLYGONS:
+            result.data = _spooled(pieces, frame, spec)
+        else:
+            result.data = b"".join(pieces)
     if spec.keep_mesh:
         result.mesh = frame
     if spec.stats or spec.summary:
@@ -144,3 +161,43 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
             result.stats = stats_line(frame, stats.primitives, stats.booleans, stats.seconds)
         if spec.summary:
             result.summary = summary_record(frame)
+
+
+def _spooled(pieces, frame, spec: Spec):
+    """The frame's bytes written a piece at a time to a file in ``spec.spool``
+    (hidden, beside the output where it can be renamed into place); as bytes
+    when that file cannot be written (a full disk)."""
+    import os
+    import tempfile
+
+    from castor.formats import output
+
+    try:
+        fd, path = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=spec.spool)
+    except OSError:
+        return b"".join(pieces)
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            for piece in pieces:
+                handle.write(piece)
+    except BaseException as exc:
+        os.unlink(path)
+        if not isinstance(exc, OSError):
+            raise
+        return b"".join(output.encode_pieces(frame, spec.format, spec.target)[0])
+    if spec.spool_owner and not _alive(spec.spool_owner):
+        os.unlink(path)  # the driver was stopped: nobody will write or remove the file
+        return b""
+    return output.Spooled(path)
+
+
+def _alive(pid: int) -> bool:
+    import os
+
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:
+        pass
+    return True

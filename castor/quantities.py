@@ -28,12 +28,29 @@ class Figures(NamedTuple):
     colours: list[tuple[tuple[float, float, float], float]]  # (rgb, area), largest first
 
 
-def _triangles(obj: FrameObject) -> tuple[np.ndarray, np.ndarray]:
-    """Each polygon as a fan of triangles (T, 3, 3), and the polygon of each."""
+def _triangle_figures(obj: FrameObject, centre: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Six times the signed volume of each fan triangle's tetrahedron from
+    ``centre``, its area, and its polygon's origin: made a piece of polygons at
+    a time, so that no (T, 3, 3) array of corners is held (72 bytes a triangle,
+    and as much again for each temporary); each figure is the same number."""
+    from castor.formats._mesh import CHUNK
     from castor.mesh.polygons import fan_triangles
 
-    tris, polygon = fan_triangles(obj.offsets, obj.indices)
-    return obj.vertices[tris], polygon
+    count = int(np.maximum(np.diff(obj.offsets) - 2, 0).sum())
+    volumes, areas, origins = np.empty(count), np.empty(count), np.empty(count, np.int64)
+    done = 0
+    for first in range(0, obj.polygon_count, CHUNK):
+        last = min(first + CHUNK, obj.polygon_count)
+        start, end = obj.offsets[first], obj.offsets[last]
+        tris, polygon = fan_triangles(obj.offsets[first:last + 1] - start, obj.indices[start:end])
+        corners = obj.vertices[tris]
+        a, b, c = corners[:, 0] - centre, corners[:, 1] - centre, corners[:, 2] - centre
+        part = slice(done, done + len(tris))
+        volumes[part] = np.einsum("ij,ij->i", a, np.cross(b, c))
+        areas[part] = np.linalg.norm(np.cross(b - a, c - a), axis=1) / 2
+        origins[part] = obj.origin_of[first + polygon]
+        done += len(tris)
+    return volumes, areas, origins
 
 
 def shell_count(obj: FrameObject) -> int:
@@ -54,12 +71,10 @@ def object_figures(obj: FrameObject, name: str) -> Figures:
     """The figures of one object."""
     if obj.polygon_count == 0:
         return Figures(name, 0.0, 0.0, None, 0, 0, 0, [])
-    corners, polygon = _triangles(obj)
     centre = (obj.vertices.min(axis=0) + obj.vertices.max(axis=0)) / 2
-    a, b, c = corners[:, 0] - centre, corners[:, 1] - centre, corners[:, 2] - centre
-    volume = float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6)
-    areas = np.linalg.norm(np.cross(b - a, c - a), axis=1) / 2
-    origin_area = np.bincount(obj.origin_of[polygon], weights=areas, minlength=len(obj.origins))
+    volumes, areas, origin_of_triangle = _triangle_figures(obj, centre)
+    volume = float(volumes.sum() / 6)
+    origin_area = np.bincount(origin_of_triangle, weights=areas, minlength=len(obj.origins))
     by_colour: dict[tuple, float] = {}
     for origin, area in zip(obj.origins, origin_area.tolist()):
         key = tuple(float(x) for x in origin.colour)

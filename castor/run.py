@@ -14,6 +14,7 @@ import os
 import sys
 import threading
 from collections import deque
+from dataclasses import replace
 
 from castor.diagnostics import CastorError, LimitError, Reporter, TooManyErrors
 from castor.jobs import Job, Result, Spec, make
@@ -96,6 +97,10 @@ class Sequencer:
         future.add_done_callback(self._done)
 
     def _done(self, future) -> None:
+        if not future.cancelled() and future.exception() is None:
+            from castor.formats.output import track
+
+            track(future.result().data)  # removed if the run is interrupted
         with self.lock:
             self.in_flight -= 1
             self.drain()
@@ -146,6 +151,12 @@ class Sequencer:
                                     result.location)
                 except CastorError as exc:
                     self.reporter.error(exc)
+                except MemoryError:  # the frame's pieces are made as they are written
+                    self.reporter.error(LimitError(
+                        f"out of memory writing frame {result.number}; simplify the scene, "
+                        f"raise the tolerance or lower --max-polygons", result.location))
+            else:
+                _discard(result.data)
             if result.picture is not None:
                 self.pictures.append(result.picture)
             if result.mesh is not None:
@@ -163,6 +174,24 @@ class Sequencer:
             self.stopped = True
         finally:
             self.handling = False
+
+
+    def discard_pending(self) -> None:
+        """Remove the spooled files of frames made but never written (a run
+        that stopped early)."""
+        with self.lock:
+            for head in self.pending:
+                if not isinstance(head, str) and head.done() and not head.cancelled() \
+                        and head.exception() is None:
+                    _discard(head.result().data)
+            self.pending.clear()
+
+
+def _discard(data) -> None:
+    if data is not None and not isinstance(data, bytes):
+        from castor.formats.output import discard
+
+        discard(data)
 
 
 def _outcome(future) -> Result:
@@ -226,6 +255,10 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
     if not args.check and not (chosen.kind == "picture" and chosen.all_frames):
         output = Output(args.output, spec.format)
     executor, workers = (None, 1) if args.check else executor_for(args.jobs, args.scheduler)
+    if executor is None:
+        spec = replace(spec, pieces=True)  # made as they are written: one piece in memory
+    elif args.scheduler is None:
+        spec = replace(spec, spool=_spool_directory(args.output), spool_owner=os.getpid())
     sequencer = Sequencer(reporter, output, spec, executor, window=2 * max(1, workers or 1))
     interpreter = Interpreter(settings, reporter, None if args.check else sequencer.submit)
     if output is not None:
@@ -259,16 +292,41 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
         if args.section is not None and chosen.kind != "drawing":
             reporter.warning(f"--section makes a drawing (-o NAME.svg or NAME.dxf); it is "
                              f"ignored for {spec.format}")
+    except BaseException:
+        if output is not None:
+            output.abandon()  # a single stream file half made stays out of place
+        raise
     finally:
         if executor is not None:
             executor.shutdown(wait=True)  # workers end before castor does: none outlives it
             client = getattr(executor, "castor_client", None)
             if client is not None:
                 client.close()
-    _finish_collected(args, spec, sequencer, reporter)
-    if output is not None and not output.finish(reporter.errors > 0):
-        reporter.note(f"castor: {args.output} not written: there were errors and no frame")
+        sequencer.discard_pending()
+    try:
+        _finish_collected(args, spec, sequencer, reporter)
+        if output is not None and not output.finish(reporter.errors > 0):
+            reporter.note(f"castor: {args.output} not written: there were errors and no frame")
+    except BaseException:
+        if output is not None:
+            output.abandon()
+        raise
     return 1 if reporter.errors else 0
+
+
+def _spool_directory(target: str | None) -> str:
+    """Where worker processes write large frames: beside the output file, so that
+    a frame of its own is renamed into place; else the temporary directory."""
+    import tempfile
+
+    from castor.formats.output import frame_path, has_pattern, is_device
+
+    if target is None:
+        return tempfile.gettempdir()
+    first = frame_path(target, 1) if has_pattern(target) else target
+    if is_device(first):
+        return tempfile.gettempdir()
+    return os.path.dirname(os.path.abspath(first))
 
 
 def _warn_unused_overrides(overrides, interpreter, reporter) -> None:

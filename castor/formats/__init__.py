@@ -22,7 +22,9 @@ class Format(NamedTuple):
     binary: bool
     triangles_only: bool  # the format holds triangles: polygon merging is skipped
     all_frames: bool = False  # one file holds every frame (the stream, a GIF)
-    exporter: str = "export"  # the module's function: (frame, path=None) -> bytes
+    # the module's function: (frame, path=None) -> bytes; the same name with
+    # '_chunks', where the module has it, gives the bytes a piece at a time
+    exporter: str = "export"
 
 
 FORMATS: dict[str, Format] = {f.name: f for f in (

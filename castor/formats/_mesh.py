@@ -4,7 +4,7 @@ that every reader takes, and names a person recognises for objects and materials
 from __future__ import annotations
 
 import re
-from typing import NamedTuple
+from typing import Iterator, NamedTuple
 
 import numpy as np
 
@@ -15,42 +15,63 @@ from castor.mesh.frame import Frame, FrameObject
 _STRAIGHT = 1e-9
 
 
-class Combined(NamedTuple):
-    vertices: np.ndarray  # (V, 3) float64
-    offsets: np.ndarray  # (P + 1,)
-    indices: np.ndarray  # vertex numbers of the polygons, counter-clockwise from outside
-    colours: np.ndarray  # (P, 3) float64 in 0..1
-    objects: np.ndarray  # (P,) object number of each polygon
+# polygons formatted at a time by the writers that write in pieces: a piece's
+# temporaries (texts, corners) are a few megabytes, freed before the next
+CHUNK = 32768
+
+
+class Piece(NamedTuple):
+    """Polygons ``first`` to ``first + count`` of one object of a frame, numbered
+    as in the object: its whole vertex list, offsets from 0, their indices."""
+
+    number: int  # the object's place in the frame
+    obj: FrameObject
+    first: int
+    offsets: np.ndarray
+    indices: np.ndarray
+    colour_table: np.ndarray  # (origins, 3) the colour of each of the object's origins
+
+    @property
+    def vertices(self) -> np.ndarray:
+        return self.obj.vertices
+
+    @property
+    def polygon_count(self) -> int:
+        return len(self.offsets) - 1
+
+    def colours(self) -> np.ndarray:
+        """(P, 3) the colour of each polygon of the piece."""
+        origin_of = self.obj.origin_of[self.first:self.first + self.polygon_count]
+        return self.colour_table[origin_of] if len(origin_of) else np.zeros((0, 3))
+
+
+def object_pieces(obj: FrameObject,
+                  size: int | None = None) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
+    """The object's polygons ``size`` (``CHUNK``) at a time: the number of the
+    first, offsets from 0, their vertex numbers (the object's)."""
+    size = size or CHUNK
+    for first in range(0, obj.polygon_count, size):
+        last = min(first + size, obj.polygon_count)
+        start, end = int(obj.offsets[first]), int(obj.offsets[last])
+        yield first, obj.offsets[first:last + 1] - start, obj.indices[start:end]
+
+
+def pieces(frame: Frame, size: int | None = None) -> Iterator[Piece]:
+    """The frame's polygons, object after object, ``size`` (``CHUNK``) polygons at a time."""
+    for number, obj in enumerate(frame.objects):
+        table = np.array([o.colour for o in obj.origins], dtype=np.float64).reshape(-1, 3)
+        for first, offsets, indices in object_pieces(obj, size):
+            yield Piece(number, obj, first, offsets, indices, table)
+
+
+def vertex_bases(frame: Frame) -> list[int]:
+    """The number of each object's first vertex in the frame's combined vertex list."""
+    return np.cumsum([0] + [len(o.vertices) for o in frame.objects]).tolist()
 
 
 class Material(NamedTuple):
     name: str
     colour: tuple[float, float, float]
-
-
-def combine(frame: Frame) -> Combined:
-    vertices, offsets, indices, colours, objects = [], [np.zeros(1, np.int64)], [], [], []
-    base_vertex = 0
-    base_index = 0
-    for number, obj in enumerate(frame.objects):
-        vertices.append(obj.vertices)
-        indices.append(obj.indices + base_vertex)
-        offsets.append(obj.offsets[1:] + base_index)
-        colours.append(polygon_colours(obj))
-        objects.append(np.full(obj.polygon_count, number, np.int64))
-        base_vertex += len(obj.vertices)
-        base_index += len(obj.indices)
-    if not frame.objects:
-        return Combined(np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64),
-                        np.zeros((0, 3)), np.zeros(0, np.int64))
-    return Combined(np.concatenate(vertices), np.concatenate(offsets), np.concatenate(indices),
-                    np.concatenate(colours), np.concatenate(objects))
-
-
-def polygon_colours(obj: FrameObject) -> np.ndarray:
-    """(P, 3) the colour of each polygon of ``obj``."""
-    table = np.array([o.colour for o in obj.origins], dtype=np.float64).reshape(-1, 3)
-    return table[obj.origin_of] if len(obj.origin_of) else np.zeros((0, 3))
 
 
 def byte_colours(colours: np.ndarray) -> np.ndarray:
@@ -104,12 +125,22 @@ def materials(frame: Frame) -> tuple[list[Material], list[np.ndarray]]:
     per_object = []
     for obj in frame.objects:
         origin_material = np.zeros(len(obj.origins), np.int64)
-        # votes by area, so that every format (polygons or triangles) names alike
-        tris, polygon = fan_triangles(obj.offsets, obj.indices)
-        corners = obj.vertices[tris]
-        areas = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0],
-                                        corners[:, 2] - corners[:, 0]), axis=1)
-        counts = np.bincount(obj.origin_of[polygon], weights=areas, minlength=len(obj.origins))
+        # votes by area, so that every format (polygons or triangles) names alike;
+        # the fan's triangles are made a piece at a time, their areas added up
+        # in one pass in triangle order
+        fan_sizes = np.maximum(np.diff(obj.offsets) - 2, 0)
+        areas = np.empty(int(fan_sizes.sum()))
+        origin_of_triangle = np.empty(len(areas), np.int64)
+        done = 0
+        for first, offsets, indices in object_pieces(obj):
+            tris, polygon = fan_triangles(offsets, indices)
+            corners = obj.vertices[tris]
+            areas[done:done + len(tris)] = np.linalg.norm(np.cross(
+                corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+            origin_of_triangle[done:done + len(tris)] = obj.origin_of[first + polygon]
+            done += len(tris)
+        counts = np.bincount(origin_of_triangle, weights=areas, minlength=len(obj.origins))
+        del areas, origin_of_triangle
         for i, origin in enumerate(obj.origins):
             key = tuple(float(c) for c in origin.colour)
             if key not in keys:
@@ -154,6 +185,16 @@ def straight_corners(vertices: np.ndarray, offsets: np.ndarray,
     straight = turn <= _STRAIGHT * np.linalg.norm(incoming, axis=1) * np.linalg.norm(outgoing, axis=1)
     # a triangle keeps even a flat corner: cutting it would leave a hole
     return np.logical_or.reduceat(straight, starts) & (sizes > 3)
+
+
+def triangle_counts(vertices: np.ndarray, offsets: np.ndarray,
+                    indices: np.ndarray) -> np.ndarray:
+    """(P,) how many triangles ``triangles`` cuts each polygon into, without
+    making them: what a header that gives the count needs before the first."""
+    counts = np.maximum(np.diff(offsets) - 2, 0)
+    for p in np.flatnonzero(straight_corners(vertices, offsets, indices)).tolist():
+        counts[p] = len(_clip_ears(vertices, indices[offsets[p]:offsets[p + 1]].tolist()))
+    return counts
 
 
 def triangles(vertices: np.ndarray, offsets: np.ndarray,

@@ -50,13 +50,15 @@ def where_field(where: str) -> str:
     return f"{file}{sep}{line}"
 
 
-def format_frame(frame: Frame) -> str:
-    """The frame's records, from 'frame N WHERE' to 'endframe N COUNT'."""
-    parts = [f"frame {frame.number} {where_field(frame.where)}\n"]
+def frame_texts(frame: Frame, size: int | None = None) -> Iterator[str]:
+    """The frame's records, from 'frame N WHERE' to 'endframe N COUNT', ``size``
+    polygons at a time: each piece's texts are freed before the next is made."""
+    from castor.formats._mesh import CHUNK
+
+    size = size or CHUNK
+    yield f"frame {frame.number} {where_field(frame.where)}\n"
     count = 0
     for obj in frame.objects:
-        numbers = number_strings(obj.vertices)
-        points = list(map(" ".join, zip(numbers[0::3], numbers[1::3], numbers[2::3])))
         heads = []
         colours: dict[tuple, str] = {}
         for origin in obj.origins:
@@ -65,23 +67,42 @@ def format_frame(frame: Frame) -> str:
                 colour = colours[origin.colour] = " ".join(_texts(
                     (np.array(origin.colour, dtype=np.float64) + 0.0).tolist()))
             heads.append(f"poly {origin.path} {colour} ")
-        sizes = np.diff(obj.offsets)
-        # every polygon as its head, its size and its points, in one pass
-        head_of = [heads[i] + str(n) + " " for i, n in zip(obj.origin_of.tolist(), sizes.tolist())]
-        texts = list(map(points.__getitem__, obj.indices.tolist()))
-        bounds = obj.offsets.tolist()
-        lines = [head_of[p] + " ".join(texts[bounds[p]:bounds[p + 1]]) for p in range(len(head_of))]
-        if lines:
-            parts.append("\n".join(lines))
-            parts.append("\n")
-        count += len(lines)
-    parts.append(f"endframe {frame.number} {count}\n")
-    return "".join(parts)
+        for first in range(0, obj.polygon_count, size):
+            last = min(first + size, obj.polygon_count)
+            start, end = obj.offsets[first], obj.offsets[last]
+            # the texts of the vertices these polygons use, each written once
+            used, local = np.unique(obj.indices[start:end], return_inverse=True)
+            numbers = number_strings(obj.vertices[used])
+            points = list(map(" ".join, zip(numbers[0::3], numbers[1::3], numbers[2::3])))
+            del numbers
+            offsets = obj.offsets[first:last + 1] - start
+            # every polygon as its head, its size and its points, in one pass
+            head_of = [heads[i] + str(n) + " " for i, n in
+                       zip(obj.origin_of[first:last].tolist(), np.diff(offsets).tolist())]
+            texts = list(map(points.__getitem__, local.ravel().tolist()))
+            del points, used, local
+            bounds = offsets.tolist()
+            yield "\n".join([head_of[p] + " ".join(texts[bounds[p]:bounds[p + 1]])
+                             for p in range(len(head_of))]) + "\n"
+            count += len(head_of)
+    yield f"endframe {frame.number} {count}\n"
+
+
+def format_frame(frame: Frame) -> str:
+    """The frame's records, from 'frame N WHERE' to 'endframe N COUNT', as one text."""
+    return "".join(frame_texts(frame))
+
+
+def export_chunks(frame: Frame, path: str | None = None, size: int | None = None) -> Iterator[bytes]:
+    """The frame's records a piece at a time (the header, written once per
+    stream, is ``HEADER``)."""
+    for text in frame_texts(frame, size):
+        yield text.encode("utf-8", "surrogateescape")
 
 
 def export(frame: Frame, path: str | None = None) -> bytes:
     """The frame's records (the header, written once per stream, is ``HEADER``)."""
-    return format_frame(frame).encode("utf-8", "surrogateescape")
+    return b"".join(export_chunks(frame, path))
 
 
 # --- reading the stream back

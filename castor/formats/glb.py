@@ -12,11 +12,13 @@ from __future__ import annotations
 
 import json
 import struct
+from typing import Iterator
 
 import numpy as np
 
-from castor.mesh.frame import Frame
-from castor.formats._mesh import materials as frame_materials, object_names, triangles, y_up
+from castor.mesh.frame import Frame, FrameObject
+from castor.formats._mesh import object_names, object_pieces, triangle_counts, triangles, y_up
+from castor.formats._mesh import materials as frame_materials
 
 
 def _linear(c: float) -> float:
@@ -24,19 +26,46 @@ def _linear(c: float) -> float:
     return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
 
 
+def _indices_by_material(obj: FrameObject, material: np.ndarray,
+                         size: int | None) -> dict[int, np.ndarray]:
+    """For each material of the object's triangles (in order), the vertex numbers
+    of its triangles, in triangle order: counted first, then filled a piece of
+    polygons at a time, so that no array of every triangle is held beside them."""
+    parts = list(object_pieces(obj, size))
+    counts = np.concatenate([triangle_counts(obj.vertices, offsets, indices)
+                             for _, offsets, indices in parts])
+    per_material = np.bincount(material, weights=counts, minlength=1).astype(np.int64)
+    by_material = {m: np.empty(3 * int(n), "<u4") for m, n in enumerate(per_material.tolist()) if n}
+    filled = dict.fromkeys(by_material, 0)
+    for first, offsets, indices in parts:
+        tris, polygon = triangles(obj.vertices, offsets, indices)
+        material_of_tri = material[first + polygon]
+        for m in np.unique(material_of_tri).tolist():
+            chosen = tris[material_of_tri == m].ravel()
+            by_material[m][filled[m]:filled[m] + len(chosen)] = chosen
+            filled[m] += len(chosen)
+    return by_material
+
+
 def export(frame: Frame, path: str | None = None) -> bytes:
-    blobs: list[bytes] = []
+    return b"".join(export_chunks(frame, path))
+
+
+def export_chunks(frame: Frame, path: str | None = None, size: int | None = None) -> Iterator[bytes]:
+    """The file in pieces: its header and JSON chunk, then each buffer view.
+    Every buffer view is made (the JSON gives their lengths and bounds first),
+    but the file is never joined into one ``bytes``."""
+    blobs: list[np.ndarray] = []  # each view's numbers, written as bytes one at a time
     offset = 0
     buffer_views, accessors, meshes, nodes, materials = [], [], [], [], []
     material_index: dict[int, int] = {}  # frame material -> glTF material
 
-    def add_view(data: bytes, target: int) -> int:
+    def add_view(data: np.ndarray, target: int) -> int:
         nonlocal offset
-        buffer_views.append({"buffer": 0, "byteOffset": offset, "byteLength": len(data),
+        buffer_views.append({"buffer": 0, "byteOffset": offset, "byteLength": data.nbytes,
                              "target": target})
-        padded = data + b"\0" * (-len(data) % 4)
-        blobs.append(padded)
-        offset += len(padded)
+        blobs.append(data)
+        offset += data.nbytes + (-data.nbytes % 4)
         return len(buffer_views) - 1
 
     table, material_of = frame_materials(frame)
@@ -44,15 +73,14 @@ def export(frame: Frame, path: str | None = None) -> bytes:
         if obj.polygon_count == 0:
             continue
         positions = np.ascontiguousarray(y_up(obj.vertices), dtype="<f4")
-        view = add_view(positions.tobytes(), 34962)
+        view = add_view(positions, 34962)
         accessors.append({"bufferView": view, "componentType": 5126, "count": len(positions),
                           "type": "VEC3", "min": positions.min(axis=0).tolist(),
                           "max": positions.max(axis=0).tolist()})
         position_accessor = len(accessors) - 1
-        tris, polygon = triangles(obj.vertices, obj.offsets, obj.indices)
-        material_of_tri = material[polygon]
+        by_material = _indices_by_material(obj, material, size)
         primitives = []
-        for m in np.unique(material_of_tri).tolist():
+        for m, indices in by_material.items():
             if m not in material_index:
                 colour = table[m].colour
                 materials.append({"name": table[m].name,
@@ -61,8 +89,7 @@ def export(frame: Frame, path: str | None = None) -> bytes:
                                       "metallicFactor": 0.0, "roughnessFactor": 0.9},
                                   "doubleSided": False})
                 material_index[m] = len(materials) - 1
-            indices = np.ascontiguousarray(tris[material_of_tri == m].ravel(), dtype="<u4")
-            view = add_view(indices.tobytes(), 34963)
+            view = add_view(indices, 34963)
             accessors.append({"bufferView": view, "componentType": 5125, "count": len(indices),
                               "type": "SCALAR"})
             primitives.append({"attributes": {"POSITION": position_accessor},
@@ -85,8 +112,9 @@ def export(frame: Frame, path: str | None = None) -> bytes:
         document["scenes"] = [{}]  # an empty list of nodes is not valid glTF
     text = json.dumps(document, separators=(",", ":")).encode("utf-8")
     text += b" " * (-len(text) % 4)
-    binary = b"".join(blobs)
-    chunks = struct.pack("<II", len(text), 0x4E4F534A) + text
-    if binary:
-        chunks += struct.pack("<II", len(binary), 0x004E4942) + binary
-    return struct.pack("<III", 0x46546C67, 2, 12 + len(chunks)) + chunks
+    length = 12 + 8 + len(text) + (8 + offset if offset else 0)
+    yield struct.pack("<III", 0x46546C67, 2, length) + struct.pack("<II", len(text), 0x4E4F534A) + text
+    if offset:
+        yield struct.pack("<II", offset, 0x004E4942)
+        for data in blobs:
+            yield data.tobytes() + b"\0" * (-data.nbytes % 4)

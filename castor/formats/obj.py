@@ -9,35 +9,52 @@ colour (``toit``, ``fenetre``).
 from __future__ import annotations
 
 import os
+from typing import Iterator
 
 import numpy as np
 
 from castor.mesh.frame import Frame
-from castor.formats._mesh import materials, object_names, y_up
+from castor.formats._mesh import CHUNK, materials, object_names, y_up
 from castor.formats.cps import number_strings
 
 
-def export(frame: Frame, path: str | None = None) -> bytes:
+def export_chunks(frame: Frame, path: str | None = None, size: int | None = None) -> Iterator[bytes]:
+    """The file a piece at a time: each object's vertices, then its faces by material."""
+    step = size or CHUNK
     table, material_of = materials(frame)
-    lines = ["# castor: one frame, +Y up, polygons counter-clockwise seen from outside"]
+    head = ["# castor: one frame, +Y up, polygons counter-clockwise seen from outside"]
     if path is not None:
-        lines.append(f"mtllib {_mtl_name(path)}")
+        head.append(f"mtllib {_mtl_name(path)}")
+    yield ("\n".join(head) + "\n").encode("utf-8")
     base = 1
     for obj, name, material in zip(frame.objects, object_names(frame), material_of):
-        lines.append(f"o {name}")
-        numbers = number_strings(y_up(obj.vertices))
-        lines.extend("v " + " ".join(numbers[i:i + 3]) for i in range(0, len(numbers), 3))
-        words = (obj.indices + base).astype(str).tolist()
-        bounds = obj.offsets.tolist()
-        order = np.argsort(material, kind="stable").tolist()
+        yield f"o {name}\n".encode("utf-8")
+        for first in range(0, len(obj.vertices), step):
+            numbers = number_strings(y_up(obj.vertices[first:first + step]))
+            yield ("\n".join("v " + " ".join(numbers[i:i + 3]) for i in range(0, len(numbers), 3))
+                   + "\n").encode("utf-8")
+        order = np.argsort(material, kind="stable")
+        sizes = np.diff(obj.offsets)
         current = None
-        for p in order:
-            if material[p] != current:
-                current = material[p]
-                lines.append(f"usemtl {table[current].name}")
-            lines.append("f " + " ".join(words[bounds[p]:bounds[p + 1]]))
+        for first in range(0, len(order), step):
+            chosen = order[first:first + step]
+            # the chosen polygons' vertex numbers, polygon after polygon
+            counts = sizes[chosen]
+            starts = np.repeat(obj.offsets[:-1][chosen] - np.cumsum(counts) + counts, counts)
+            words = (obj.indices[starts + np.arange(len(starts))] + base).astype(str).tolist()
+            bounds = np.concatenate([[0], np.cumsum(counts)]).tolist()
+            lines = []
+            for k, m in enumerate(material[chosen].tolist()):
+                if m != current:
+                    current = m
+                    lines.append(f"usemtl {table[current].name}")
+                lines.append("f " + " ".join(words[bounds[k]:bounds[k + 1]]))
+            yield ("\n".join(lines) + "\n").encode("utf-8")
         base += len(obj.vertices)
-    return ("\n".join(lines) + "\n").encode("utf-8")
+
+
+def export(frame: Frame, path: str | None = None) -> bytes:
+    return b"".join(export_chunks(frame, path))
 
 
 def _mtl_name(path: str) -> str:

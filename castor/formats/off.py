@@ -12,10 +12,13 @@ because some readers (trimesh's OFF loader) take nothing larger.
 
 from __future__ import annotations
 
+from typing import Iterator
+
 import numpy as np
 
 from castor.mesh.frame import Frame
-from castor.formats._mesh import byte_colours, combine, split_large, straight_corners, triangles
+from castor.formats._mesh import (CHUNK, byte_colours, pieces, split_large, straight_corners,
+                                  triangle_counts, triangles, vertex_bases)
 from castor.formats.cps import number_strings
 
 
@@ -30,13 +33,29 @@ def _axis_aligned(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray
     return np.any(low == high, axis=1)
 
 
+def _whole(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray) -> np.ndarray:
+    """(P,) which polygons are written whole (perhaps cut into quads), not as triangles."""
+    return (np.diff(offsets) == 3) | (_axis_aligned(vertices, offsets, indices)
+                                     & ~straight_corners(vertices, offsets, indices))
+
+
+def face_count(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray) -> int:
+    """How many faces ``faces`` makes of these polygons, without making them."""
+    sizes = np.diff(offsets)
+    whole = _whole(vertices, offsets, indices)
+    # a polygon of n > 4 vertices becomes a fan of (n - 1) // 2 quads (the last
+    # perhaps a triangle); one cut into triangles, as many as it takes
+    counts = np.where(sizes > 4, (sizes - 1) // 2, 1)
+    if not whole.all():
+        counts = np.where(whole, counts, triangle_counts(vertices, offsets, indices))
+    return int(counts.sum())
+
+
 def faces(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray,
           colours: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The faces OFF readers take: (offsets, indices, colours) of convex faces of at
     most four vertices, each exactly planar, none with a straight corner."""
-    sizes = np.diff(offsets)
-    whole = (sizes == 3) | (_axis_aligned(vertices, offsets, indices)
-                            & ~straight_corners(vertices, offsets, indices))
+    whole = _whole(vertices, offsets, indices)
     if not whole.all():
         tris, polygon = triangles(vertices, offsets, indices)
         cut = ~whole[polygon]
@@ -52,19 +71,32 @@ def faces(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray,
     return split_large(offsets, indices, colours)
 
 
+def export_chunks(frame: Frame, path: str | None = None, size: int | None = None) -> Iterator[bytes]:
+    """The file a piece at a time: the counts, the vertices, then the faces."""
+    bases = vertex_bases(frame)
+    count = sum(face_count(p.vertices, p.offsets, p.indices) for p in pieces(frame, size))
+    yield f"OFF\n{bases[-1]} {count} 0\n".encode("ascii")
+    step = size or CHUNK
+    for obj in frame.objects:
+        for first in range(0, len(obj.vertices), step):
+            numbers = number_strings(obj.vertices[first:first + step])
+            yield ("\n".join(" ".join(numbers[i:i + 3]) for i in range(0, len(numbers), 3))
+                   + "\n").encode("ascii")
+    for piece in pieces(frame, size):
+        offsets, indices, colours = faces(piece.vertices, piece.offsets, piece.indices,
+                                          piece.colours())
+        sizes = np.diff(offsets).tolist()
+        if not sizes:
+            continue
+        bounds = offsets.tolist()
+        words = (indices + bases[piece.number]).astype(str).tolist()
+        rgb = [f"{r} {g} {b}" for r, g, b in byte_colours(colours).tolist()]
+        yield ("\n".join(f"{sizes[p]} {' '.join(words[bounds[p]:bounds[p + 1]])} {rgb[p]}"
+                         for p in range(len(sizes))) + "\n").encode("ascii")
+
+
 def export(frame: Frame, path: str | None = None) -> bytes:
-    mesh = combine(frame)
-    offsets, indices, colours = faces(mesh.vertices, mesh.offsets, mesh.indices, mesh.colours)
-    numbers = number_strings(mesh.vertices)
-    lines = ["OFF", f"{len(mesh.vertices)} {len(offsets) - 1} 0"]
-    lines.extend(" ".join(numbers[i:i + 3]) for i in range(0, len(numbers), 3))
-    sizes = np.diff(offsets).tolist()
-    bounds = offsets.tolist()
-    words = indices.astype(str).tolist()
-    rgb = [f"{r} {g} {b}" for r, g, b in byte_colours(colours).tolist()]
-    lines.extend(f"{sizes[p]} {' '.join(words[bounds[p]:bounds[p + 1]])} {rgb[p]}"
-                 for p in range(len(sizes)))
-    return ("\n".join(lines) + "\n").encode("ascii")
+    return b"".join(export_chunks(frame, path))
 
 
 def load(text: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

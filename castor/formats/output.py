@@ -9,11 +9,14 @@ run with the same kind of message.
 
 from __future__ import annotations
 
+import codecs
 import importlib.util
+import itertools
 import os
 import re
 import sys
 import tempfile
+from typing import Iterable, Iterator, NamedTuple, Union
 
 from castor.diagnostics import CastorError, Location
 from castor.mesh.frame import Frame
@@ -109,37 +112,148 @@ def _file_mode() -> int:
     return 0o666 & ~mask
 
 
-def write_atomically(path: str, data: bytes) -> None:
-    """Write beside ``path`` and rename into place: never half a file.
+class Spooled(NamedTuple):
+    """A frame's bytes in a file a worker process wrote (beside the output, or in
+    the temporary directory): moved into place or copied, then removed."""
+
+    path: str
+
+
+# what a writer hands on: the bytes, the bytes a piece at a time, or a spooled file
+Data = Union[bytes, Iterable[bytes], Spooled]
+
+_BLOCK = 1 << 20  # bytes copied at a time from a spooled file
+
+
+def pieces_of(data: Data) -> Iterator[bytes]:
+    """The bytes of ``data`` a piece at a time (a spooled file's blocks; its
+    owner removes it)."""
+    if isinstance(data, (bytes, bytearray)):
+        yield data
+    elif isinstance(data, Spooled):
+        with open(data.path, "rb") as handle:
+            while True:
+                block = handle.read(_BLOCK)
+                if not block:
+                    break
+                yield block
+    else:
+        yield from data
+
+
+# files being written beside their final names, and spooled frames not yet
+# written: what an interrupted run removes (castor.cli, on Ctrl-C)
+_temporaries: set[str] = set()
+
+
+def track(data: Data | None) -> None:
+    """Count a spooled file among the temporaries until it is written."""
+    if isinstance(data, Spooled):
+        _temporaries.add(data.path)
+
+
+def remove_temporaries() -> None:
+    """Remove every file being written: an interrupted run leaves no half file."""
+    for path in list(_temporaries):
+        try:
+            os.unlink(path)
+        except OSError:
+            pass
+    _temporaries.clear()
+
+
+def discard(data: Data | None) -> None:
+    """Remove a spooled file that will not be written anywhere."""
+    if isinstance(data, Spooled):
+        _temporaries.discard(data.path)
+        try:
+            os.unlink(data.path)
+        except OSError:
+            pass
+
+
+class AtomicFile:
+    """A file written a piece at a time beside ``path`` and renamed into place by
+    ``commit``: never half a file. A device or a pipe (/dev/null) is written into.
 
     Raises ``Unwritable`` with a message in the user's words when the file
     cannot be written (missing directory, no permission, full disk)."""
-    if is_device(path):
-        # /dev/null, a named pipe, a terminal: written into, never renamed over
+
+    def __init__(self, path: str):
+        self.path = path
+        self.temporary = None
         try:
-            with open(path, "wb") as handle:
-                handle.write(data)
+            if is_device(path):
+                # /dev/null, a named pipe, a terminal: written into, never renamed over
+                self.handle = open(path, "wb")
+                return
+            directory = os.path.dirname(os.path.abspath(path))
+            fd, self.temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
+            _temporaries.add(self.temporary)
+            self.handle = os.fdopen(fd, "wb")
         except OSError as exc:
             raise Unwritable(f"cannot write '{path}': {_reason(exc)}") from None
-        return
-    directory = os.path.dirname(os.path.abspath(path))
-    try:
-        fd, temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
-    except OSError as exc:
-        raise Unwritable(f"cannot write '{path}': {_reason(exc)}") from None
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
-        os.chmod(temporary, _file_mode())  # mkstemp makes it private; open() would not
-        os.replace(temporary, path)
-    except BaseException as exc:
+
+    def write(self, data: bytes) -> None:
         try:
-            os.unlink(temporary)
+            self.handle.write(data)
+        except OSError as exc:
+            self.discard()
+            raise Unwritable(f"cannot write '{self.path}': {_reason(exc)}") from None
+
+    def commit(self) -> None:
+        try:
+            self.handle.close()
+            if self.temporary is not None:
+                os.chmod(self.temporary, _file_mode())  # mkstemp makes it private
+                os.replace(self.temporary, self.path)
+                _temporaries.discard(self.temporary)
+                self.temporary = None
+        except OSError as exc:
+            self.discard()
+            raise Unwritable(f"cannot write '{self.path}': {_reason(exc)}") from None
+
+    def discard(self) -> None:
+        """Leave the old file as it was (nothing written in place)."""
+        try:
+            self.handle.close()
         except OSError:
             pass
-        if isinstance(exc, OSError):
-            raise Unwritable(f"cannot write '{path}': {_reason(exc)}") from None
+        if self.temporary is not None:
+            _temporaries.discard(self.temporary)
+            try:
+                os.unlink(self.temporary)
+            except OSError:
+                pass
+            self.temporary = None
+
+
+def write_atomically(path: str, data: Data) -> None:
+    """Write beside ``path`` and rename into place: never half a file. ``data``
+    is bytes, the bytes a piece at a time, or a spooled file (renamed into
+    place when it is beside ``path``, else copied and removed).
+
+    Raises ``Unwritable`` with a message in the user's words when the file
+    cannot be written (missing directory, no permission, full disk)."""
+    if isinstance(data, Spooled) and not is_device(path) and (
+            os.path.dirname(os.path.abspath(data.path)) == os.path.dirname(os.path.abspath(path))):
+        try:
+            os.chmod(data.path, _file_mode())
+            os.replace(data.path, path)
+            _temporaries.discard(data.path)
+            return
+        except OSError:
+            pass  # copied below
+    destination = AtomicFile(path)
+    try:
+        for piece in pieces_of(data):
+            destination.write(piece)
+        destination.commit()
+    except BaseException:
+        destination.discard()
         raise
+    finally:
+        discard(data)
 
 
 def _reason(exc: OSError) -> str:
@@ -150,14 +264,22 @@ def _reason(exc: OSError) -> str:
 def encode(frame: Frame, name: str, target: str | None = None) -> tuple[bytes, dict[str, bytes]]:
     """The frame in format ``name``, and the files that go beside it (by path).
     ``target`` is -o's path (a pattern is filled in with the frame's number)."""
+    pieces, companions = encode_pieces(frame, name, target)
+    return b"".join(pieces), companions
+
+
+def encode_pieces(frame: Frame, name: str,
+                  target: str | None = None) -> tuple[Iterator[bytes], dict[str, bytes]]:
+    """As ``encode``, the frame's bytes made a piece at a time as they are read
+    (formats that cannot, as one piece): the writer's memory is a piece's."""
     patterned = target is not None and has_pattern(target)
     if patterned:
         target = frame_path(target, frame.number)
-    data = render(frame, name, target)
+    data = render_pieces(frame, name, target)
     if name == "cps" and patterned:  # a file of its own: it begins with the header
         from castor.formats.cps import HEADER
 
-        data = HEADER.encode("utf-8") + data
+        data = itertools.chain([HEADER.encode("utf-8")], data)
     companions = getattr(writer(name), "companions", None)
     return data, (companions(frame, target) if companions is not None and target else {})
 
@@ -168,16 +290,30 @@ def render(frame: Frame, name: str, path: str | None = None) -> bytes:
     return getattr(writer(name), FORMATS[name].exporter)(frame, path)
 
 
-def to_stdout(data: bytes) -> None:
-    """Bytes to standard output (through its text layer when it has no bytes one,
-    as under a test's redirection)."""
+def render_pieces(frame: Frame, name: str, path: str | None = None) -> Iterator[bytes]:
+    """As ``render``, a piece at a time where the format's module writes so
+    (its exporter's name with '_chunks'; GLB and 3MF are made whole)."""
+    module = writer(name)
+    chunked = getattr(module, FORMATS[name].exporter + "_chunks", None)
+    if chunked is None:
+        return iter([render(frame, name, path)])
+    return chunked(frame, path)
+
+
+def to_stdout(data: Data) -> None:
+    """Bytes to standard output, a piece at a time (through its text layer when
+    it has no bytes one, as under a test's redirection)."""
     buffer = getattr(sys.stdout, "buffer", None)
     if buffer is None:
-        sys.stdout.write(data.decode("utf-8", "surrogateescape"))
+        decoder = codecs.getincrementaldecoder("utf-8")("surrogateescape")
+        for piece in pieces_of(data):
+            sys.stdout.write(decoder.decode(piece))
+        sys.stdout.write(decoder.decode(b"", final=True))
         sys.stdout.flush()
         return
     sys.stdout.flush()
-    buffer.write(data)
+    for piece in pieces_of(data):
+        buffer.write(piece)
     buffer.flush()
 
 
@@ -188,7 +324,7 @@ class Output:
         self.path = path
         self.format = format_name
         self.frames = 0
-        self.stream_parts: list[bytes] = []  # the cps stream, for a single -o file
+        self.stream: AtomicFile | None = None  # the cps stream, for a single -o file
 
     def start(self) -> None:
         if self.path is None and self.format == "cps":
@@ -197,16 +333,35 @@ class Output:
             sys.stdout.write(HEADER)
             sys.stdout.flush()
 
-    def put(self, number: int, data: bytes, companions: dict[str, bytes],
+    def put(self, number: int, data: Data, companions: dict[str, bytes],
             location: Location) -> None:
-        """Write one frame's encoded bytes where they go."""
+        """Write one frame's encoded bytes where they go, a piece at a time."""
+        try:
+            self._put(number, data, companions, location)
+        finally:
+            discard(data)
+
+    def _put(self, number: int, data: Data, companions: dict[str, bytes],
+             location: Location) -> None:
         self.frames += 1
         patterned = bool(self.path and has_pattern(self.path))
         if self.format == "cps" and not patterned:
             if self.path is None:
                 to_stdout(data)
-            else:
-                self.stream_parts.append(data)
+                return
+            # a single file: frames go into it as they come, renamed into place
+            # at the end
+            if self.stream is None:
+                from castor.formats.cps import HEADER
+
+                self.stream = AtomicFile(self.path)
+                self.stream.write(HEADER.encode("utf-8"))
+            try:
+                for piece in pieces_of(data):
+                    self.stream.write(piece)
+            except BaseException:
+                self.abandon()
+                raise
             return
         refusal = self.refusal(self.frames, number, location)
         if refusal is not None:
@@ -233,9 +388,20 @@ class Output:
         """Put a single cps file in place; False when it was left out."""
         if self.path is None or self.format != "cps" or has_pattern(self.path):
             return True
-        if had_errors and not self.stream_parts:
-            return False
-        from castor.formats.cps import HEADER
+        if self.stream is None:
+            if had_errors:
+                return False
+            from castor.formats.cps import HEADER
 
-        write_atomically(self.path, HEADER.encode("utf-8") + b"".join(self.stream_parts))
+            write_atomically(self.path, HEADER.encode("utf-8"))
+            return True
+        stream, self.stream = self.stream, None
+        stream.commit()
         return True
+
+    def abandon(self) -> None:
+        """A run that stops on an exception: a single cps file being written is
+        left out (the old file stays)."""
+        if self.stream is not None:
+            self.stream.discard()
+            self.stream = None

@@ -9,37 +9,66 @@ faces of mixed lengths).
 
 from __future__ import annotations
 
+from typing import Iterator
+
 import numpy as np
 
 from castor.mesh.frame import Frame
-from castor.formats._mesh import byte_colours, combine, triangles
+from castor.formats._mesh import CHUNK, Piece, byte_colours, pieces, triangles, vertex_bases
+
+_VERTEX = np.dtype([("xyz", "<f8", 3), ("rgb", "u1", 3)])
+_FACE = np.dtype([("count", "u1"), ("indices", "<i4", 3), ("rgb", "u1", 3)])
 
 
-def export(frame: Frame, path: str | None = None) -> bytes:
-    mesh = combine(frame)
-    tris, polygon = triangles(mesh.vertices, mesh.offsets, mesh.indices)
-    face_colour = byte_colours(mesh.colours)[polygon] if len(tris) else np.zeros((0, 3), np.uint8)
-    # one vertex per (vertex, colour) pair
-    palette, colour_id = np.unique(face_colour, axis=0, return_inverse=True)
-    colour_id = colour_id.ravel()
-    keys = tris * max(len(palette), 1) + colour_id[:, None]
-    unique, corner = np.unique(keys.ravel(), return_inverse=True)
-    vertex_of, colour_of = np.divmod(unique, max(len(palette), 1))
+def _coloured_corners(piece: Piece, base: int) -> tuple[np.ndarray, np.ndarray]:
+    """(T, 3) a key for each corner of the piece's triangles: its vertex in the
+    frame's combined list and its colour, as vertex * 2**24 + 0xRRGGBB (in the
+    order of (vertex, red, green, blue)); and (T, 3) the triangles' colours."""
+    tris, polygon = triangles(piece.vertices, piece.offsets, piece.indices)
+    face_colour = byte_colours(piece.colours())[polygon] if len(tris) else np.zeros((0, 3), np.uint8)
+    rgb = face_colour.astype(np.int64) @ np.array([1 << 16, 1 << 8, 1], np.int64)
+    return ((tris + base) << 24) | rgb[:, None], face_colour
+
+
+def export_chunks(frame: Frame, path: str | None = None, size: int | None = None) -> Iterator[bytes]:
+    """The file a piece at a time: one vertex per (vertex, colour) pair, numbered
+    in the order of the pair, so the pairs are gathered (not the triangles) first."""
+    bases = vertex_bases(frame)
+    seen, face_count = [], 0
+    for piece in pieces(frame, size):
+        keys, _ = _coloured_corners(piece, bases[piece.number])
+        seen.append(np.unique(keys))
+        face_count += len(keys)
+    unique = np.unique(np.concatenate(seen)) if seen else np.zeros(0, np.int64)
+    del seen
     header = "\n".join([
         "ply", "format binary_little_endian 1.0", "comment castor: one frame",
         f"element vertex {len(unique)}",
         "property double x", "property double y", "property double z",
         "property uchar red", "property uchar green", "property uchar blue",
-        f"element face {len(tris)}",
+        f"element face {face_count}",
         "property list uchar int vertex_indices",
         "property uchar red", "property uchar green", "property uchar blue",
         "end_header"]) + "\n"
-    vertex = np.zeros(len(unique), dtype=np.dtype([("xyz", "<f8", 3), ("rgb", "u1", 3)]))
-    vertex["xyz"] = mesh.vertices[vertex_of] if len(unique) else np.zeros((0, 3))
-    vertex["rgb"] = palette[colour_of] if len(unique) else np.zeros((0, 3))
-    faces = np.zeros(len(tris), dtype=np.dtype([("count", "u1"), ("indices", "<i4", 3),
-                                                ("rgb", "u1", 3)]))
-    faces["count"] = 3
-    faces["indices"] = corner.reshape(-1, 3)
-    faces["rgb"] = face_colour
-    return header.encode("ascii") + vertex.tobytes() + faces.tobytes()
+    yield header.encode("ascii")
+    step = size or CHUNK
+    # the objects' vertices are consecutive in the combined list, so are their pairs
+    bounds = np.searchsorted(unique, np.array(bases, np.int64) << 24).tolist()
+    for number, obj in enumerate(frame.objects):
+        for first in range(bounds[number], bounds[number + 1], step):
+            keys = unique[first:min(first + step, bounds[number + 1])]
+            vertex = np.zeros(len(keys), dtype=_VERTEX)
+            vertex["xyz"] = obj.vertices[(keys >> 24) - bases[number]]
+            vertex["rgb"] = np.stack([(keys >> 16) & 255, (keys >> 8) & 255, keys & 255], axis=1)
+            yield vertex.tobytes()
+    for piece in pieces(frame, size):
+        keys, face_colour = _coloured_corners(piece, bases[piece.number])
+        faces = np.zeros(len(keys), dtype=_FACE)
+        faces["count"] = 3
+        faces["indices"] = np.searchsorted(unique, keys)
+        faces["rgb"] = face_colour
+        yield faces.tobytes()
+
+
+def export(frame: Frame, path: str | None = None) -> bytes:
+    return b"".join(export_chunks(frame, path))

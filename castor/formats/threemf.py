@@ -12,12 +12,13 @@ from __future__ import annotations
 
 import io
 import zipfile
+from typing import Iterator
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
 from castor.mesh.frame import Frame
-from castor.formats._mesh import materials, object_names, triangles
+from castor.formats._mesh import CHUNK, materials, object_names, object_pieces, triangles
 from castor.formats.cps import number_strings
 
 MILLIMETRES_PER_UNIT = 1000.0
@@ -37,6 +38,12 @@ _RELATIONSHIPS = """<?xml version="1.0" encoding="UTF-8"?>
 
 def model(frame: Frame) -> str:
     """The 3D/3dmodel.model document of the package."""
+    return b"".join(model_pieces(frame)).decode("utf-8")
+
+
+def model_pieces(frame: Frame) -> Iterator[bytes]:
+    """The 3D/3dmodel.model document, encoded, an object's part at a time: the
+    text is held once, as bytes, not as a line per triangle."""
     table, material_of = materials(frame)
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            '<model unit="millimeter" xml:lang="en-US" '
@@ -51,24 +58,37 @@ def model(frame: Frame) -> str:
         out.append('  </basematerials>')
     items = []
     for obj, name, material in zip(frame.objects, object_names(frame), material_of):
-        tris, polygon = triangles(obj.vertices, obj.offsets, obj.indices)
-        if len(tris) == 0:
+        colour = None  # of the first triangle; none: the object is left out
+        for first, offsets, indices in object_pieces(obj):
+            tris, polygon = triangles(obj.vertices, offsets, indices)
+            if len(tris):
+                colour = int(material[first + polygon[0]])
+                break
+        if colour is None:
             continue
         number = len(items) + 2
         items.append(number)
-        colour = material[polygon]
         out.append(f'  <object id="{number}" name={quoteattr(name)} type="model" pid="1" '
-                   f'pindex="{int(colour[0])}">')
+                   f'pindex="{colour}">')
         out.append('   <mesh>')
         out.append('    <vertices>')
-        numbers = number_strings(np.round(obj.vertices * MILLIMETRES_PER_UNIT, 6))
-        out.extend(f'     <vertex x="{x}" y="{y}" z="{z}"/>'
-                   for x, y, z in zip(numbers[0::3], numbers[1::3], numbers[2::3]))
-        out.append('    </vertices>')
-        out.append('    <triangles>')
-        out.extend(f'     <triangle v1="{a}" v2="{b}" v3="{c}" pid="1" p1="{m}"/>'
-                   for (a, b, c), m in zip(tris.tolist(), colour.tolist()))
-        out.append('    </triangles>')
+        yield ("\n".join(out) + "\n").encode("utf-8")
+        for first in range(0, len(obj.vertices), CHUNK):
+            numbers = number_strings(np.round(obj.vertices[first:first + CHUNK]
+                                              * MILLIMETRES_PER_UNIT, 6))
+            yield ("\n".join(f'     <vertex x="{x}" y="{y}" z="{z}"/>'
+                             for x, y, z in zip(numbers[0::3], numbers[1::3], numbers[2::3]))
+                   + "\n").encode("utf-8")
+        out = ['    </vertices>', '    <triangles>']
+        yield ("\n".join(out) + "\n").encode("utf-8")
+        for first, offsets, indices in object_pieces(obj):
+            tris, polygon = triangles(obj.vertices, offsets, indices)
+            if len(tris):
+                yield ("\n".join(f'     <triangle v1="{a}" v2="{b}" v3="{c}" pid="1" p1="{m}"/>'
+                                 for (a, b, c), m in zip(tris.tolist(),
+                                                         material[first + polygon].tolist()))
+                       + "\n").encode("utf-8")
+        out = ['    </triangles>']
         out.append('   </mesh>')
         out.append('  </object>')
     out.append(' </resources>')
@@ -76,16 +96,19 @@ def model(frame: Frame) -> str:
     out.extend(f'  <item objectid="{number}"/>' for number in items)
     out.append(' </build>')
     out.append('</model>')
-    return "\n".join(out) + "\n"
+    yield ("\n".join(out) + "\n").encode("utf-8")
 
 
 def export(frame: Frame, path: str | None = None) -> bytes:
     buffer = io.BytesIO()
     with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as package:
-        for name, text in (("[Content_Types].xml", _CONTENT_TYPES),
-                           ("_rels/.rels", _RELATIONSHIPS),
-                           ("3D/3dmodel.model", model(frame))):
+        for name, data in (("[Content_Types].xml", _CONTENT_TYPES.encode("utf-8")),
+                           ("_rels/.rels", _RELATIONSHIPS.encode("utf-8")),
+                           ("3D/3dmodel.model", None)):
+            if data is None:
+                data = b"".join(model_pieces(frame))
             info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
             info.compress_type = zipfile.ZIP_DEFLATED
-            package.writestr(info, text.encode("utf-8"))
+            package.writestr(info, data)
+            del data
     return buffer.getvalue()
