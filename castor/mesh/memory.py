@@ -13,9 +13,9 @@ import os
 
 # bytes per triangle of the frame's estimate (operands of its booleans added
 # up): the engine's mesh (about 250 B a triangle while a boolean runs, operands
-# and result), the arrays castor makes from it (about 150 B), and the writer's
-# (the polygon stream's text, the largest, about 400 B)
-BYTES_PER_TRIANGLE = 800
+# and result) and the arrays castor makes from it (about 150 B); the writers
+# work in pieces of 32,768 polygons, and add little
+BYTES_PER_TRIANGLE = 400
 # what the process holds before any frame: Python, numpy, manifold3d, the parser
 BASE_BYTES = 150 * 2 ** 20
 
