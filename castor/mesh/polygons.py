@@ -547,8 +547,8 @@ def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
             break
         i = todo.pop()
         t = tris.get(i)
-        if t is None:
-            continue
+        if t is None or not flat_triangles(point, np.array([t]))[0]:
+            continue  # (a flip since it was found may have made it whole)
         p = point[list(t)]
         lengths = [float(np.dot(p[(k + 1) % 3] - p[k], p[(k + 1) % 3] - p[k])) for k in range(3)]
         k = int(np.argmax(lengths))
