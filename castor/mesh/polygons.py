@@ -733,108 +733,79 @@ class _Resolver:
         e1 /= np.linalg.norm(e1)
         e2 = np.cross(normal, e1)
         self.e1, self.e2 = e1, e2
-        tris = self.triangles[members]
-        flat = {}
+        tiny = 1e-12 * self.scale ** 2
+        # every triangle as a convex piece, counter-clockwise in the plane's
+        # frame: (vertex, support of the edge that leaves it), and its triangle
+        pieces = []  # [piece, triangle, facing up]
         for k, i in enumerate(members.tolist()):
-            pts = [self._xy(v) for v in tris[k].tolist()]
-            if not up[k]:
-                pts = pts[::-1]  # counter-clockwise in the plane's frame
-            flat[i] = pts
-        boxes = {i: (min(x for x, _ in q), min(y for _, y in q), max(x for x, _ in q), max(y for _, y in q))
-                 for i, q in flat.items()}
-        ups = [i for k, i in enumerate(members.tolist()) if up[k]]
-        downs = [i for k, i in enumerate(members.tolist()) if not up[k]]
-        facing = set(ups)
-        tiny = 1e-12 * self.scale ** 2
-        overlaps = {}  # (up, down) -> area in common
-        for i in ups:
-            for j in downs:
-                if _boxes_meet(boxes[i], boxes[j], self.eps):
-                    area = _overlap_area(flat[i], flat[j])
-                    if area > tiny:
-                        overlaps[(i, j)] = area
-        allowed = self._pairing(overlaps, flat, boxes, ups, downs)
-        for group, others in ((ups, downs), (downs, ups)):
-            for i in group:
-                opposite = [j for j in others
-                            if (pair := ((i, j) if i in facing else (j, i))) in overlaps
-                            and (self.face_ids[pair[0]], self.face_ids[pair[1]]) in allowed]
-                if not opposite:
+            tri = self.triangles[i].tolist()
+            outline = tri if up[k] else tri[::-1]
+            pieces.append([[(outline[j], _edge(outline[j], outline[(j + 1) % 3])) for j in range(3)],
+                           i, bool(up[k])])
+        # Cancel overlaps one up against one down, until no up piece overlaps a
+        # down piece: each cancellation takes the common part out of both, once,
+        # so where the engine left a face twice over one place and one face
+        # of the other side, one layer stays (what is left is the net cover).
+        changed_triangles = set()
+        for _ in range(4 * len(pieces) + 16):
+            pair = self._overlapping(pieces, tiny)
+            if pair is None:
+                break
+            a, b = pieces[pair[0]], pieces[pair[1]]
+            cut_a = self._subtract(a[0], b[0])
+            cut_b = self._subtract(b[0], a[0])
+            changed_triangles.update((a[1], b[1]))
+            for index in sorted(pair, reverse=True):
+                pieces.pop(index)
+            pieces += [[q, a[1], a[2]] for q in cut_a] + [[q, b[1], b[2]] for q in cut_b]
+        for i in changed_triangles:
+            kept = [(piece, facing) for piece, triangle, facing in pieces if triangle == i]
+            # back to the triangle's own turn
+            replaced[i] = [[v for v, _ in (piece if facing else piece[::-1])] for piece, facing in kept]
+
+    def _overlapping(self, pieces, tiny):
+        """An up piece and a down piece that overlap (their indices), the
+        closest in area first; None if there is none."""
+        flat = [[self._xy(v) for v, _ in piece] for piece, _, _ in pieces]
+        boxes = [(min(x for x, _ in q), min(y for _, y in q), max(x for x, _ in q), max(y for _, y in q))
+                 for q in flat]
+        best = None
+        for i, (_, _, facing_i) in enumerate(pieces):
+            if not facing_i:
+                continue
+            for j, (_, _, facing_j) in enumerate(pieces):
+                if facing_j or not _boxes_meet(boxes[i], boxes[j], self.eps):
                     continue
-                tri = self.triangles[i].tolist()
-                turned = i not in facing
-                outline = tri[::-1] if turned else tri
-                pieces = [[(outline[k], _edge(outline[k], outline[(k + 1) % 3])) for k in range(3)]]
-                for j in opposite:
-                    cutter = self.triangles[j].tolist()
-                    cutter = cutter if j in facing else cutter[::-1]
-                    pieces = [q for piece in pieces for q in self._subtract(piece, cutter)]
-                # back to the triangle's own turn
-                replaced[i] = [[v for v, _ in (piece[::-1] if turned else piece)] for piece in pieces]
-
-    def _pairing(self, overlaps, flat, boxes, ups, downs) -> set:
-        """Which faces facing up cancel which facing down, as (up face, down
-        face) numbers. Usually every pair that overlaps; but where two faces
-        of one side overlap each other (the engine left a surface twice over
-        one place, and one face of the other side to cancel one of them),
-        each face of the other side cancels only as many layers as it is:
-        those it overlaps most, the closest in area first, that do not overlap
-        each other."""
-        tiny = 1e-12 * self.scale ** 2
-        faces = self.face_ids
-        layer_area: dict[tuple, float] = {}
-        for (i, j), area in overlaps.items():
-            layer_area[(faces[i], faces[j])] = layer_area.get((faces[i], faces[j]), 0.0) + area
-        allowed = set(layer_area)
-        size: dict = {}
-        for i in ups + downs:
-            size[faces[i]] = size.get(faces[i], 0.0) + abs(_area(flat[i]))
-        members: dict = {}
-        for i in ups + downs:
-            members.setdefault(faces[i], []).append(i)
-
-        def layers_overlap(f, g) -> bool:
-            return any(_boxes_meet(boxes[a], boxes[b], self.eps) and _overlap_area(flat[a], flat[b]) > tiny
-                       for a in members[f] for b in members[g])
-
-        for side in (0, 1):  # a face facing down against the faces up that meet it, then the reverse
-            partners: dict = {}
-            for pair in layer_area:
-                partners.setdefault(pair[1 - side], []).append(pair[side])
-            for face, candidates in partners.items():
-                if len(candidates) < 2:
-                    continue
-                candidates.sort(key=lambda f: (-layer_area[(f, face) if side == 0 else (face, f)],
-                                               abs(size[f] - size[face])))
-                chosen = []
-                for f in candidates:
-                    if any(layers_overlap(f, g) for g in chosen):
-                        allowed.discard((f, face) if side == 0 else (face, f))
-                    else:
-                        chosen.append(f)
-        return allowed
+                common = _overlap_area(flat[i], flat[j])
+                if common > tiny:
+                    score = (abs(_area(flat[i]) - _area(flat[j])), -common)
+                    if best is None or score < best[0]:
+                        best = (score, (i, j))
+        return None if best is None else best[1]
 
     def _xy(self, v):
         q = self.point(v)
         return (float(q @ self.e1), float(q @ self.e2))
 
     def _subtract(self, piece, cutter):
-        """Convex pieces of ``piece`` outside the (counter-clockwise) triangle ``cutter``."""
+        """Convex pieces of ``piece`` outside the convex piece ``cutter`` (both
+        counter-clockwise, as (vertex, support of the edge that leaves it))."""
         out = []
         rest = piece
-        for k in range(3):
-            a, b = cutter[k], cutter[(k + 1) % 3]
-            outside = self._clip(rest, a, b, keep_left=False)
+        for k in range(len(cutter)):
+            (a, line), (b, _) = cutter[k], cutter[(k + 1) % len(cutter)]
+            outside = self._clip(rest, a, b, keep_left=False, line=line)
             if outside is not None:
                 out.append(outside)
-            rest = self._clip(rest, a, b, keep_left=True)
+            rest = self._clip(rest, a, b, keep_left=True, line=line)
             if rest is None:
                 break
         return out
 
-    def _clip(self, poly, a, b, keep_left):
+    def _clip(self, poly, a, b, keep_left, line=None):
         """The part of a convex polygon ((vertex, support of the edge that
-        leaves it), ...) on one side of the line a->b; None if it has no area."""
+        leaves it), ...) on one side of the line a->b (whose support is
+        ``line``, the edge a-b if None); None if it has no area."""
         ax, ay = self._xy(a)
         bx, by = self._xy(b)
         dx, dy = bx - ax, by - ay
@@ -846,7 +817,7 @@ class _Resolver:
             s = s if keep_left else -s
             return 0.0 if abs(s) <= self.eps else s
 
-        line = _edge(a, b)
+        line = _edge(a, b) if line is None else line
         out = []
         n = len(poly)
         sides = [side(v) for v, _ in poly]
