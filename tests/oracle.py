@@ -134,9 +134,15 @@ def _value(v, env) -> float:
 
 
 def _rotation(axis, degrees) -> np.ndarray:
+    """castor's README: a rotation by a multiple of 90 degrees is exact (so
+    that faces meant to meet meet); any other is cos and sin of the radians."""
     x, y, z = np.asarray(axis, float) / np.linalg.norm(axis)
-    a = math.radians(degrees)
-    c, s, t = math.cos(a), math.sin(a), 1 - math.cos(a)
+    if degrees % 90 == 0:
+        c, s = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)][int(degrees // 90) % 4]
+    else:
+        a = math.radians(degrees)
+        c, s = math.cos(a), math.sin(a)
+    t = 1 - c
     m = np.eye(4)
     m[:3, :3] = [[t * x * x + c, t * x * y - s * z, t * x * z + s * y],
                  [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
