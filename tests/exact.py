@@ -126,6 +126,21 @@ def volume(mesh) -> float:
     return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6)
 
 
+def area(mesh) -> float:
+    v, t = mesh
+    if len(t) == 0:
+        return 0.0
+    p = v[t]
+    return float(np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum() / 2)
+
+
+def frame_figures(scene) -> list[tuple[float, float]]:
+    """Each frame's exact (volume, area): sums over its objects. (The area is
+    of libigl's result, whose coplanar faces are resolved exactly.)"""
+    return [(sum(volume(m) for m in meshes), sum(area(m) for m in meshes))
+            for meshes in Evaluator(scene).frames()]
+
+
 def frame_volumes(scene) -> list[float]:
     """Each frame's exact volume: the sum over its objects."""
-    return [sum(volume(m) for m in meshes) for meshes in Evaluator(scene).frames()]
+    return [v for v, _ in frame_figures(scene)]

@@ -98,3 +98,4 @@ def test_the_exact_booleans_give_known_volumes():
     scene = oracle.Scene([("frame", [oracle.Bool(op, (cube, moved))]) for op in "UID"]
                          + [("frame", [oracle.Bool("U", (cube, mirrored))])])
     assert exact.frame_volumes(scene) == pytest.approx([1.5, 0.5, 0.5, 2.0], abs=1e-12)
+    assert [a for _, a in exact.frame_figures(scene)] == pytest.approx([8.0, 4.0, 4.0, 10.0], abs=1e-12)
