@@ -31,7 +31,7 @@ class Template:
     """A primitive's shape in the engine, built once, with its own triangles
     kept as arrays: a copy placed somewhere is written from them directly."""
 
-    __slots__ = ("manifold", "id", "vertices", "triangles", "face_ids", "turned", "_planes",
+    __slots__ = ("manifold", "id", "vertices", "triangles", "face_ids", "turned", "box", "_planes",
                  "__weakref__")
 
     def __init__(self, manifold: manifold3d.Manifold):
@@ -44,6 +44,7 @@ class Template:
         self.triangles = np.asarray(gl.tri_verts, dtype=np.int64)
         self.face_ids = np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF
         self.turned = self.triangles[:, ::-1].copy()  # for mirrored copies
+        self.box = (self.vertices.min(axis=0), self.vertices.max(axis=0))
         self._planes = None
         _TEMPLATES[self.id] = self
 
@@ -156,8 +157,15 @@ class Placed:
 
     def bounding_box(self) -> tuple:
         if self._box is None:
-            v = self.vertices()
-            self._box = (*v.min(axis=0).tolist(), *v.max(axis=0).tolist())
+            linear = self.matrix[:, :3]
+            if np.count_nonzero(linear - np.diag(np.diagonal(linear))) == 0:
+                # moved and scaled along the axes: the template's box, moved
+                low, high = self.template.box
+                corners = np.array([low, high]) * np.diagonal(linear) + self.matrix[:, 3]
+                self._box = (*corners.min(axis=0).tolist(), *corners.max(axis=0).tolist())
+            else:
+                v = self.vertices()
+                self._box = (*v.min(axis=0).tolist(), *v.max(axis=0).tolist())
         return self._box
 
     def moved(self, matrix: np.ndarray) -> "Placed":

@@ -375,11 +375,12 @@ def flat_triangles(vertices: np.ndarray, triangles: np.ndarray, chunk: int = 1 <
         t = triangles[start:start + chunk]
         p = vertices[t]
         e0, e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 1], p[:, 0] - p[:, 2]
-        twice_area = _norm(_cross(e0, -e2))
-        longest = np.sqrt(np.maximum(np.maximum(np.einsum("ij,ij->i", e0, e0),
+        normal = _cross(e0, -e2)
+        twice_area_squared = np.einsum("ij,ij->i", normal, normal)
+        longest_squared = np.maximum(np.maximum(np.einsum("ij,ij->i", e0, e0),
                                                 np.einsum("ij,ij->i", e1, e1)),
-                                     np.einsum("ij,ij->i", e2, e2)))
-        flat[start:start + chunk] = (twice_area <= _FLAT * longest * longest) | (
+                                     np.einsum("ij,ij->i", e2, e2))
+        flat[start:start + chunk] = (twice_area_squared <= (_FLAT * longest_squared) ** 2) | (
             (t[:, 0] == t[:, 1]) | (t[:, 1] == t[:, 2]) | (t[:, 2] == t[:, 0]))
     return flat
 
