@@ -341,26 +341,43 @@ class Merger:
 
     Copies of a shared object arrive as parts with the same triangles and the
     same faces, only moved: their polygons are the first copy's, once checked
-    planar and convex where this copy stands.
+    planar and convex where this copy stands (a copy only translated needs no
+    check: its polygons are the first copy's, shifted).
     """
 
     LARGEST = 200_000  # triangles: bigger parts are merged afresh, not remembered
 
     def __init__(self):
-        self.known: dict[tuple[bytes, bytes], Polygons] = {}
+        self.known: dict[tuple[bytes, bytes], tuple[Polygons, np.ndarray]] = {}
+        self.remembered = 0  # triangles of the patterns in known
 
     def merge(self, vertices, triangles, origin_ids, face_ids) -> Polygons:
         if len(triangles) > self.LARGEST or len(triangles) == 0:
             return merge(vertices, triangles, origin_ids, face_ids)
         key = (triangles.tobytes(), face_ids.tobytes())
         known = self.known.get(key)
-        if known is not None and still_convex(vertices, known.offsets, known.indices):
-            return Polygons(known.offsets, known.indices, origin_ids[known.source], known.source)
+        if known is not None:
+            polygons, first = known
+            if _translated(first, vertices) or still_convex(vertices, polygons.offsets,
+                                                              polygons.indices):
+                return Polygons(polygons.offsets, polygons.indices, origin_ids[polygons.source],
+                                polygons.source)
         polygons = merge(vertices, triangles, origin_ids, face_ids)
-        if len(self.known) > 10_000:
-            self.known.clear()
-        self.known[key] = polygons
+        if len(self.known) > 10_000 or self.remembered > 2_000_000:
+            self.known.clear()  # a bound on what is remembered
+            self.remembered = 0
+        self.known[key] = (polygons, vertices)
+        self.remembered += len(triangles)
         return polygons
+
+
+def _translated(first: np.ndarray, vertices: np.ndarray) -> bool:
+    """Whether ``vertices`` are ``first`` moved by one translation (to rounding)."""
+    if first.shape != vertices.shape or len(first) == 0:
+        return False
+    shift = vertices - first
+    scale = max(1.0, float(np.abs(vertices).max()), float(np.abs(first).max()))
+    return bool(np.all(np.ptp(shift, axis=0) <= 1e-12 * scale))
 
 
 # A triangle whose height is below this fraction of its longest side is flat:
