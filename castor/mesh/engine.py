@@ -207,7 +207,7 @@ class Origins:
 
     @staticmethod
     def one(id: int, matrix: np.ndarray, origin: Origin) -> "Origins":
-        return Origins(np.array([id], np.int64), matrix.reshape(1, 3, 4), (origin,))
+        return Origins(np.full(1, id, np.int64), matrix[None], (origin,))
 
     @staticmethod
     def merged(all_origins) -> "Origins":
@@ -488,7 +488,7 @@ def instance(shape: Template, origin: Origin, matrix=None) -> Solid:
     None); it enters the engine only if a boolean needs it."""
     rows = (_IDENTITY.copy() if matrix is None
             else np.array(matrix, dtype=np.float64).reshape(3, 4))
-    return Solid((Placed(shape, rows),), Origins.one(shape.id, rows.copy(), origin))
+    return Solid((Placed(shape, rows),), Origins.one(shape.id, rows, origin))  # neither changes it
 
 
 def _fill_boxes(parts) -> None:
