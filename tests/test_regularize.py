@@ -297,3 +297,26 @@ def test_a_fin_between_two_uses_of_one_face_is_taken_out():
                          "> $D(o, $I[R = 0, 1](@t(0.5 * R, 0, 0) o));\n")
     assert regularity_defects(frame) == []
     assert frame.volume() == pytest.approx(0.374375565, abs=1e-8)  # exact.py agrees
+
+
+def test_a_result_off_its_faces_is_seen():
+    """engine.off_faces, the check of every boolean's result: nothing off on a
+    right union; a cube whose corner the engine had moved is seen."""
+    import manifold3d
+
+    from castor.mesh import engine, primitives
+
+    cube = engine.template(primitives.build("cu", (), 0.01))
+    right = cube.manifold + cube.manifold.translate([0.5, 0.25, 0.0])
+    assert engine.off_faces(right) == 0
+    vertices = cube.vertices.copy()
+    corner = int(np.argmax(vertices.sum(axis=1)))  # (1, 1, 1)
+    vertices[corner] += 0.01
+    moved = manifold3d.Manifold(manifold3d.Mesh64(
+        vert_properties=np.ascontiguousarray(vertices),
+        tri_verts=cube.triangles.astype(np.uint64),
+        run_index=np.array([0, 3 * len(cube.triangles)], np.uint64),
+        run_original_id=np.array([cube.id], np.uint32),
+        face_id=cube.face_ids.astype(np.uint64)))
+    # the three faces that meet at the corner, two triangles each at most
+    assert 3 <= engine.off_faces(moved) <= 6
