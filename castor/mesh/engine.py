@@ -197,17 +197,33 @@ class Origins:
     every run. Two uses at one place give the same triangles, and either name
     is true of them."""
 
-    __slots__ = ("ids", "matrices", "table", "_index")
+    __slots__ = ("_ids", "_matrices", "table", "_index", "_one")
 
-    def __init__(self, ids: np.ndarray, matrices: np.ndarray, table: tuple):
-        self.ids = ids  # (E,) int64
-        self.matrices = matrices  # (E, 3, 4)
+    def __init__(self, ids: np.ndarray | None, matrices: np.ndarray | None, table: tuple,
+                 one: tuple | None = None):
+        self._ids = ids  # (E,) int64
+        self._matrices = matrices  # (E, 3, 4)
         self.table = table  # E Origins
         self._index = None  # for find: sorted keys, and sorted IDs, made once
+        self._one = one  # (ID, matrix) of a single entry whose arrays are not made yet
+
+    @property
+    def ids(self) -> np.ndarray:
+        if self._ids is None:
+            self._ids = np.full(1, self._one[0], np.int64)
+        return self._ids
+
+    @property
+    def matrices(self) -> np.ndarray:
+        if self._matrices is None:
+            self._matrices = self._one[1][None]
+        return self._matrices
 
     @staticmethod
     def one(id: int, matrix: np.ndarray, origin: Origin) -> "Origins":
-        return Origins(np.full(1, id, np.int64), matrix[None], (origin,))
+        """One entry (its arrays made when first asked for: a union of 200,000
+        primitives gathers theirs in one operation)."""
+        return Origins(None, None, (origin,), (id, matrix))
 
     @staticmethod
     def merged(all_origins) -> "Origins":
@@ -216,6 +232,10 @@ class Origins:
             return all_origins[0]
         if not all_origins:
             return NO_ORIGINS
+        if all(o._one is not None and o._ids is None for o in all_origins):
+            return Origins(np.array([o._one[0] for o in all_origins], np.int64),
+                           np.stack([o._one[1] for o in all_origins]),
+                           tuple(o.table[0] for o in all_origins))
         return Origins(np.concatenate([o.ids for o in all_origins]),
                        np.concatenate([o.matrices for o in all_origins]),
                        tuple(t for o in all_origins for t in o.table))
@@ -342,8 +362,9 @@ def _distinguished(solids: list) -> list:
 def _may_clash(solids: list) -> bool:
     """Whether two operands may have a use of one template at one place: one
     number per entry (its ID and rounded placement, hashed), sorted."""
-    ids = np.concatenate([s.origins.ids for s in solids])
-    rows = np.round(np.concatenate([s.origins.matrices for s in solids]).reshape(-1, 12) * 1e9)
+    every = Origins.merged([s.origins for s in solids])
+    ids = every.ids
+    rows = np.round(every.matrices.reshape(-1, 12) * 1e9)
     owner = np.repeat(np.arange(len(solids)), [len(s.origins) for s in solids])
     with np.errstate(over="ignore", invalid="ignore"):
         key = ids * np.int64(-7046029254386353131)
