@@ -320,3 +320,13 @@ def test_a_result_off_its_faces_is_seen():
         face_id=cube.face_ids.astype(np.uint64)))
     # the three faces that meet at the corner, two triangles each at most
     assert 3 <= engine.off_faces(moved) <= 6
+
+
+def test_a_sheet_whose_normal_has_two_components_as_large_is_found():
+    """The fin between the pyramid's base and the extrusion's face, turned by
+    @r(1, 1, 0, 60): normal (-0.61, 0.61, -0.5), whose two sides took different
+    signs when the sign came from its largest component."""
+    (frame,) = frames_of("> @r(1, 1, 0, 60) $D(!py(0.25, 0, 0, 6), !ex(1, 0, 0, 0,0, 2,0, 2,2, "
+                         "1.5,2, 1.5,0.5, 0.5,0.5, 0.5,2, 0,2));\n")
+    assert regularity_defects(frame) == []
+    assert frame.area() == pytest.approx(6.016796698, abs=1e-6)  # the oracle's, unturned

@@ -64,8 +64,12 @@ def _face_planes(vertices, triangles, face_ids) -> np.ndarray:
     p = vertices[triangles]
     n = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
     area = np.linalg.norm(n, axis=1)
-    order = np.lexsort((-area, face_ids))
-    first = order[np.r_[True, face_ids[order][1:] != face_ids[order][:-1]]]
+    largest = np.zeros(int(face_ids.max()) + 1)
+    np.maximum.at(largest, face_ids, area)
+    best = np.flatnonzero(area == largest[face_ids])[::-1]
+    first = np.empty(len(largest), np.int64)
+    first[face_ids[best]] = best
+    first = first[np.unique(face_ids)]
     planes = np.zeros((int(face_ids.max()) + 1, 4))
     unit = n[first] / np.maximum(area[first], 1e-300)[:, None]
     planes[face_ids[first], :3] = unit
@@ -617,7 +621,11 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
         else:
             counter.booleans += 1
             operands = _distinct([_in_engine(parts[i]) for i in group])
-            result.append(regular(_united(operands)))
+            united = regular(_united(operands))
+            if all(type(parts[i]) is Placed for i in group) and not _planes_meet(
+                    [parts[i] for i in group]):
+                _plain(united)
+            result.append(united)
             result_boxes.append(np.array([boxes[group, 0].min(axis=0), boxes[group, 1].max(axis=0)]))
     return _solid(_fewer_parts(result, np.array(result_boxes)), origins)
 
@@ -816,7 +824,8 @@ def triangles(parts, origins: Origins) -> Triangles:
     if run:
         pieces.append(_placed_triangles(run, origins))
     if len(pieces) == 1:
-        return _without_flat(pieces[0])
+        plain = len(parts) == 1 and _PLAIN.get(id(parts[0])) is parts[0]
+        return _without_flat(pieces[0], sheets=not plain)
     base = np.cumsum([0] + [len(p.vertices) for p in pieces[:-1]])
     # faces of different parts must not share a number: the part in the top bits
     return _without_flat(Triangles(
@@ -844,12 +853,59 @@ def _placed_triangles(run: list[Placed], origins: Origins) -> Triangles:
     return Triangles(vertices, tris, origin_ids, faces)
 
 
+# Results of unions of primitives no two of whose planes coincide: no sheet,
+# no coincident twins can be in them, and the passes that look for them are
+# skipped (by id; the manifold is held, so that its id is not reused).
+_PLAIN: dict[int, manifold3d.Manifold] = {}
+
+
+def _plain(manifold: manifold3d.Manifold) -> None:
+    if len(_PLAIN) > 1000:
+        _PLAIN.clear()
+    _PLAIN[id(manifold)] = manifold
+
+
+def _planes_meet(placed: list) -> bool:
+    """Whether a plane of a face of one primitive coincides (to 10⁻⁷, either
+    side) with a plane of another's: its planes moved by its matrix, keyed on
+    two grids half a cell apart, so that planes that close never miss."""
+    keys, owners = [], []
+    for k, part in enumerate(placed):
+        planes = part.template.planes
+        linear, shift = part.matrix[:, :3], part.matrix[:, 3]
+        try:
+            m = planes[:, :3] @ np.linalg.inv(linear)  # rows: A^-T n
+        except np.linalg.LinAlgError:
+            return True
+        length = np.linalg.norm(m, axis=1)
+        keep = length > 0
+        normal = m[keep] / length[keep, None]
+        offset = (planes[keep, 3] + m[keep] @ shift) / length[keep]
+        sign = polygons.plane_sign(normal)
+        keys.append(np.column_stack([normal * sign[:, None], offset * sign]))
+        owners.append(np.full(len(normal), k))
+    rows, owner = np.concatenate(keys), np.concatenate(owners)
+    # offsets relative to the size of the scene's coordinates, as the sheets' test has them
+    rows[:, 3] /= max(1.0, max(abs(c) for part in placed for c in part.bounding_box()))
+    for half in (0.0, 0.5):
+        grid = np.floor(rows * 1e7 + half).astype(np.int64)
+        with np.errstate(over="ignore"):
+            key = ((grid[:, 0] * np.int64(-7046029254386353131) + grid[:, 1])
+                   * np.int64(-4658895280553007687) + grid[:, 2]) * np.int64(
+                       -7723592293110705685) + grid[:, 3]
+        order = np.argsort(key, kind="stable")
+        same = key[order][1:] == key[order][:-1]
+        if np.any(same & (owner[order][1:] != owner[order][:-1])):
+            return True
+    return False
+
+
 # Parts already found clean, by their triangles and faces: a copy of one
 # object moved by an affine map has no sheet or flat triangle if the first had none.
 _CLEAN: dict[int, bool] = {}
 
 
-def _without_flat(tri: Triangles) -> Triangles:
+def _without_flat(tri: Triangles, sheets: bool = True) -> Triangles:
     """The engine leaves sheets where faces only touch, and its rounding a few
     triangles of zero area: both gone (polygons)."""
     key = None
@@ -857,12 +913,21 @@ def _without_flat(tri: Triangles) -> Triangles:
         key = hash((tri.triangles.tobytes(), tri.face_ids.tobytes()))
         if key in _CLEAN:
             return tri
-    cleaned = _cleaned(tri)
+    cleaned = _cleaned(tri) if sheets else _unflattened(tri)
     if key is not None and cleaned is tri:
         if len(_CLEAN) > 10_000:
             _CLEAN.clear()
         _CLEAN[key] = True
     return cleaned
+
+
+def _unflattened(tri: Triangles) -> Triangles:
+    """Only the flat triangles taken out (where no sheet can be)."""
+    triangles, origin_ids, face_ids = polygons.without_flat_triangles(
+        tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids, twins=False)
+    if triangles is tri.triangles:
+        return tri
+    return Triangles(tri.vertices, triangles, origin_ids, face_ids)
 
 
 def _cleaned(tri: Triangles) -> Triangles:

@@ -403,7 +403,7 @@ def flat_triangles(vertices: np.ndarray, triangles: np.ndarray, chunk: int = 1 <
 
 
 def without_flat_triangles(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
-                           face_ids: np.ndarray):
+                           face_ids: np.ndarray, twins: bool = True):
     """The same closed surface with no flat triangle (LANGUAGE.md §7).
 
     The engine leaves a few: two vertices at one place, or closer than the
@@ -415,9 +415,10 @@ def without_flat_triangles(vertices: np.ndarray, triangles: np.ndarray, origin_i
     arrays unchanged if there is nothing to do.
     """
     flat = flat_triangles(vertices, triangles)
-    triangles, origin_ids, face_ids, flat = _without_twins_at_one_place(
-        vertices, triangles, origin_ids, face_ids, flat)
-    twins = _coincident(triangles)
+    if twins:  # (False where no two faces can coincide)
+        triangles, origin_ids, face_ids, flat = _without_twins_at_one_place(
+            vertices, triangles, origin_ids, face_ids, flat)
+    twins = _coincident(triangles) if twins else None
     if twins is not None:  # a sheet of coincident triangles turned towards each other
         keep = ~twins
         triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
@@ -618,6 +619,18 @@ def without_sheets(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.n
     return _Resolver(vertices, triangles, origin_ids, face_ids).resolve(planes)
 
 
+def plane_sign(normals: np.ndarray) -> np.ndarray:
+    """One sign for both sides of each plane (unit normals): that which makes
+    its first component not about zero positive. (Not its largest component:
+    two as large, as in (-0.61, 0.61, -0.5), are told apart by rounding, and
+    the two sides of one plane got different signs.)"""
+    significant = np.abs(normals) > 1e-3
+    first = np.argmax(significant, axis=1)
+    sign = np.sign(normals[np.arange(len(normals)), first])
+    sign[sign == 0] = 1
+    return sign
+
+
 def _opposed_planes(vertices, triangles, face_ids,
                     chunk: int = 1 << 20) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
     """Groups of triangles in one plane with both orientations: (plane's unit
@@ -648,10 +661,7 @@ def _opposed_planes(vertices, triangles, face_ids,
     big_area = area[first]
     u = n[first] / np.where(big_area > 0, big_area, 1.0)[:, None]
     d = np.einsum("ij,ij->i", u, vertices[triangles[first]].mean(axis=1))
-    # one sign for both sides of a plane: its largest component positive
-    big = np.argmax(np.abs(u), axis=1)
-    sign = np.sign(u[np.arange(len(u)), big])
-    sign[sign == 0] = 1
+    sign = plane_sign(u)
     u = u * sign[:, None]
     d = d * sign
     key = np.column_stack([np.round(u * 1e7), np.round(d / scale * 1e7)]).astype(np.int64)
