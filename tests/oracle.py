@@ -657,12 +657,12 @@ def kind_of(problem: str) -> str:
     return problem[:20]
 
 
-def shrink(scene: Scene, kind: str, sheets: bool = True) -> Scene:
+def shrink(scene: Scene, kind: str, sheets: bool = True, exact: bool = False) -> Scene:
     """A smaller scene that still fails the same way: drop statements, frames'
     extra objects, operands and transformation steps while it does."""
     def fails(candidate: Scene) -> bool:
         try:
-            found = check_scenes([candidate], sheets)
+            found = check_scenes([candidate], sheets, exact)
         except (RuntimeError, KeyError, ValueError, IndexError, ZeroDivisionError):
             return False
         return any(kind_of(p) == kind for _, _, ps in found for p in ps)
@@ -761,7 +761,7 @@ def main() -> None:
         scenes_failing = len({id(s) for s, _, _ in items})
         print(f"\n== {kind}: {scenes_failing} scenes; e.g. frame {items[0][1]}: {items[0][2]}")
         if not args.no_shrink:
-            small = shrink(items[0][0], kind, not args.no_sheets)
+            small = shrink(items[0][0], kind, not args.no_sheets, args.exact)
             print(scene_text(small))
 
 

@@ -474,8 +474,11 @@ def regular(manifold: manifold3d.Manifold) -> manifold3d.Manifold:
     if len(outer) == len(kept):
         return kept[0] if len(kept) == 1 else manifold3d.Manifold.compose(kept)
     # a cavity is a shell turned inside out, which compose drops: the sheets
-    # are cut off instead, by the solid's own outer shells
-    return manifold ^ (outer[0] if len(outer) == 1 else manifold3d.Manifold.compose(outer))
+    # are cut off instead, by the solid's own outer shells; if the engine's
+    # intersection (every face coincident) leaves faces off their planes, the
+    # sheet stays, to be cut out of the triangles at the end (polygons)
+    cut = manifold ^ (outer[0] if len(outer) == 1 else manifold3d.Manifold.compose(outer))
+    return manifold if off_faces(cut) else cut
 
 
 def _sheet(shell: manifold3d.Manifold) -> bool:
