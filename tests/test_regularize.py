@@ -330,3 +330,16 @@ def test_a_sheet_whose_normal_has_two_components_as_large_is_found():
                          "1.5,2, 1.5,0.5, 0.5,0.5, 0.5,2, 0,2));\n")
     assert regularity_defects(frame) == []
     assert frame.area() == pytest.approx(6.016796698, abs=1e-6)  # the oracle's, unturned
+
+
+@pytest.mark.xfail(strict=True, reason="left by shrinking a failure of the oracle's seed 14 "
+                                       "(the seed itself passes): a polygon inside the solid, "
+                                       "among thin shells the engine left; not yet understood")
+def test_known_inner_sheet_among_thin_shells():
+    scene = ("o = $D($U[R = 0, 2](@t(R, 0, 0) $D(@r(0, 1, -1, 90) !py(0.5, 0.5, 0.5, 6), "
+             "!ex(1, 0.5, 0, 0,0, 1,0, 0.5,0.8))), @ry(55.81) @r(0, 1, -1, 90) !pr(1, 1, 1, 3));\n"
+             "p = $U($D(@rx(168.85) o, $U[R = 0, 2](@t(0.5 * R, 0, 0) o)), $U(@rz(-90) "
+             "!cu(0.5, 1, 0), @t(-1, 1, 0.219) !pr(0.5, 0.5, 1, 3), o, @t(1.5, 0.5, -0.775) "
+             "!ex(0, 0.5, 0, 0,0, 1,0, 0.5,0.8)));\n> p;\n")
+    (frame,) = frames_of(scene)
+    assert regularity_defects(frame) == []
