@@ -75,16 +75,8 @@ class Evaluator:
 
     def frames(self):
         """For each '>' command, the (vertices, triangles) of each object it writes."""
-        env: dict[str, float] = {}
-        objects: dict[str, object] = {}
-        for s in self.scene.statements:
-            if s[0] == "param":
-                env[s[1]] = s[2]
-            elif s[0] == "object":
-                objects[s[1]] = s[2]
-            else:
-                self.objects = objects
-                yield [self.node(n, dict(env)) for n in s[1]]
+        for nodes, env, self.objects in oracle.frame_commands(self.scene):
+            yield [self.node(n, dict(env)) for n in nodes]
 
     def node(self, node, env):
         # by the class's name: the scene may be made by oracle.py run as __main__

@@ -271,6 +271,20 @@ def _use(path: str, prim: Prim, matrix: np.ndarray) -> Use:
     return Use(path, tuple(prim.colour), faces)
 
 
+def frame_commands(scene: Scene):
+    """For each '>' command: its nodes, the parameters' values then, and the
+    objects defined so far (late binding: an object is evaluated there)."""
+    env: dict[str, float] = {}
+    objects: dict[str, object] = {}
+    for s in scene.statements:
+        if s[0] == "param":
+            env[s[1]] = s[2]
+        elif s[0] == "object":
+            objects[s[1]] = s[2]
+        else:
+            yield s[1], dict(env), objects
+
+
 class Oracle:
     """Evaluates a scene structure with manifold3d directly."""
 
@@ -279,21 +293,10 @@ class Oracle:
 
     def frames(self):
         """For each '>' command: (manifolds of its objects, uses of primitives)."""
-        env: dict[str, float] = {}
-        objects: dict[str, object] = {}
-        for s in self.scene.statements:
-            if s[0] == "param":
-                env[s[1]] = s[2]
-            elif s[0] == "object":
-                objects[s[1]] = s[2]
-            else:
-                self.objects = objects
-                results = []
-                uses: list[Use] = []
-                for node in s[1]:
-                    solid = self.evaluate(node, dict(env), np.eye(4), "", uses)
-                    results.append(solid)
-                yield results, uses
+        for nodes, env, self.objects in frame_commands(self.scene):
+            uses: list[Use] = []
+            results = [self.evaluate(node, dict(env), np.eye(4), "", uses) for node in nodes]
+            yield results, uses
 
     def evaluate(self, node, env, matrix, path, uses) -> manifold3d.Manifold:
         """The solid of ``node`` in its own coordinates; ``matrix`` places it in

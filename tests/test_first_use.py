@@ -134,7 +134,7 @@ def test_write_failure_after_the_check_is_said_clearly(tmp_path):
 # --- 9: a pipe whose reader has gone
 
 def test_closed_pipe_ends_as_cat_does(tmp_path):
-    scene = write(tmp_path, "big.cas", ">[T = 1, 40] @h(T, 1, 1) !sp(0.5, 0.5, 0.5);\n")
+    write(tmp_path, "big.cas", ">[T = 1, 40] @h(T, 1, 1) !sp(0.5, 0.5, 0.5);\n")
     command = f"'{sys.executable}' -m castor big.cas 2>err.txt | head -1 >/dev/null"
     result = subprocess.run(["bash", "-o", "pipefail", "-c", command], cwd=tmp_path,
                             timeout=120)

@@ -64,17 +64,26 @@ def _face_planes(vertices, triangles, face_ids) -> np.ndarray:
     p = vertices[triangles]
     n = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
     area = np.linalg.norm(n, axis=1)
-    largest = np.zeros(int(face_ids.max()) + 1)
-    np.maximum.at(largest, face_ids, area)
-    best = np.flatnonzero(area == largest[face_ids])[::-1]
-    first = np.empty(len(largest), np.int64)
-    first[face_ids[best]] = best
-    first = first[np.unique(face_ids)]
+    first = polygons.largest_of_each(area, face_ids)
+    faces = np.flatnonzero(first >= 0)
+    first = first[faces]
     planes = np.zeros((int(face_ids.max()) + 1, 4))
     unit = n[first] / np.maximum(area[first], 1e-300)[:, None]
-    planes[face_ids[first], :3] = unit
-    planes[face_ids[first], 3] = np.einsum("ij,ij->i", unit, p[first].mean(axis=1))
+    planes[faces, :3] = unit
+    planes[faces, 3] = np.einsum("ij,ij->i", unit, p[first].mean(axis=1))
     return planes
+
+
+def _moved_planes(planes: np.ndarray, placement: np.ndarray):
+    """Planes (P, 4: unit normal, offset) of a template where ``placement``
+    (3x4) puts them: the normal goes by the inverse transpose. Raises
+    LinAlgError for a flat placement. Returns unit normals, offsets, and
+    which planes had a normal (a face number no triangle has gives none)."""
+    m = planes[:, :3] @ np.linalg.inv(placement[:, :3])  # rows: A^-T n
+    length = np.linalg.norm(m, axis=1)
+    has = length > 0
+    safe = np.where(has, length, 1.0)
+    return m / safe[:, None], (planes[:, 3] + m @ placement[:, 3]) / safe, has
 
 
 # Results larger than this are not checked (off_faces): the check costs a
@@ -112,16 +121,12 @@ def off_faces(manifold: manifold3d.Manifold) -> int:
         low, high = run_index[r], run_index[r + 1]
         if high == low:
             continue
-        linear, shift = placements[r][:, :3], placements[r][:, 3]
         try:
-            turn = np.linalg.inv(linear).T
+            normal, offset, _ = _moved_planes(
+                template.planes[np.minimum(faces[low:high], len(template.planes) - 1)],
+                placements[r])
         except np.linalg.LinAlgError:
             continue
-        plane = template.planes[np.minimum(faces[low:high], len(template.planes) - 1)]
-        normal = plane[:, :3] @ turn.T
-        length = np.linalg.norm(normal, axis=1)
-        offset = (plane[:, 3] + normal @ shift) / np.maximum(length, 1e-300)
-        normal /= np.maximum(length, 1e-300)[:, None]
         corners = vertices[tris[low:high]]
         distance = np.abs(np.einsum("tkj,tj->tk", corners, normal) - offset[:, None])
         bad += int(np.count_nonzero(distance.max(axis=1) > tolerance))
@@ -311,13 +316,8 @@ class Origins:
 
 
 def _coarse_keys(ids: np.ndarray, flat: np.ndarray) -> np.ndarray:
-    """One number per (ID, placement rounded to 10⁻⁶): a multiplicative hash."""
-    rows = np.round(flat * 1e6).astype(np.int64)
-    with np.errstate(over="ignore"):
-        key = ids.astype(np.int64) * np.int64(-7046029254386353131)
-        for column in rows.T:
-            key = key * np.int64(-4658895280553007687) + column
-    return key
+    """One number per (ID, placement rounded to 10⁻⁶)."""
+    return polygons.row_hash(np.column_stack([ids, np.round(flat * 1e6)]))
 
 
 def _place_key(matrix: np.ndarray) -> bytes:
@@ -367,17 +367,10 @@ def _may_clash(solids: list) -> bool:
     """Whether two operands may have a use of one template at one place: one
     number per entry (its ID and rounded placement, hashed), sorted."""
     every = Origins.merged([s.origins for s in solids])
-    ids = every.ids
-    rows = np.round(every.matrices.reshape(-1, 12) * 1e9)
+    key = polygons.row_hash(np.column_stack([every.ids,
+                                             np.round(every.matrices.reshape(-1, 12) * 1e9)]))
     owner = np.repeat(np.arange(len(solids)), [len(s.origins) for s in solids])
-    with np.errstate(over="ignore", invalid="ignore"):
-        key = ids * np.int64(-7046029254386353131)
-        for column in rows.astype(np.int64).T:
-            key = key * np.int64(-4658895280553007687) + column
-    order = np.argsort(key, kind="stable")
-    key, owner = key[order], owner[order]
-    same = key[1:] == key[:-1]
-    return bool(np.any(same & (owner[1:] != owner[:-1])))
+    return polygons.shared_across(key, owner)
 
 
 NO_ORIGINS = Origins(np.zeros(0, np.int64), np.zeros((0, 3, 4)), ())
@@ -772,7 +765,7 @@ def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
     for i in touched:
         part = parts[i]
         # (A + B) - B is A - B, computed otherwise
-        parts[i] = regular(_checked(part - cutter, lambda: (part + cutter) - cutter))
+        parts[i] = regular(_checked(part - cutter, lambda part=part: (part + cutter) - cutter))
     return _solid(parts, _merged_origins((a, b)))
 
 
@@ -874,33 +867,19 @@ def _planes_meet(placed: list) -> bool:
     two grids half a cell apart, so that planes that close never miss."""
     keys, owners = [], []
     for k, part in enumerate(placed):
-        planes = part.template.planes
-        linear, shift = part.matrix[:, :3], part.matrix[:, 3]
         try:
-            m = planes[:, :3] @ np.linalg.inv(linear)  # rows: A^-T n
+            normal, offset, has = _moved_planes(part.template.planes, part.matrix)
         except np.linalg.LinAlgError:
             return True
-        length = np.linalg.norm(m, axis=1)
-        keep = length > 0
-        normal = m[keep] / length[keep, None]
-        offset = (planes[keep, 3] + m[keep] @ shift) / length[keep]
+        normal, offset = normal[has], offset[has]
         sign = polygons.plane_sign(normal)
         keys.append(np.column_stack([normal * sign[:, None], offset * sign]))
         owners.append(np.full(len(normal), k))
     rows, owner = np.concatenate(keys), np.concatenate(owners)
     # offsets relative to the size of the scene's coordinates, as the sheets' test has them
     rows[:, 3] /= max(1.0, max(abs(c) for part in placed for c in part.bounding_box()))
-    for half in (0.0, 0.5):
-        grid = np.floor(rows * 1e7 + half).astype(np.int64)
-        with np.errstate(over="ignore"):
-            key = ((grid[:, 0] * np.int64(-7046029254386353131) + grid[:, 1])
-                   * np.int64(-4658895280553007687) + grid[:, 2]) * np.int64(
-                       -7723592293110705685) + grid[:, 3]
-        order = np.argsort(key, kind="stable")
-        same = key[order][1:] == key[order][:-1]
-        if np.any(same & (owner[order][1:] != owner[order][:-1])):
-            return True
-    return False
+    return any(polygons.shared_across(polygons.row_hash(np.floor(rows * 1e7 + half)), owner)
+               for half in (0.0, 0.5))
 
 
 # Parts already found clean, by their triangles and faces: a copy of one

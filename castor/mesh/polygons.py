@@ -455,15 +455,43 @@ def without_flat_triangles(vertices: np.ndarray, triangles: np.ndarray, origin_i
     return triangles, origin_ids, face_ids
 
 
+def row_hash(columns: np.ndarray) -> np.ndarray:
+    """One number per row of integer columns (a multiplicative hash, wrapping):
+    equal rows get equal numbers, so one sort finds them; two rows that share a
+    number by chance are told apart by whoever needs them apart."""
+    with np.errstate(over="ignore", invalid="ignore"):  # (casting huge rounded values too)
+        columns = columns.astype(np.int64, copy=False)
+        key = columns[:, 0] * np.int64(-7046029254386353131)
+        for column in columns[:, 1:].T:
+            key = key * np.int64(-4658895280553007687) + column
+    return key
+
+
+def shared_across(key: np.ndarray, owner: np.ndarray) -> bool:
+    """Whether two owners have one key."""
+    order = np.argsort(key, kind="stable")
+    key, owner = key[order], owner[order]
+    return bool(np.any((key[1:] == key[:-1]) & (owner[1:] != owner[:-1])))
+
+
+def largest_of_each(area: np.ndarray, group: np.ndarray) -> np.ndarray:
+    """For each group number, its member of largest area (the first of them,
+    if several); -1 for a number no member has."""
+    largest = np.full(int(group.max()) + 1, -1.0)
+    np.maximum.at(largest, group, area)
+    best = np.flatnonzero(area == largest[group])[::-1]
+    first = np.full(len(largest), -1, np.int64)
+    first[group[best]] = best
+    return first
+
+
 def same_place(vertices: np.ndarray) -> np.ndarray | None:
     """For each vertex, the first vertex at exactly its place; None if no two
     vertices share a place (the usual case, found with one sort)."""
     if len(vertices) < 2:
         return None
     bits = np.ascontiguousarray(vertices + 0.0).view(np.int64).reshape(-1, 3)  # -0 is 0
-    with np.errstate(over="ignore"):
-        key = ((bits[:, 0] * np.int64(-7046029254386353131) + bits[:, 1])
-               * np.int64(-4658895280553007687) + bits[:, 2])
+    key = row_hash(bits)
     order = np.argsort(key, kind="stable")
     sorted_key = key[order]
     repeated = np.flatnonzero(sorted_key[1:] == sorted_key[:-1])
@@ -652,12 +680,7 @@ def _opposed_planes(vertices, triangles, face_ids,
     area = np.concatenate(areas) if len(areas) > 1 else areas[0]
     _, face = np.unique(face_ids, return_inverse=True)
     face = face.ravel()
-    # each face's largest triangle (the first of them, if several)
-    largest = np.zeros(int(face.max()) + 1)
-    np.maximum.at(largest, face, area)
-    best = np.flatnonzero(area == largest[face])[::-1]
-    first = np.empty(len(largest), np.int64)
-    first[face[best]] = best
+    first = largest_of_each(area, face)  # each face's largest triangle (every face has one)
     big_area = area[first]
     u = n[first] / np.where(big_area > 0, big_area, 1.0)[:, None]
     d = np.einsum("ij,ij->i", u, vertices[triangles[first]].mean(axis=1))
