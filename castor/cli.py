@@ -19,6 +19,7 @@ from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_POR
                             DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
                             parse_point, parse_scale, parse_section, parse_size, parse_sun,
                             parse_view)
+from castor.options import parse_sheet
 
 USAGE_ERROR = 2
 _STACK_BYTES = 512 * 1024 * 1024
@@ -87,6 +88,10 @@ def _arguments(argv):
                           help="a drawing cut by the plane z=H (a plan), x=V or y=V")
     pictures.add_argument("--scale", default=f"1:{DEFAULT_SCALE}", metavar="1:N",
                           help="printed scale of a drawing (default %(default)s)")
+    pictures.add_argument("--sheet", metavar="SIZE", help="lay a drawing on A4 ... A0 paper "
+                          "(landscape; A3-portrait for upright), with border and title block")
+    pictures.add_argument("--title", metavar="TEXT", help="a drawing's title (default: the "
+                          "'>' object's name, or the file's)")
     p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
     p.add_argument("--version", action="version", version=f"castor {__version__}")
     args = p.parse_args(negative_values(argv, ("--view", "--eye", "--look", "--sun",
@@ -104,6 +109,7 @@ def _arguments(argv):
         args.sun = parse_sun(args.sun)
         args.scale = parse_scale(args.scale)
         args.section = parse_section(args.section) if args.section is not None else None
+        args.sheet = parse_sheet(args.sheet) if args.sheet is not None else None
         args.eye = parse_point(args.eye, "--eye") if args.eye is not None else None
         args.look = parse_point(args.look, "--look") if args.look is not None else None
     except ValueError as exc:
@@ -188,7 +194,8 @@ def main(argv=None) -> int:
     spec = Spec(format=args.format, target=args.output, max_polygons=args.max_polygons,
                 stats=args.stats, summary=args.summary is not None, size=args.size,
                 view=args.view, eye=args.eye, look=args.look, sun=args.sun,
-                samples=args.samples, edges=args.edges, section=args.section, scale=args.scale)
+                samples=args.samples, edges=args.edges, section=args.section, scale=args.scale,
+                sheet=args.sheet, title=args.title)
     result: list = []
 
     def work():

@@ -39,6 +39,8 @@ class Spec:
     edges: bool = False
     section: object = None  # castor.options.Section
     scale: float = DEFAULT_SCALE
+    sheet: object = None  # castor.options.Paper (--sheet), None: as large as the drawing
+    title: str | None = None  # --title
     # how a frame's bytes are handed on: made a piece at a time as they are
     # written (``pieces``, in the process that writes them), written by a worker
     # into a file in ``spool`` when the frame is large, or else as bytes
@@ -140,7 +142,8 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
     if kind == "drawing":
         from castor.drawings import drawing
 
-        result.data = drawing(scene, frame, spec)
+        result.data = drawing(scene, frame, spec,
+                              lambda message: result.warnings.append((message, scene.location)))
     elif chosen is not None:
         from castor.formats import output
 

@@ -117,6 +117,31 @@ def parse_scale(text: str) -> float:
     return denominator
 
 
+class Paper(NamedTuple):
+    """A sheet of the ISO 216 A series as a drawing is laid on it (millimetres)."""
+
+    name: str  # "A3", "A3-portrait"
+    width: float
+    height: float
+
+
+# ISO 216, landscape: width x height in millimetres
+PAPER_SIZES = {"A4": (297, 210), "A3": (420, 297), "A2": (594, 420), "A1": (841, 594),
+               "A0": (1189, 841)}
+
+
+def parse_sheet(text: str) -> Paper:
+    match = re.fullmatch(r"\s*(A[0-4])(-portrait)?\s*", text, re.IGNORECASE)
+    if not match:
+        raise ValueError(f"--sheet takes A4, A3, A2, A1 or A0 (landscape), or A4-portrait ... "
+                         f"A0-portrait (upright), not '{text}'")
+    size = match[1].upper()
+    width, height = PAPER_SIZES[size]
+    if match[2]:
+        return Paper(f"{size}-portrait", height, width)
+    return Paper(size, width, height)
+
+
 def parse_count(text: str, option: str, low: int, high: int) -> int:
     try:
         value = int(text)

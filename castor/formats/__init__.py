@@ -46,6 +46,8 @@ FORMATS: dict[str, Format] = {f.name: f for f in (
            False, False),
     Format("dxf", "dxf", ".dxf", "a plan, section or elevation for CAD, in metres", "drawing",
            False, False),
+    Format("pdf", "pdf", ".pdf", "a plan, section or elevation on its sheet, for printing",
+           "drawing", True, False),
 )}
 
 
