@@ -4,10 +4,13 @@ A frame's solids are seen along one of the six orthographic directions;
 with a section plane, everything between the viewer and the plane is taken
 away, the cut regions become poché and what lies beyond is drawn with its
 hidden parts removed. The result is a ``Drawing`` of plain arrays in
-metres, which castor.formats.svg and castor.formats.dxf write out.
+metres; castor.drawings.sheet lays it on paper with its dimensions, levels
+and title block, which castor.formats.svg, pdf and dxf write out.
 """
 
 from __future__ import annotations
+
+import os
 
 from castor.drawings.model import Drawing, Layer, View, view_for
 from castor.drawings.cut import cut_loops, section_area
@@ -24,16 +27,36 @@ def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
     objects = [o for o in frame.objects if o.polygon_count]
     cuts = [cut_loops(o, seen, depth) if section is not None else [] for o in objects]
     lines = seen_lines(objects, seen, depth)
-    layers = [Layer(o.name or f"object{k + 1}", c, l)
-              for k, (o, c, l) in enumerate(zip(objects, cuts, lines))]
-    return Drawing(layers, seen, scale)
+    layers = [Layer(o.name or f"object{k + 1}", c, l, p)
+              for k, (o, c, (l, p)) in enumerate(zip(objects, cuts, lines))]
+    return Drawing(layers, seen, scale, section)
 
 
-def drawing(scene, frame, spec) -> bytes:
-    """The frame drawn and written in the spec's format (svg or dxf)."""
+def title_of(scene, title: str | None) -> str:
+    """The sheet's title: --title, else the name of the '>' object, else the file's."""
+    if title:
+        return title
+    if len(scene.objects) == 1 and scene.objects[0].name:
+        return scene.objects[0].name
+    return os.path.basename(scene.location.file) or "castor"
+
+
+def drawing(scene, frame, spec, warn=None) -> bytes:
+    """The frame drawn, laid on its sheet and written in the spec's format
+    (svg, dxf or pdf); ``warn(message)`` hears of dimensions left out."""
+    from castor.diagnostics import CastorError
+    from castor.drawings.sheet import DoesNotFit, layout
+
     result = draw(frame, spec.section, spec.view, spec.scale)
+    try:
+        sheet = layout(result, getattr(spec, "sheet", None), title_of(scene, getattr(spec, "title", None)),
+                       scene.where, warn)
+    except DoesNotFit as exc:
+        raise CastorError(str(exc), scene.location) from None
     if spec.format == "dxf":
         from castor.formats.dxf import export_drawing
+    elif spec.format == "pdf":
+        from castor.formats.pdf import export_drawing
     else:
         from castor.formats.svg import export_drawing
-    return export_drawing(result)
+    return export_drawing(sheet)

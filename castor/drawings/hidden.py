@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from castor.drawings.cut import polygon_edges
+from castor.drawings.profile import profile_mask
 from castor.mesh.polygons import fan_triangles
 
 # neighbouring polygons of one primitive meeting at less than this are
@@ -161,7 +162,8 @@ def _visible_pieces(count, edge, t0, t1, tol):
 
 def seen_lines(objects, view, depth: float | None) -> list[np.ndarray]:
     """For each object, (L, 2, 2): the seen segments of its edges on the page
-    (metres), beyond the section plane at ``depth`` if there is one."""
+    (metres), beyond the section plane at ``depth`` if there is one, and (L,)
+    which of them are profile (castor.drawings.profile)."""
     if not objects:
         return []
     basis = view.basis()
@@ -201,7 +203,7 @@ def seen_lines(objects, view, depth: float | None) -> list[np.ndarray]:
     p0, p1, owner = p0[short], p1[short], owner[short]
     tris, planes = np.concatenate(tris_all), np.concatenate(planes)
     if not len(p0):
-        return [np.zeros((0, 2, 2)) for _ in objects]
+        return [(np.zeros((0, 2, 2)), np.zeros(0, bool)) for _ in objects]
     extent = float(np.ptp(np.concatenate([p0, p1]), axis=0).max()) or 1.0
     eps2d, epsz = extent * 1e-9, extent * 1e-7
     pieces = np.zeros((0, 3))
@@ -229,8 +231,12 @@ def seen_lines(objects, view, depth: float | None) -> list[np.ndarray]:
     a = p0[e, :2] + pieces[:, 1:2] * (p1[e, :2] - p0[e, :2])
     b = p0[e, :2] + pieces[:, 2:3] * (p1[e, :2] - p0[e, :2])
     segments = np.stack([a, b], axis=1)
+    zmid = p0[e, 2] + pieces[:, 1:3].mean(axis=1) * (p1[e, 2] - p0[e, 2])
     long_enough = np.hypot(*(b - a).T) > extent * 1e-7
-    segments, e = segments[long_enough], e[long_enough]
+    segments, e, zmid = segments[long_enough], e[long_enough], zmid[long_enough]
     order = np.argsort(e, kind="stable")  # edges in a steady order
-    segments, e = segments[order], e[order]
-    return [segments[owner[e] == k] for k in range(len(objects))]
+    segments, e, zmid = segments[order], e[order], zmid[order]
+    tri_lo, tri_hi = tris.min(axis=1)[:, :2], tris.max(axis=1)[:, :2]
+    profile = profile_mask(segments, zmid, tris, planes, depth, extent,
+                           lambda points: _candidate_pairs(points, points, tri_lo, tri_hi))
+    return [(segments[owner[e] == k], profile[owner[e] == k]) for k in range(len(objects))]
