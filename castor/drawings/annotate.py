@@ -19,6 +19,7 @@ import numpy as np
 
 BAND = 1.0  # metres: how far in from the outermost face an edge still counts as outer
 GRID = 1e-6  # metres: positions are rounded to this, so breaks meet bit for bit
+MERGE = 1e-4  # metres: breaks closer than this are one
 SIDES = ("bottom", "top", "left", "right")
 
 
@@ -96,9 +97,12 @@ def dimension_chains(loops: list[np.ndarray]) -> list[Chain]:
             if not same:
                 breaks.append(ends[k])
         breaks.append(ends[last + 1])
+        breaks = np.array(breaks)
+        # an edge's ends that float arithmetic put a hair apart are one break
+        breaks = breaks[np.concatenate([[True], np.diff(breaks) > MERGE])]
         u = _turned(every, side)[:, 0]
         span = np.sort(_along(np.array([u.min(), u.max()]), side))
-        along = np.sort(_along(np.array(breaks), side))
+        along = np.sort(_along(breaks, side))
         if len(along) < 3:
             along = np.zeros(0)
         edge = outermost if side in ("bottom", "left") else -outermost
@@ -113,11 +117,12 @@ class Level(NamedTuple):
 
 def level_heights(layers, box: np.ndarray) -> list[Level]:
     """The levels of an elevation or vertical section: the ground (z = 0), the
-    top of what is drawn and every horizontal edge of the profile or of a cut
-    region, each once (to the millimetre)."""
+    top of what is drawn and every horizontal edge seen (profile or not: a
+    sill or a head seen in front of the room behind it is not an outline) or
+    of a cut region, each once (to the millimetre)."""
     heights = []
     for layer in layers:
-        seg = layer.lines[layer.profile] if len(layer.lines) else layer.lines
+        seg = layer.lines
         if len(seg):
             d = seg[:, 1] - seg[:, 0]
             flat = (np.abs(d[:, 1]) <= GRID) & (np.abs(d[:, 0]) > 1e-3)

@@ -231,12 +231,12 @@ def seen_lines(objects, view, depth: float | None) -> list[np.ndarray]:
     a = p0[e, :2] + pieces[:, 1:2] * (p1[e, :2] - p0[e, :2])
     b = p0[e, :2] + pieces[:, 2:3] * (p1[e, :2] - p0[e, :2])
     segments = np.stack([a, b], axis=1)
-    zmid = p0[e, 2] + pieces[:, 1:3].mean(axis=1) * (p1[e, 2] - p0[e, 2])
     long_enough = np.hypot(*(b - a).T) > extent * 1e-7
-    segments, e, zmid = segments[long_enough], e[long_enough], zmid[long_enough]
+    segments, e = segments[long_enough], e[long_enough]
     order = np.argsort(e, kind="stable")  # edges in a steady order
-    segments, e, zmid = segments[order], e[order], zmid[order]
+    segments, e = segments[order], e[order]
+    tri_owner = np.repeat(np.arange(len(tris_all)), [len(t) for t in tris_all])
     tri_lo, tri_hi = tris.min(axis=1)[:, :2], tris.max(axis=1)[:, :2]
-    profile = profile_mask(segments, zmid, tris, planes, depth, extent,
+    profile = profile_mask(segments, owner[e], tris, tri_owner, planes, depth, extent,
                            lambda points: _candidate_pairs(points, points, tri_lo, tri_hi))
     return [(segments[owner[e] == k], profile[owner[e] == k]) for k in range(len(objects))]

@@ -1,14 +1,14 @@
 """The profile: which seen edges are an object's outline against what lies
 behind it, to be drawn with the heavier of the two seen pens.
 
-Just off the middle of each seen segment, on either side, the nearest face
-the viewer sees there is found. Where that face reaches the segment itself
-(its plane, extended, passes through the segment's middle at the segment's
-depth) the surface goes on across the edge on that side: a crease between two
-seen faces, or a line drawn on one. Where on some side there is no face, or
-the nearest one lies behind the edge, the edge stands out against what is
-behind it (the sky, the ground, a wall farther off, the room seen through a
-window with no glass): it is profile.
+An object's outline is the boundary of the region it covers on the page.
+Just off the middle of each seen segment, on either side, the object's own
+faces (those the viewer could see, beyond the section plane if there is one)
+are looked for: where on some side none covers the page, the segment is on
+the object's outline, seen against the sky, the ground or another object
+behind: profile. Where the object goes on on both sides (a window's frame
+with the room behind it seen through the opening, a crease between two
+faces, a chimney in front of its own roof), the edge is an ordinary seen one.
 """
 
 from __future__ import annotations
@@ -16,41 +16,37 @@ from __future__ import annotations
 import numpy as np
 
 
-def _nearest_plane(points, tris, planes, depth, candidates):
-    """For page points (N, 2): the plane (gx, gy, c) of the nearest face that
-    covers each, NaN where none does. ``candidates(points)`` gives the
-    (point, triangle) pairs whose boxes meet."""
-    found = np.full((len(points), 3), np.nan)
+def _covered(points, owner, tris, tri_owner, planes, depth, candidates) -> np.ndarray:
+    """(N,) bool: whether a face of the point's own object covers each page point."""
+    found = np.zeros(len(points), bool)
     if not len(tris) or not len(points):
         return found
     point, tri = candidates(points)
+    keep = tri_owner[tri] == owner[point]
+    point, tri = point[keep], tri[keep]
     if not len(point):
         return found
     p = points[point]
     t = tris[tri, :, :2]
-    inside = np.ones(len(point), bool)
     area = ((t[:, 1, 0] - t[:, 0, 0]) * (t[:, 2, 1] - t[:, 0, 1])
             - (t[:, 1, 1] - t[:, 0, 1]) * (t[:, 2, 0] - t[:, 0, 0]))
+    inside = np.ones(len(point), bool)
     for k in range(3):
         a, b = t[:, k], t[:, (k + 1) % 3]
         side = (b[:, 0] - a[:, 0]) * (p[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (p[:, 0] - a[:, 0])
         inside &= side * np.sign(area) >= 0
-    plane = planes[tri]
-    z = plane[:, 2] + plane[:, 0] * p[:, 0] + plane[:, 1] * p[:, 1]
-    if depth is not None:
+    if depth is not None:  # what is left of a face the plane cuts: beyond the plane
+        plane = planes[tri]
+        z = plane[:, 2] + plane[:, 0] * p[:, 0] + plane[:, 1] * p[:, 1]
         inside &= z <= depth + 1e-9 * max(1.0, abs(depth))
-    point, plane, z = point[inside], plane[inside], z[inside]
-    order = np.lexsort((-z, point))  # for each point, its nearest face first
-    point, plane = point[order], plane[order]
-    first = np.ones(len(point), bool)
-    first[1:] = point[1:] != point[:-1]
-    found[point[first]] = plane[first]
+    found[point[inside]] = True
     return found
 
 
-def profile_mask(segments, zmid, tris, planes, depth, extent, candidates) -> np.ndarray:
-    """(L,) bool: which seen segments (L, 2, 2), whose middles lie at depth
-    ``zmid``, are profile (see the module's text)."""
+def profile_mask(segments, owner, tris, tri_owner, planes, depth, extent, candidates) -> np.ndarray:
+    """(L,) bool: which seen segments (L, 2, 2) of objects ``owner`` are
+    profile, given the faces ``tris`` (T, 3, 3) of objects ``tri_owner`` and
+    their planes (page depth = c + gx x + gy y)."""
     if not len(segments):
         return np.zeros(0, bool)
     a, b = segments[:, 0], segments[:, 1]
@@ -60,10 +56,7 @@ def profile_mask(segments, zmid, tris, planes, depth, extent, candidates) -> np.
     normal = np.column_stack([-d[:, 1], d[:, 0]]) / np.maximum(length, 1e-300)[:, None]
     step = np.minimum(extent * 2e-5, length / 4)[:, None]
     sides = np.concatenate([mid + step * normal, mid - step * normal])
-    plane = _nearest_plane(sides, tris, planes, depth, candidates)
-    mid2 = np.concatenate([mid, mid])
-    at_edge = plane[:, 2] + plane[:, 0] * mid2[:, 0] + plane[:, 1] * mid2[:, 1]
-    tol = extent * 1e-6
-    attached = np.abs(at_edge - np.concatenate([zmid, zmid])) <= tol  # NaN: False
+    covered = _covered(sides, np.concatenate([owner, owner]), tris, tri_owner, planes, depth,
+                       candidates)
     n = len(segments)
-    return ~(attached[:n] & attached[n:])
+    return ~(covered[:n] & covered[n:])

@@ -155,6 +155,12 @@ def scale_bar_length(scale: float) -> tuple[float, float]:
     return 100, 20
 
 
+def _inside(c: float, w: float, lo: float, hi: float) -> tuple[float, float]:
+    """A text w wide centred as near c as it can be between lo and hi (0.5 mm in)."""
+    c = min(max(c, lo + 0.5 + w / 2), hi - 0.5 - w / 2)
+    return c - w / 2, c + w / 2
+
+
 def _placed(intervals: list, lo: float, hi: float, gap: float = 0.8) -> bool:
     return any(lo < b + gap and a - gap < hi for a, b in intervals)
 
@@ -235,9 +241,10 @@ def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
                 x, y, angle = text_at(c, rows["chain"])
                 texts.append(Text(x, y, text, TEXT, angle, "middle"))
                 dimension(u1, u2, CHAIN_LINE, None)
-            elif (o_lo + 0.5 <= c - w / 2 and c + w / 2 <= o_hi - 0.5
-                  and not _placed(stagger_row, c - w / 2, c + w / 2)):
-                stagger_row.append((c - w / 2, c + w / 2))
+            elif (o_hi - o_lo >= w + 1.0
+                  and not _placed(stagger_row, *_inside(c, w, o_lo, o_hi))):
+                c = sum(_inside(c, w, o_lo, o_hi)) / 2  # clear of the overall's extension lines
+                stagger_row.append(_inside(c, w, o_lo, o_hi))
                 x, y, angle = text_at(c, rows["stagger"])
                 texts.append(Text(x, y, text, TEXT, angle, "middle"))
                 dimension(u1, u2, CHAIN_LINE, (x, y))
