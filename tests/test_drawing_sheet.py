@@ -189,7 +189,7 @@ def test_sheet_title_block_and_scale_bar(tmp_path):
     assert (root.get("width"), root.get("height")) == ("420mm", "297mm")
     sheet = ["".join(t.itertext()) for t in root.find(f"{SVG}g[@id='sheet']").iter(SVG + "text")]
     assert "maison" in sheet and "Plan z = 1.20" in sheet and "Scale 1:100" in sheet
-    assert f"Date {DAY}" in sheet and "s.cas:8" in sheet
+    assert f"Date {DAY}" in sheet and any(t.endswith("s.cas:8") for t in sheet)
     assert "N" in sheet  # a plan has its north arrow
     assert ["0", "1", "2", "3", "4", "5 m"] == [t for t in sheet if re.fullmatch(r"\d( m)?", t)]
     # the border, 10 mm in from the paper's edge
@@ -277,8 +277,13 @@ def test_pdf_draws_what_the_svg_draws(tmp_path):
                     str(tmp_path / "q")], check=True)
     a = np.asarray(Image.open(tmp_path / "s.png").convert("L"), float)
     b = np.asarray(Image.open(tmp_path / "q.png").convert("L"), float)
-    assert a.shape == b.shape
+    assert abs(a.shape[0] - b.shape[0]) <= 1 and abs(a.shape[1] - b.shape[1]) <= 1
+    rows, cols = min(a.shape[0], b.shape[0]), min(a.shape[1], b.shape[1])
+    a, b = a[:rows, :cols], b[:rows, :cols]
     # the same dark pixels, but for anti-aliasing and the fonts' shapes
     dark_a, dark_b = a < 128, b < 128
     assert abs(dark_a.mean() - dark_b.mean()) < 0.25 * dark_a.mean()
-    assert (dark_a & dark_b).sum() > 0.6 * dark_a.sum()
+    near_b = dark_b.copy()  # a pixel's worth of rounding either way
+    for axis in (0, 1):
+        near_b |= np.roll(dark_b, 1, axis) | np.roll(dark_b, -1, axis)
+    assert (dark_a & near_b).sum() > 0.8 * dark_a.sum()

@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from castor.drawings.cut import polygon_edges
-from castor.drawings.profile import profile_mask
+from castor.drawings.profile import profile_mask, split_at_junctions
 from castor.mesh.polygons import fan_triangles
 
 # neighbouring polygons of one primitive meeting at less than this are
@@ -235,8 +235,9 @@ def seen_lines(objects, view, depth: float | None) -> list[np.ndarray]:
     segments, e = segments[long_enough], e[long_enough]
     order = np.argsort(e, kind="stable")  # edges in a steady order
     segments, e = segments[order], e[order]
+    segments, by = split_at_junctions(segments, owner[e], extent, _candidate_pairs)
     tri_owner = np.repeat(np.arange(len(tris_all)), [len(t) for t in tris_all])
     tri_lo, tri_hi = tris.min(axis=1)[:, :2], tris.max(axis=1)[:, :2]
-    profile = profile_mask(segments, owner[e], tris, tri_owner, planes, depth, extent,
+    profile = profile_mask(segments, by, tris, tri_owner, planes, depth, extent,
                            lambda points: _candidate_pairs(points, points, tri_lo, tri_hi))
-    return [(segments[owner[e] == k], profile[owner[e] == k]) for k in range(len(objects))]
+    return [(segments[by == k], profile[by == k]) for k in range(len(objects))]

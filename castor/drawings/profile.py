@@ -43,6 +43,39 @@ def _covered(points, owner, tris, tri_owner, planes, depth, candidates) -> np.nd
     return found
 
 
+def split_at_junctions(segments, owner, extent, pairs):
+    """The segments cut where an end of another seen segment of the same
+    object lies on them (a T on the page: the edge of a part standing on a
+    ledge), so that each piece is outline or not along its whole length."""
+    ends = segments.reshape(-1, 2)
+    end_owner = np.repeat(owner, 2)
+    lo, hi = segments.min(axis=1), segments.max(axis=1)
+    tol = extent * 1e-7  # hidden-line removal ends a piece a hair off the edge it meets
+    point, seg = pairs(ends, ends, lo - tol, hi + tol)
+    keep = end_owner[point] == owner[seg]
+    point, seg = point[keep], seg[keep]
+    a, b = segments[seg, 0], segments[seg, 1]
+    d = b - a
+    length2 = np.einsum("ij,ij->i", d, d)
+    t = np.einsum("ij,ij->i", ends[point] - a, d) / np.maximum(length2, 1e-300)
+    off = np.abs(d[:, 0] * (ends[point, 1] - a[:, 1]) - d[:, 1] * (ends[point, 0] - a[:, 0]))
+    on = (off <= tol * np.sqrt(length2)) & (t > 1e-9) & (t < 1 - 1e-9)
+    seg, t = seg[on], t[on]
+    if not len(seg):
+        return segments, owner
+    cuts = np.concatenate([seg, np.arange(len(segments)), np.arange(len(segments))])
+    ts = np.concatenate([t, np.zeros(len(segments)), np.ones(len(segments))])
+    order = np.lexsort((ts, cuts))
+    cuts, ts = cuts[order], ts[order]
+    same = cuts[1:] == cuts[:-1]
+    start, end, which = ts[:-1][same], ts[1:][same], cuts[:-1][same]
+    keep = end - start > 1e-9
+    start, end, which = start[keep], end[keep], which[keep]
+    a, d = segments[which, 0], segments[which, 1] - segments[which, 0]
+    pieces = np.stack([a + start[:, None] * d, a + end[:, None] * d], axis=1)
+    return pieces, owner[which]
+
+
 def profile_mask(segments, owner, tris, tri_owner, planes, depth, extent, candidates) -> np.ndarray:
     """(L,) bool: which seen segments (L, 2, 2) of objects ``owner`` are
     profile, given the faces ``tris`` (T, 3, 3) of objects ``tri_owner`` and

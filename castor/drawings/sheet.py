@@ -399,14 +399,15 @@ def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> 
                  [dimensions_group, levels_group, sheet_group], cad, drawing)
 
 
-def _fitted(text: str, size: float, room: float) -> tuple[str, float]:
-    """The text and size that fit ``room`` mm: smaller down to TEXT, then cut short."""
+def _fitted(text: str, size: float, room: float, keep_end: bool = False) -> tuple[str, float]:
+    """The text and size that fit ``room`` mm: smaller down to TEXT, then cut
+    short (at its start for a path, whose end says most)."""
     while size > TEXT and text_width(text, size) > room:
         size = max(TEXT, size - 0.25)
     if text_width(text, size) > room:
         while text and text_width(text + "…", size) > room:
-            text = text[:-1]
-        text += "…"
+            text = text[1:] if keep_end else text[:-1]
+        text = "…" + text if keep_end else text + "…"
     return text, size
 
 
@@ -424,7 +425,7 @@ def _title_block(items, x, y, title, what, scale, date, where):
     items.append(Text(x + 3, y + 16.5, text, size))
     items.append(Text(x + 3, y + 22.5, f"Scale {scale}"))
     items.append(Text(x + 48, y + 22.5, f"Date {date}"))
-    text, size = _fitted(where, TEXT, w - 6)
+    text, size = _fitted(where, TEXT, w - 6, keep_end=True)
     items.append(Text(x + 3, y + 28.5, text, size))
 
 
