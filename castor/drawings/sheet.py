@@ -264,26 +264,24 @@ def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
 
 
 def _level_symbols(levels, box_mm, x, items):
-    """The level symbols in a column at paper x, merged where closer than the
-    text; returns the levels shown."""
-    shown = []
+    """The level symbols in a column at paper x. A level closer to one already
+    shown than its text's height and gap is merged into it; the ground and the
+    top are shown first, then the others from the bottom up. Returns the
+    levels shown."""
     priority = {"ground": 0, "top": 1, "edge": 2}
-    groups: list[list] = []
-    for level, y in levels:
-        if groups and abs(y - groups[-1][-1][1]) < TEXT + 0.5:
-            groups[-1].append((level, y))
-        else:
-            groups.append([(level, y)])
+    shown: list = []
+    for level, y in sorted(levels, key=lambda item: (priority[item[0].kind], -item[1])):
+        if all(abs(y - other) >= TEXT + 1.0 for _, other in shown):
+            shown.append((level, y))
+    shown.sort(key=lambda item: -item[1])
     segments = []
-    for group in groups:
-        level, y = min(group, key=lambda item: priority[item[0].kind])
-        shown.append(level)
+    for level, y in shown:
         segments.append([(x, y), (x + LEVEL_WIDTH - 4, y)])
         items.append(Shape([np.array([(x + 1.0, y - 2.6), (x + 4.0, y - 2.6), (x + 2.5, y)])],
                            THIN_PEN, None))
         items.append(Text(x + 5.0, y - 0.8, level_text(level.height)))
     items.insert(0, Lines(np.array(segments, float).reshape(-1, 2, 2), THIN_PEN, "annotation"))
-    return shown
+    return [level for level, _ in shown]
 
 
 def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> Sheet:
