@@ -217,6 +217,23 @@ def test_title_with_markup_is_escaped(tmp_path):
     assert "A <b> & 'c' \"d\"" in texts
 
 
+@pytest.mark.parametrize("suffix", [".svg", ".dxf", ".pdf"])
+def test_any_title_gives_a_whole_file(tmp_path, suffix):
+    ezdxf = pytest.importorskip("ezdxf")
+    title = "Maison \x01 <b>&amp; é\n\t\u2603 " + "x" * 200
+    out, _ = _draw(tmp_path, "--section", "z=1.2", "--title", title, name="d" + suffix)
+    data = out.read_bytes()
+    if suffix == ".svg":
+        texts = ["".join(t.itertext()) for t in ET.fromstring(data).iter(SVG + "text")]
+        assert any(t.startswith("Maison   <b>&amp; é") and t.endswith("…") for t in texts)
+    elif suffix == ".dxf":
+        doc = ezdxf.readfile(out)
+        assert not doc.audit().has_errors
+        assert any(t.dxf.text.startswith("Maison") for t in doc.modelspace().query("TEXT"))
+    else:
+        assert data.startswith(b"%PDF-") and data.rstrip().endswith(b"%%EOF")
+
+
 @pytest.mark.parametrize("sheet", ["A5", "a3-sideways", "A3-portraitx", ""])
 def test_a_sheet_that_is_no_size_is_a_usage_error(tmp_path, sheet):
     (tmp_path / "s.cas").write_text(BOX_HOUSE)

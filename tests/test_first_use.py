@@ -52,11 +52,11 @@ def run_view(*args, stdin=None, cwd=None):
 
 @pytest.mark.parametrize("name, message", [
     ("x.dwg", "castor: error: cannot tell the format of 'x.dwg' from its extension; use one "
-              "of .cps .off .obj .stl .ply .glb .3mf .png .gif .svg .dxf, or give the format "
+              "of .cps .off .obj .stl .ply .glb .3mf .png .gif .svg .dxf .pdf, or give the format "
               "with -f NAME"),
     ("x.gltf", "castor: error: cannot tell the format of 'x.gltf' from its extension (castor "
                "writes glTF as one binary file, .glb); use one of .cps .off .obj .stl .ply "
-               ".glb .3mf .png .gif .svg .dxf, or give the format with -f NAME"),
+               ".glb .3mf .png .gif .svg .dxf .pdf, or give the format with -f NAME"),
     ("nodir/x.stl", "castor: error: cannot write 'nodir/x.stl': the directory 'nodir' does "
                     "not exist"),
     ("f-%03d-%03d.stl", "castor: error: -o f-%03d-%03d.stl: 2 frame-number patterns; a path "

@@ -11,6 +11,7 @@ and title block, which castor.formats.svg, pdf and dxf write out.
 from __future__ import annotations
 
 import os
+import unicodedata
 
 from castor.drawings.model import Drawing, Layer, View, view_for
 from castor.drawings.cut import cut_loops, section_area
@@ -35,7 +36,9 @@ def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
 def title_of(scene, title: str | None) -> str:
     """The sheet's title: --title, else the name of the '>' object, else the file's."""
     if title:
-        return title
+        # control characters have no place on a sheet (and XML refuses most)
+        title = "".join(" " if unicodedata.category(c) in ("Cc", "Cs") else c for c in title)
+        return title.strip() or "castor"
     if len(scene.objects) == 1 and scene.objects[0].name:
         return scene.objects[0].name
     return os.path.basename(scene.location.file) or "castor"
