@@ -59,6 +59,7 @@ def test_plan_dimensions_in_dxf_measure_the_breaks(tmp_path):
     south = sorted((d for d in dims if d.dxf.angle == 0 and d.dxf.defpoint.y < 0),
                    key=lambda d: (d.dxf.defpoint.y, min(d.dxf.defpoint2.x, d.dxf.defpoint3.x)))
     measured = [round(d.get_measurement(), 9) for d in south]
+    assert [round(d.dxf.actual_measurement, 9) for d in south] == measured  # written too
     overall, chain = measured[0], measured[1:]  # the overall lies farther out
     assert overall == 10.0
     assert chain == SOUTH_CHAIN

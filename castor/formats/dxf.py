@@ -127,6 +127,8 @@ def export_drawing(sheet) -> bytes:
                                  dimstyle="CASTOR", override={"dimexo": d.offset},
                                  dxfattribs={"layer": "dimensions"})
         dim.render()
+        # the measurement itself (group code 42), as CAD programs write it
+        dim.dimension.dxf.actual_measurement = dim.dimension.get_measurement()
     for group in sheet.groups:
         if group.name == "dimensions":
             continue  # the DIMENSION entities stand for them
