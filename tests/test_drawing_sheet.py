@@ -305,3 +305,19 @@ def test_pdf_draws_what_the_svg_draws(tmp_path):
     for axis in (0, 1):
         near_b |= np.roll(dark_b, 1, axis) | np.roll(dark_b, -1, axis)
     assert (dark_a & near_b).sum() > 0.8 * dark_a.sum()
+
+
+def test_an_opening_with_no_glass_shows_what_lies_behind(tmp_path):
+    # a wall 6 m long with a window 2 m wide (x = 2 .. 4, z = 1 .. 2); a post
+    # 3 m behind it (x = 2.8 .. 3.2): seen only through the window
+    scene = ("mur = $D(@h(6, 0.3, 3) !cu(1, 1, 1), @t(2, -1, 1) @h(2, 2, 1) !cu(1, 1, 1));\n"
+             "poteau = @t(2.8, 3, 0) @h(0.4, 0.4, 3) !cu(1, 0, 0);\n> mur, poteau;\n")
+    out, _ = _draw(tmp_path, "--view", "front", scene=scene)
+    drawn = Drawn(out.read_bytes(), 100)
+    assert drawn.covered("poteau", (2.8, 0), (2.8, 3)) == pytest.approx(1)
+    assert drawn.has_line("poteau", (2.8, 1), (2.8, 2))
+    assert drawn.covered("poteau", (3.2, 0), (3.2, 3)) == pytest.approx(1)
+    # the post's outline against the room is profile; the window's edges are
+    # the wall's outline too (the wall has a hole there), the wall's top as well
+    assert drawn.pens["profile"] == {0.35}
+    assert drawn.texts["levels"] == ["±0.00", "+1.00", "+2.00", "+3.00"]
