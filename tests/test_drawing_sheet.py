@@ -103,6 +103,13 @@ def test_dimension_texts_never_overlap(tmp_path):
     # staggered, the rest left out and said so; none overlap
     out, err = _draw(tmp_path, "--section", "z=1.2", "--scale", "1:500")
     assert "left out" in err and "1:500" in err
+    missing = int(re.search(r"(\d+) dimension\(s\) left out", err)[1])
+    # the DXF has every dimension of the chain, those left out without text
+    ezdxf = pytest.importorskip("ezdxf")
+    dxf, _ = _draw(tmp_path, "--section", "z=1.2", "--scale", "1:500", name="d.dxf")
+    dims = list(ezdxf.readfile(dxf).modelspace().query("DIMENSION"))
+    assert sorted(round(d.get_measurement(), 9) for d in dims) == sorted(SOUTH_CHAIN + [10, 10, 8, 8])
+    assert sum(d.dxf.text == " " for d in dims) == missing > 0
     root = ET.fromstring(out.read_bytes())
     boxes = [b for b in _text_boxes(root, "dimensions")]
     horizontal = [b for b, t in zip(boxes, root.find(f"{SVG}g[@id='dimensions']").iter(SVG + "text"))

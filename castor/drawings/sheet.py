@@ -95,6 +95,7 @@ class Dimension(NamedTuple):
     angle: float
     text_at: tuple | None
     offset: float  # metres from p1 and p2 to where the extension lines start
+    shown: bool = True  # False: no room for its text, which is left out
 
 
 @dataclass
@@ -207,7 +208,7 @@ def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
     def page(c):  # a paper coordinate across the side, back to page metres
         return (origin[1] - c) / mm if horizontal else (c - origin[0]) / mm
 
-    def dimension(u1, u2, d, text_point):
+    def dimension(u1, u2, d, text_point, shown=True):
         """The CAD dimension from u1 to u2 (page metres along the side)."""
         line_at = page(edge + out * d)
         if horizontal:
@@ -218,7 +219,7 @@ def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
         where = None
         if text_point is not None:
             where = ((text_point[0] - origin[0]) / mm, (origin[1] - text_point[1]) / mm)
-        dims.append(Dimension(p1, p2, base, angle, where, offset))
+        dims.append(Dimension(p1, p2, base, angle, where, offset, shown))
 
     left_out = 0
     overall = chain.overall
@@ -231,11 +232,10 @@ def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
         main_row, stagger_row = [], []
         for i in range(len(ends_sorted) - 1):
             a, b = ends_sorted[i], ends_sorted[i + 1]
-            text = length_text(chain.breaks[max(order[i], order[i + 1])]
-                               - chain.breaks[min(order[i], order[i + 1])])
+            u1, u2 = sorted((chain.breaks[order[i]], chain.breaks[order[i + 1]]))
+            text = length_text(u2 - u1)
             w = text_width(text, TEXT)
             c = (a + b) / 2
-            u1, u2 = sorted((chain.breaks[order[i]], chain.breaks[order[i + 1]]))
             if w + 1.0 <= b - a and not _placed(main_row, c - w / 2, c + w / 2):
                 main_row.append((c - w / 2, c + w / 2))
                 x, y, angle = text_at(c, rows["chain"])
@@ -249,7 +249,8 @@ def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
                 texts.append(Text(x, y, text, TEXT, angle, "middle"))
                 dimension(u1, u2, CHAIN_LINE, (x, y))
             else:
-                left_out += 1
+                left_out += 1  # its ticks stay; in CAD, a dimension with no text
+                dimension(u1, u2, CHAIN_LINE, None, shown=False)
         d_overall, row = OVERALL_LINE, rows["overall"]
     else:
         d_overall, row = ALONE_LINE, rows["alone"]

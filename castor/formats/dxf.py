@@ -124,6 +124,7 @@ def export_drawing(sheet) -> bytes:
         _dimension_style(doc, sheet.mm)
     for d in sheet.dimensions:
         dim = msp.add_linear_dim(base=d.base, p1=d.p1, p2=d.p2, location=d.text_at, angle=d.angle,
+                                 text="<>" if d.shown else " ",  # " ": no text (DXF's way)
                                  dimstyle="CASTOR", override={"dimexo": d.offset},
                                  dxfattribs={"layer": "dimensions"})
         dim.render()
