@@ -291,7 +291,7 @@ def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> 
     is larger than the paper at its scale."""
     mm = 1000.0 / drawing.scale
     (x0, y0), (x1, y1) = drawing.box()
-    vertical = drawing.view.up == (0, 0, 1) or tuple(drawing.view.up) == (0, 0, 1)
+    vertical = tuple(drawing.view.up) == (0, 0, 1)  # an elevation or a vertical section
     ground = vertical
     if ground:
         y0, y1 = min(y0, 0.0), max(y1, 0.0)
