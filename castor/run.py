@@ -290,8 +290,11 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
             reporter.warning("the scene has no '>' command, so nothing was written; "
                              "'> OBJECT;' writes an object's polygons")
         if args.section is not None and chosen.kind != "drawing":
-            reporter.warning(f"--section makes a drawing (-o NAME.svg or NAME.dxf); it is "
-                             f"ignored for {spec.format}")
+            reporter.warning(f"--section makes a drawing (-o NAME.svg, NAME.dxf or NAME.pdf); "
+                             f"it is ignored for {spec.format}")
+        if getattr(args, "sheet", None) is not None and chosen.kind != "drawing":
+            reporter.warning(f"--sheet lays out a drawing (-o NAME.svg, NAME.dxf or NAME.pdf); "
+                             f"it is ignored for {spec.format}")
     except BaseException:
         if output is not None:
             output.abandon()  # a single stream file half made stays out of place

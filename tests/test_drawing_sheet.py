@@ -328,3 +328,8 @@ def test_an_opening_with_no_glass_shows_what_lies_behind(tmp_path):
     # the wall's outline too (the wall has a hole there), the wall's top as well
     assert drawn.pens["profile"] == {0.35}
     assert drawn.texts["levels"] == ["±0.00", "+1.00", "+2.00", "+3.00"]
+
+
+def test_sheet_is_warned_about_off_a_drawing(tmp_path):
+    out, err = _draw(tmp_path, "--sheet", "A3", name="d.stl")
+    assert "--sheet lays out a drawing" in err and "ignored for stl" in err
