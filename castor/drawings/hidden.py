@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from castor.drawings.cut import polygon_edges
-from castor.mesh.polygons import fan_triangles
+from castor.mesh.arrays import fan_triangles
 
 # neighbouring polygons of one primitive meeting at less than this are
 # facets of a curved surface: their edge is drawn only as a silhouette

@@ -128,7 +128,7 @@ class StreamFrame:
 
     def triangles(self) -> tuple[np.ndarray, np.ndarray]:
         """Fan triangles as point numbers, and the polygon of each."""
-        from castor.mesh.polygons import fan_triangles
+        from castor.mesh.arrays import fan_triangles
 
         return fan_triangles(self.offsets, np.arange(len(self.points)))
 

@@ -178,7 +178,7 @@ def torus(k: float, around: int, tube: int) -> Mesh:
 
 def extrusion(values: tuple) -> Mesh:
     """The simple polygon (x1, y1, ...) in z = 0 swept to z = 1."""
-    from castor.mesh.engine import triangulate
+    from castor.mesh.adapter import triangulate
 
     points = polygon(values, "polygon", None, "")
     if signed_area(points) < 0:

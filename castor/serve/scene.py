@@ -202,7 +202,7 @@ def drawn(frame) -> DrawnFrame:
     """A castor.mesh.frame.Frame as triangles for the page."""
     import numpy as np
 
-    from castor.mesh.polygons import fan_triangles
+    from castor.mesh.arrays import fan_triangles
 
     corners, numbers, origins = [], [], []
     for obj in frame.objects:
