@@ -20,6 +20,7 @@ from castor.mesh.instances import moved_planes
 # whose faces seldom coincide exactly.
 CHECKED_TRIANGLES = 200_000
 
+
 def off_faces(manifold: adapter.Manifold) -> int:
     """How many of a result's triangles have a corner off the plane of the
     primitive's face it comes from (beyond rounding): none, in a right result.

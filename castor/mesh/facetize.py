@@ -30,6 +30,7 @@ from castor.options import DEFAULT_MAX_POLYGONS
 # it is built (operands of a union add up; their overlap would only remove).
 ESTIMATE_SLACK = 4
 
+
 @dataclass
 class FrameStats:
     primitives: int = 0

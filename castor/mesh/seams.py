@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+
 def welded_seams(vertices: np.ndarray, triangles: np.ndarray, eps: float) -> np.ndarray:
     """Two shells that met through a sheet now meet edge to edge, where each
     kept its own vertices (a rounding apart): the vertices of edges left

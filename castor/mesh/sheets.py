@@ -13,6 +13,7 @@ import numpy as np
 from castor.mesh.arrays import cross, largest_of_each, norm, plane_sign
 from castor.mesh.seams import welded_seams, without_t_junctions
 
+
 def without_sheets(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
                    face_ids: np.ndarray):
     """The same solid with no sheet: where triangles of one plane turned one way
