@@ -158,7 +158,8 @@ class Facetizer:
         else:
             # (the cache is the process's: checked against this facetizer's limit)
             template, estimate = cached
-            self._check_count(estimate, leaf)
+            if estimate > self.max_polygons:
+                self._check_count(estimate, leaf)
         self.primitive_count += 1
         return instance(template, Origin(Path(leaf.path), leaf.colour),
                         None if leaf.matrix == tree.IDENTITY else leaf.matrix)
