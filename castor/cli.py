@@ -14,13 +14,12 @@ import sys
 import threading
 
 from castor import __version__
-from castor.diagnostics import CastorError, Reporter
+from castor.diagnostics import USAGE_ERROR, CastorError, Reporter
 from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
                             DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
                             parse_point, parse_scale, parse_section, parse_size, parse_sun,
                             parse_view)
 
-USAGE_ERROR = 2
 _STACK_BYTES = 512 * 1024 * 1024
 _RECURSION_LIMIT = 200_000
 
@@ -125,8 +124,7 @@ def _arguments(argv):
         if not re.fullmatch(r"[A-Za-z_]\w*", name.strip()):
             p.error(f"-U takes a macro NAME (letters, digits and _), not {name!r}")
     from castor.formats import format_for_suffix
-    from castor.formats.output import (available, destination_problem, is_device,
-                                       suffix_message)
+    from castor.formats.output import destination_problem, is_device, suffix_message
 
     if args.format is None:
         args.format = format_for_suffix(args.output) if args.output else "cps"
@@ -134,8 +132,6 @@ def _arguments(argv):
             args.format = "cps"  # -o /dev/null, a named pipe: the stream, as to standard output
         if args.format is None:
             p.error(suffix_message(args.output))
-    if not available(args.format):
-        p.error(f"the {args.format} format is not part of this castor yet")
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
         problem = destination_problem(path, option) if path is not None else None
         if problem is not None:

@@ -12,6 +12,9 @@ import sys
 from typing import NamedTuple
 
 MAX_ERRORS = 50
+# the exit status of a usage error (castor, castor-view, castor --serve): the
+# command was given wrongly, as opposed to 1, errors in the input
+USAGE_ERROR = 2
 
 
 class Location(NamedTuple):

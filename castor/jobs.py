@@ -117,16 +117,13 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
         if all(obj.root is None for obj in scene.objects):
             result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
                                     scene.location))
-        if chosen.all_frames:
+        if not chosen.one_frame:
             # an animation is drawn at the end, with one camera for all its frames
             from castor.pictures.trace import compile_frame
 
             result.picture = compile_frame(scene)
         else:
-            image = picture(scene, spec)
-            from castor.formats.png import export_picture
-
-            result.data = export_picture(image)
+            result.data = chosen.write(picture(scene, spec))
         if spec.stats:
             result.stats = (f"castor: frame {scene.number} {scene.where}: picture "
                             f"{spec.size[0]}x{spec.size[1]}, {spec.samples} samples per pixel, "
@@ -138,9 +135,11 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
         result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
                                 scene.location))
     if kind == "drawing":
-        from castor.drawings import drawing
+        from castor.drawings import draw
 
-        result.data = drawing(scene, frame, spec)
+        result.data = chosen.write(draw(frame, spec.section, spec.view, spec.scale))
+    elif kind == "bim":
+        result.data = chosen.write(scene, frame, spec)
     elif chosen is not None:
         from castor.formats import output
 

@@ -19,7 +19,6 @@ from dataclasses import replace
 from castor.diagnostics import CastorError, LimitError, Reporter, TooManyErrors
 from castor.jobs import Job, Result, Spec, make
 
-USAGE_ERROR = 2
 
 
 class UsageError(Exception):
@@ -252,7 +251,7 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
             raise UsageError(f"error: cannot read '{name}': {reason}")
     chosen = FORMATS[spec.format]
     output = None  # --check writes nothing; an animation is written once, at the end
-    if not args.check and not (chosen.kind == "picture" and chosen.all_frames):
+    if not args.check and not (chosen.kind == "picture" and not chosen.one_frame):
         output = Output(args.output, spec.format)
     executor, workers = (None, 1) if args.check else executor_for(args.jobs, args.scheduler)
     if executor is None:
@@ -345,12 +344,11 @@ def _finish_collected(args, spec: Spec, sequencer: Sequencer, reporter: Reporter
     from castor.formats import FORMATS
     from castor.formats.output import write_atomically
 
-    if sequencer.pictures and FORMATS[spec.format].all_frames:
-        from castor.formats.gif import export_animation
-
+    chosen = FORMATS[spec.format]
+    if sequencer.pictures and not chosen.one_frame:
         from castor.pictures import animation
 
-        data = export_animation(animation(sequencer.pictures, spec))
+        data = chosen.write(animation(sequencer.pictures, spec))
         if args.output is None:
             sys.stdout.buffer.write(data)
             sys.stdout.buffer.flush()
