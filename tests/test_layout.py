@@ -10,12 +10,13 @@ PACKAGE = Path(__file__).resolve().parent.parent / "castor"
 # stage of each top-level module or folder, in pipeline order
 STAGES = {
     "castor": 0, "castor.diagnostics": 0, "castor.options": 0, "castor.progress": 0,
+    "castor.settings": 0,
     "castor.language": 1,
     "castor.csg": 2,
     "castor.mesh": 3, "castor.pictures": 3,
     "castor.formats": 4, "castor.drawings": 4, "castor.quantities": 4,
     "castor.jobs": 5, "castor.interpreter": 5,
-    "castor.run": 6,
+    "castor.pipeline": 6, "castor.run": 6,
     "castor.cli": 7, "castor.serve": 7, "castor.view": 7, "castor.__main__": 7,
 }
 

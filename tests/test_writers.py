@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from castor.formats import FORMATS
+from castor.settings import FrameSettings, OutputSettings
 from castor.formats.output import Output, Spooled, encode, encode_pieces, write_atomically
 
 # several objects, colours, polygons of more than four vertices (a box less a
@@ -120,8 +121,8 @@ def _spooled_job(monkeypatch, directory, name, target):
 
     monkeypatch.setattr(jobs, "SPOOL_POLYGONS", 0)
     (scene,), _ = evaluated_frames(SCENE)
-    result = jobs.make(jobs.Job(scene, jobs.Spec(format=name, target=target,
-                                                 spool=str(directory))))
+    result = jobs.make(jobs.Job(scene, FrameSettings(OutputSettings(
+        format=name, target=target, spool=str(directory)))))
     assert isinstance(result.data, Spooled)
     assert os.path.dirname(result.data.path) == str(directory)
     return result
@@ -134,7 +135,8 @@ def test_a_spooled_frame_is_written_as_the_bytes_are(tmp_path, monkeypatch, name
 
     suffix = FORMATS[name].suffix
     (scene,), _ = evaluated_frames(SCENE)
-    expected = jobs.make(jobs.Job(scene, jobs.Spec(format=name, target=str(tmp_path / f"a{suffix}"))))
+    expected = jobs.make(jobs.Job(scene, FrameSettings(OutputSettings(
+        format=name, target=str(tmp_path / f"a{suffix}")))))
     assert isinstance(expected.data, bytes)
     # beside the output: renamed into place (a stream file's frames are copied)
     result = _spooled_job(monkeypatch, tmp_path, name, str(tmp_path / f"b{suffix}"))
@@ -170,7 +172,7 @@ def test_a_worker_whose_driver_has_gone_leaves_no_spooled_file(tmp_path, monkeyp
                           capture_output=True, text=True, check=True)
     monkeypatch.setattr(jobs, "SPOOL_POLYGONS", 0)
     (scene,), _ = evaluated_frames(SCENE)
-    result = jobs.make(jobs.Job(scene, jobs.Spec(format="stl", spool=str(tmp_path),
-                                                 spool_owner=int(gone.stdout))))
+    result = jobs.make(jobs.Job(scene, FrameSettings(OutputSettings(
+        format="stl", spool=str(tmp_path), spool_owner=int(gone.stdout)))))
     assert result.data == b""
     assert list(tmp_path.iterdir()) == []
