@@ -177,3 +177,34 @@ def test_castor_view_draws_the_house_from_its_3mf_as_from_its_glb(tmp_path):
     assert differ.sum() < 0.01 * differ.size
     hues = {tuple(c) for c in (from_3mf[drawn] // 32).tolist()}
     assert len(hues) >= 3  # walls, roof, windows in their colours
+
+
+def test_the_registry_declares_each_format_once_with_a_known_kind():
+    from castor.formats import KINDS
+
+    assert len(REGISTRY) >= 12
+    for name, record in REGISTRY.items():
+        assert record.name == name and record.kind in KINDS and callable(record.write)
+        assert record.suffixes and all(s.startswith(".") for s in record.suffixes)
+    # every polygon format castor writes, castor reads back (castor-view draws it)
+    assert [f.name for f in of_kind("stream", "mesh") if f.read is None] == []
+
+
+@pytest.mark.parametrize("name", VIEWED)
+def test_each_reader_gives_back_the_frame_castor_wrote(scene, name):
+    """Read through the registry: the same box and area as the stream, in scene
+    units and z up, whatever the file's units (3MF: mm) and up axis (glTF: y)."""
+    import numpy as np
+
+    source, directory, frame = scene
+    target = directory / f"back-{name}{REGISTRY[name].suffix}"
+    run("-f", name, "-o", str(target), str(source), "-D", "ONE_FRAME", cwd=directory,
+        check_status=0)
+    [back] = list(REGISTRY[name].read(str(target)))
+    np.testing.assert_allclose([back.points.min(axis=0), back.points.max(axis=0)], frame.box(),
+                               atol=1e-4)
+    tris, _ = back.triangles()
+    corners = back.points[tris]
+    area = 0.5 * np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0],
+                                         corners[:, 2] - corners[:, 0]), axis=1).sum()
+    assert area == pytest.approx(frame.area(), rel=1e-4)
