@@ -78,8 +78,10 @@ def registry() -> dict[str, Format]:
                 continue
             try:
                 module = importlib.import_module(f"{__name__}.{info.name}")
-            except ImportError:  # its own dependency is missing: not part of this castor
-                continue
+            except ImportError as exc:
+                if (exc.name or "").split(".")[0] == "castor":
+                    raise  # castor's own module is broken: say so, never hide a format
+                continue  # its own dependency is missing: not part of this castor
             found.extend(getattr(module, "FORMATS", ()))
         for record in found:
             if record.kind not in KINDS:
