@@ -22,14 +22,14 @@ def stages():
     import pstats
 
     from castor.formats.cps import format_frame
-    from castor.jobs import Spec
+    from castor.settings import MeshSettings
     from castor.mesh.facetize import Facetizer
     from castor.run import evaluated_frames
 
     started = time.perf_counter()
     [scene], said = evaluated_frames(SCENE, "block.cas")
     evaluated = time.perf_counter() - started
-    facetizer = Facetizer(Spec().max_polygons)
+    facetizer = Facetizer(MeshSettings().max_polygons)
     profile = cProfile.Profile()
     started = time.perf_counter()
     profile.enable()

@@ -12,6 +12,7 @@ from typing import Iterator
 
 import numpy as np
 
+from castor.formats import Format
 from castor.mesh.frame import Frame
 
 HEADER = "castor-polygons 1\n"
@@ -170,3 +171,18 @@ def load(lines: Iterator[str], name: str = "<stdin>") -> Iterator[StreamFrame]:
                 current = None
         except (ValueError, IndexError, TypeError):
             raise StreamError(f"{name}:{number}: malformed '{kind}' record") from None
+
+
+def read(path: str) -> Iterator[StreamFrame]:
+    """A polygon stream file's frames, each as soon as it is read."""
+    try:
+        handle = open(path, encoding="utf-8", errors="replace")
+    except OSError as exc:
+        raise StreamError(f"cannot read '{path}': {exc.strerror}") from None
+    with handle:
+        yield from load(handle, path)
+
+
+FORMATS = (Format("cps", (".cps",), "stream", "the Castor polygon stream", export,
+                  write_pieces=export_chunks, read=read, binary=False, one_frame=False,
+                  header=HEADER.encode("utf-8"), listed=0),)
