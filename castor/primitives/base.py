@@ -12,7 +12,6 @@ read it; none keeps a list of its own.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Callable, NamedTuple
 
 FLAT = -1  # the surface number of a flat face
@@ -41,8 +40,7 @@ class Mesh(NamedTuple):
 Box = tuple[tuple[float, float, float], tuple[float, float, float]]
 
 
-@dataclass(frozen=True)
-class Primitive:
+class Primitive(NamedTuple):
     """One kind of primitive, as every stage reads it.
 
     ``shape`` below is the tuple of its evaluated arguments after the colour,
