@@ -16,7 +16,7 @@ from castor.csg.paths import Path
 from castor.diagnostics import GeometryError, LimitError
 from castor.language.vocabulary import PRIMITIVES
 from castor.mesh import engine, memory, polygons, primitives
-from castor.mesh.frame import Frame, Origin, compact
+from castor.mesh.frame import FaceSurfaces, Frame, Origin, compact, polygon_surfaces
 from castor.options import DEFAULT_MAX_POLYGONS
 
 # A frame whose estimate is this many times --max-polygons is refused before
@@ -78,7 +78,9 @@ class Facetizer:
                     merged = polygons.as_triangles(tri.triangles, tri.origin_ids)
                 total += len(merged.offsets) - 1  # the limit counts polygons (CLI.md)
                 self._check_count(total, scene)
-                pieces.append((tri.vertices, merged))
+                surfaces = polygon_surfaces(solid.origins, merged.origin_ids,
+                                            tri.face_ids[merged.source])
+                pieces.append((tri.vertices, merged, surfaces))
                 del tri
             frame.objects.append(compact(pieces, solid.origins, obj.name))
         # the frame's booleans, each shared subtree counted once: the same
@@ -143,7 +145,7 @@ class Facetizer:
 
     def _primitive(self, leaf: tree.Primitive) -> engine.Solid:
         key = (leaf.kind, leaf.shape, leaf.tolerance if PRIMITIVES[leaf.kind].curved else None)
-        shape_in_engine = self.shape_cache.get(key)
+        shape_in_engine, surfaces = self.shape_cache.get(key, (None, None))
         if shape_in_engine is None:
             self._check_count(primitives.estimate_triangles(leaf.kind, leaf.shape,
                                                             leaf.tolerance), leaf)
@@ -153,11 +155,14 @@ class Facetizer:
             except engine.EngineError as exc:
                 raise GeometryError(f"{leaf.path} gives no valid solid ({exc})",
                                     leaf.location) from None
+            # which faces are facets of a curved surface, for the outputs' creases
+            surfaces = (FaceSurfaces(mesh.surfaces) if (mesh.surfaces >= 0).any() else None)
             if len(self.shape_cache) > 4096:
                 self.shape_cache.clear()
-            self.shape_cache[key] = shape_in_engine
+            self.shape_cache[key] = (shape_in_engine, surfaces)
         self.primitive_count += 1
-        return engine.instance(shape_in_engine, Origin(Path(leaf.path), leaf.colour),
+        origin = Origin(Path(leaf.path), leaf.colour, leaf.kind, surfaces)
+        return engine.instance(shape_in_engine, origin,
                                None if leaf.matrix == tree.IDENTITY else leaf.matrix)
 
 
