@@ -117,3 +117,11 @@ def test_the_frame_knows_which_polygons_are_facets_of_one_surface():
     for k, kind in enumerate(kinds):
         surfaces = set(obj.surface_of[obj.origin_of == k].tolist())
         assert surfaces == ({-1, 0} if kind == "cy" else {-1}), kind
+
+
+def test_a_batch_without_curved_polygons_beside_one_with_them():
+    # parts apart go to the engine's output in batches: a small cube in one,
+    # the sphere (a large part) alone in another
+    status, out, err = run("--no-cpp", stdin="> $U(!cu(1, 0, 0), @t(2, 0, 0) !sp(0, 1, 0));\n")
+    assert status == 0, err
+    assert out.count("\npoly U1!cu ") == 6

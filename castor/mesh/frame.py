@@ -84,6 +84,8 @@ def polygon_surfaces(origin_table, origin_ids: np.ndarray, face_ids: np.ndarray)
     if not len(origin_ids) or not curved.any():
         return surfaces
     rows = np.flatnonzero(curved[origin_ids])
+    if not len(rows):
+        return surfaces
     rows = rows[np.argsort(origin_ids[rows], kind="stable")]
     entries = origin_ids[rows]
     bounds = np.flatnonzero(np.diff(entries)) + 1
