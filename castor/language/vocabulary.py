@@ -17,4 +17,12 @@ TransformKind = Transformation
 
 BOOLEANS = {"U": "union", "I": "intersection", "D": "difference"}
 
-__all__ = ["BOOLEANS", "PRIMITIVES", "TRANSFORMS", "Argument", "PrimitiveKind", "TransformKind"]
+__all__ = ["BOOLEANS", "PRIMITIVES", "TRANSFORMS", "Argument", "PrimitiveKind", "TransformKind",
+           "vim_syntax"]
+
+
+def vim_syntax() -> list[str]:
+    """The lines of vim/syntax/castor.vim that name the primitives and the
+    transformations (scripts/vim_syntax.py writes them there)."""
+    return ['syn match castorPrimitive "!\\(' + "\\|".join(PRIMITIVES) + '\\)\\>"',
+            'syn match castorTransform "@\\(' + "\\|".join(TRANSFORMS) + '\\)\\>"']
