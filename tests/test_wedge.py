@@ -63,3 +63,26 @@ def test_the_wedge_in_a_front_elevation_is_a_triangle(tmp_path):
     assert drawn.covered("rampe", (0, 0), (0, 1)) == pytest.approx(1)
     assert drawn.covered("rampe", (1, 0), (0, 1)) == pytest.approx(2 ** 0.5)
     assert drawn.covered("rampe", (0, 1), (1, 1)) == 0
+
+
+def test_the_wedge_in_the_live_preview(tmp_path, monkeypatch):
+    from castor.interpreter import Settings
+    from castor.serve.scene import Job
+    from castor.serve.server import PreviewServer
+    from test_serve import get, triangles, volume, wait_for
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "scene.cas").write_text("rampe = @h(2, 1, 1) !we(0.8, 0.4, 0.2);\n> rampe;\n")
+    server = PreviewServer(Job(("scene.cas",), Settings()), "127.0.0.1", 0).start()
+    try:
+        port = server.httpd.server_address[1]
+        wait_for(lambda: get(port, "/scene.json")[2].get("evaluated"))
+        _, _, scene = get(port, "/scene.json")
+        [frame] = scene["frames"]
+        assert frame["origins"] == [{"path": "(rampe)!we", "colour": [0.8, 0.4, 0.2]}]
+        assert frame["box"] == [[0, 0, 0], [2, 1, 1]]
+        assert frame["triangles"] == 8
+        _, _, data = get(port, frame["url"])
+        assert volume(triangles(data, 8)) == pytest.approx(1.0)
+    finally:
+        server.close()
