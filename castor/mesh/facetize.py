@@ -16,7 +16,8 @@ from castor.csg.paths import Path
 from castor.diagnostics import GeometryError, LimitError
 from castor.language.vocabulary import PRIMITIVES
 from castor.mesh import engine, memory, polygons, primitives
-from castor.mesh.frame import FaceSurfaces, Frame, Origin, compact, polygon_surfaces
+from castor.mesh.frame import (FaceSurfaces, Frame, Origin, compact, curved_origins,
+                               polygon_surfaces)
 from castor.options import DEFAULT_MAX_POLYGONS
 
 # A frame whose estimate is this many times --max-polygons is refused before
@@ -70,6 +71,7 @@ class Facetizer:
         for obj in scene.objects:
             solid = self.solid(obj.root) if obj.root is not None else engine.EMPTY
             pieces = []
+            curved = curved_origins(solid.origins)
             for batch in engine.batches(solid.parts):
                 tri = engine.triangles(batch, solid.origins)
                 if self.merge_polygons:
@@ -78,7 +80,7 @@ class Facetizer:
                     merged = polygons.as_triangles(tri.triangles, tri.origin_ids)
                 total += len(merged.offsets) - 1  # the limit counts polygons (CLI.md)
                 self._check_count(total, scene)
-                surfaces = polygon_surfaces(solid.origins, merged.origin_ids,
+                surfaces = polygon_surfaces(solid.origins, curved, merged.origin_ids,
                                             tri.face_ids[merged.source])
                 pieces.append((tri.vertices, merged, surfaces))
                 del tri

@@ -73,14 +73,21 @@ class Frame:
         return sum(o.polygon_count for o in self.objects)
 
 
-def polygon_surfaces(origin_table, origin_ids: np.ndarray, face_ids: np.ndarray) -> np.ndarray:
-    """For polygons of the origins ``origin_ids`` (entries of ``origin_table``)
-    on their primitive's faces ``face_ids`` (the face number in the low 32
-    bits), the curved surface each is a facet of, or -1: looked up per use of
-    a primitive with curved faces, none for the others."""
+def curved_origins(origin_table) -> np.ndarray:
+    """For each entry of ``origin_table``, whether its primitive has curved faces
+    (made once per object: a union of 200,000 cubes has as many entries)."""
+    return np.array([origin_table[e].surfaces is not None for e in range(len(origin_table))],
+                    bool)
+
+
+def polygon_surfaces(origin_table, curved: np.ndarray, origin_ids: np.ndarray,
+                     face_ids: np.ndarray) -> np.ndarray:
+    """For polygons of the origins ``origin_ids`` (entries of ``origin_table``,
+    ``curved`` where its primitive has curved faces) on their primitive's
+    faces ``face_ids`` (the face number in the low 32 bits), the curved
+    surface each is a facet of, or -1: looked up per use of a primitive with
+    curved faces, none for the others."""
     surfaces = np.full(len(origin_ids), -1, np.int64)
-    curved = np.array([origin_table[e].surfaces is not None for e in range(len(origin_table))],
-                      bool)
     if not len(origin_ids) or not curved.any():
         return surfaces
     rows = np.flatnonzero(curved[origin_ids])
