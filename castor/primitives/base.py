@@ -52,7 +52,7 @@ class Primitive(NamedTuple):
     solid: str  # what the unit solid is (LANGUAGE.md §4.1)
     arguments: tuple[Argument, ...]  # after the colour R, G, B
     pair_names: tuple[str, str] | None  # then coordinate pairs (at least three), or None
-    curved: bool  # its facets depend on the tolerance
+    curved: bool  # it has curved faces, so its facets depend on the tolerance
     check: Callable | None  # check(shape, location, path): raise GeometryError
     box: Callable[[tuple], Box]  # box(shape): the unit primitive's (low, high)
     mesh: Callable[[tuple, float], Mesh]  # mesh(shape, tolerance)
