@@ -11,7 +11,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / "castor"
 STAGES = {
     "castor": 0, "castor.diagnostics": 0, "castor.options": 0, "castor.progress": 0,
     "castor.settings": 0,
-    "castor.language": 1,
+    "castor.language": 1, "castor.primitives": 1, "castor.transformations": 1,
     "castor.csg": 2,
     "castor.mesh": 3, "castor.pictures": 3,
     "castor.formats": 4, "castor.drawings": 4, "castor.quantities": 4,
@@ -19,6 +19,12 @@ STAGES = {
     "castor.pipeline": 6, "castor.run": 6,
     "castor.cli": 7, "castor.serve": 7, "castor.view": 7, "castor.__main__": 7,
 }
+
+
+# An import up the pipeline made on purpose, inside the one function that needs
+# it: an extrusion's caps are triangulated by the engine's adapter (the only
+# module that calls manifold3d), and its mesh is built only by the facetizer.
+LATE_IMPORTS = {("castor.primitives.extrusion", "castor.mesh.adapter")}
 
 
 def _stage(module: str) -> int:
@@ -54,7 +60,8 @@ def test_imports_never_go_back_up_the_pipeline():
             else:
                 continue
             for target in targets:
-                if target.startswith("castor.") and _stage(target) > here:
+                if target.startswith("castor.") and _stage(target) > here \
+                        and (name, target) not in LATE_IMPORTS:
                     wrong.append(f"{name} (stage {here}) imports {target} "
                                  f"(stage {_stage(target)})")
     assert wrong == []
@@ -147,7 +154,7 @@ def test_a_cycle_is_seen():
 
 def test_the_mesh_stage_imports_its_primitives_without_a_cycle():
     graph = _import_graph()
-    assert "castor.mesh.adapter" in graph["castor.mesh.primitives"]
+    assert "castor.mesh.adapter" in graph["castor.primitives.extrusion"]  # its caps
     assert graph["castor.mesh.adapter"] == set()  # the adapter depends on nothing of castor
 
 

@@ -122,6 +122,9 @@ class StreamFrame:
     points: np.ndarray  # (N, 3) float64, polygon after polygon
     offsets: np.ndarray  # (P + 1,)
     colours: np.ndarray  # (P, 3) in 0..1
+    # each polygon's path (an index into paths), where the file gives one
+    path_of: np.ndarray | None = None
+    paths: list[str] | None = None
 
     @property
     def polygon_count(self) -> int:
@@ -152,9 +155,11 @@ def load(lines: Iterator[str], name: str = "<stdin>") -> Iterator[StreamFrame]:
         kind = fields[0]
         try:
             if kind == "frame":
-                current = (int(fields[1]), fields[2] if len(fields) > 2 else "", [], [], [0])
+                current = (int(fields[1]), fields[2] if len(fields) > 2 else "", [], [], [0], {},
+                           [])
             elif kind == "poly":
-                _, _, points, colours, offsets = current
+                _, _, points, colours, offsets, paths, path_of = current
+                path_of.append(paths.setdefault(fields[1], len(paths)))
                 n = int(fields[5])
                 values = np.array(fields[6:6 + 3 * n], dtype=np.float64)
                 if len(values) != 3 * n:
@@ -163,11 +168,12 @@ def load(lines: Iterator[str], name: str = "<stdin>") -> Iterator[StreamFrame]:
                 points.append(values.reshape(n, 3))
                 offsets.append(offsets[-1] + n)
             elif kind == "endframe":
-                frame_number, where, points, colours, offsets = current
+                frame_number, where, points, colours, offsets, paths, path_of = current
                 yield StreamFrame(frame_number, where,
                               np.concatenate(points) if points else np.zeros((0, 3)),
                               np.array(offsets, np.int64),
-                              np.array(colours, dtype=np.float64).reshape(-1, 3))
+                              np.array(colours, dtype=np.float64).reshape(-1, 3),
+                              np.array(path_of, np.int64), list(paths))
                 current = None
         except (ValueError, IndexError, TypeError):
             raise StreamError(f"{name}:{number}: malformed '{kind}' record") from None

@@ -21,7 +21,8 @@ from castor.diagnostics import GeometryError, LimitError
 from castor.language.vocabulary import PRIMITIVES
 from castor.mesh import adapter, booleans, instances, memory, merge, primitives, provenance
 from castor.mesh.caches import PROCESS
-from castor.mesh.frame import Frame, Origin, compact
+from castor.mesh.frame import (FaceSurfaces, Frame, Origin, compact, curved_origins,
+                               polygon_surfaces)
 from castor.mesh.regularize import regular_triangles
 from castor.mesh.solid import EMPTY, Solid, instance
 from castor.options import DEFAULT_MAX_POLYGONS
@@ -75,6 +76,7 @@ class Facetizer:
         for obj in scene.objects:
             solid = self.solid(obj.root) if obj.root is not None else EMPTY
             pieces = []
+            curved = curved_origins(solid.origins)
             for batch in provenance.batches(solid.parts):
                 tri = regular_triangles(provenance.triangles(batch, solid.origins), batch)
                 if self.merge_polygons:
@@ -83,7 +85,9 @@ class Facetizer:
                     merged = merge.as_triangles(tri.triangles, tri.origin_ids)
                 total += len(merged.offsets) - 1  # the limit counts polygons (CLI.md)
                 self._check_count(total, scene)
-                pieces.append((tri.vertices, merged))
+                surfaces = polygon_surfaces(solid.origins, curved, merged.origin_ids,
+                                            tri.face_ids[merged.source])
+                pieces.append((tri.vertices, merged, surfaces))
                 del tri
             frame.objects.append(compact(pieces, solid.origins, obj.name))
         # the frame's booleans, each shared subtree counted once: the same
@@ -154,15 +158,17 @@ class Facetizer:
             except adapter.EngineError as exc:
                 raise GeometryError(f"{leaf.path} gives no valid solid ({exc})",
                                     leaf.location) from None
-            self.caches.templates.put(key, (template, estimate))
+            # which faces are facets of a curved surface, for the outputs' creases
+            surfaces = (FaceSurfaces(mesh.surfaces) if (mesh.surfaces >= 0).any() else None)
+            self.caches.templates.put(key, (template, estimate, surfaces))
         else:
             # (the cache is the process's: checked against this facetizer's limit)
-            template, estimate = cached
+            template, estimate, surfaces = cached
             if estimate > self.max_polygons:
                 self._check_count(estimate, leaf)
         self.primitive_count += 1
-        return instance(template, Origin(Path(leaf.path), leaf.colour),
-                        None if leaf.matrix == tree.IDENTITY else leaf.matrix)
+        origin = Origin(Path(leaf.path), leaf.colour, leaf.kind, surfaces)
+        return instance(template, origin, None if leaf.matrix == tree.IDENTITY else leaf.matrix)
 
 
 def tree_figures(scene: tree.Frame) -> tuple[int, int]:

@@ -102,7 +102,7 @@ class Origins:
 
     def prefixed(self, prefix: str) -> "Origins":
         return Origins(self.ids, self.matrices,
-                       tuple(Origin(o.steps.under(prefix), o.colour) for o in self.table))
+                       tuple(o._replace(steps=o.steps.under(prefix)) for o in self.table))
 
     def transformed(self, matrix: np.ndarray) -> "Origins":
         """The entries of a solid moved by a 3x4 ``matrix``."""
