@@ -5,7 +5,8 @@ with a section plane, everything between the viewer and the plane is taken
 away, the cut regions become poché and what lies beyond is drawn with its
 hidden parts removed. The result is a ``Drawing`` of plain arrays in
 metres; castor.drawings.sheet lays it on paper with its dimensions, levels
-and title block, which castor.formats.svg, pdf and dxf write out.
+and title block (a ``Sheet``), which the drawing formats of castor.formats
+(svg, pdf, dxf) write out.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from castor.drawings.model import Drawing, Layer, View, view_for
 from castor.drawings.cut import cut_loops, section_area
 from castor.drawings.hidden import seen_lines
 
-__all__ = ["Drawing", "Layer", "View", "draw", "drawing", "section_area"]
+__all__ = ["Drawing", "Layer", "View", "draw", "section_area", "sheet_of", "title_of"]
 
 
 def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
@@ -44,22 +45,16 @@ def title_of(scene, title: str | None) -> str:
     return os.path.basename(scene.location.file) or "castor"
 
 
-def drawing(scene, frame, spec, warn=None) -> bytes:
-    """The frame drawn, laid on its sheet and written in the spec's format
-    (svg, dxf or pdf); ``warn(message)`` hears of dimensions left out."""
+def sheet_of(scene, frame, settings, warn=None):
+    """The frame drawn and laid on its sheet (castor.drawings.sheet.Sheet), as
+    ``settings`` (castor.settings.DrawingSettings) ask; what a drawing format
+    writes. ``warn(message)`` hears of dimensions left out; a drawing larger
+    than its paper is a CastorError at the '>' command."""
     from castor.diagnostics import CastorError
     from castor.drawings.sheet import DoesNotFit, layout
 
-    result = draw(frame, spec.section, spec.view, spec.scale)
+    result = draw(frame, settings.section, settings.view, settings.scale)
     try:
-        sheet = layout(result, getattr(spec, "sheet", None), title_of(scene, getattr(spec, "title", None)),
-                       scene.where, warn)
+        return layout(result, settings.sheet, title_of(scene, settings.title), scene.where, warn)
     except DoesNotFit as exc:
         raise CastorError(str(exc), scene.location) from None
-    if spec.format == "dxf":
-        from castor.formats.dxf import export_drawing
-    elif spec.format == "pdf":
-        from castor.formats.pdf import export_drawing
-    else:
-        from castor.formats.svg import export_drawing
-    return export_drawing(sheet)

@@ -19,6 +19,8 @@ import re
 
 import numpy as np
 
+from castor.formats import Format
+
 
 def _layer_names(names: list[str], taken: set[str]) -> list[str]:
     """Valid, distinct DXF layer names made from the objects' names."""
@@ -138,3 +140,7 @@ def export_drawing(sheet) -> bytes:
     stream = io.StringIO()
     doc.write(stream)
     return stream.getvalue().encode("utf-8")
+
+
+FORMATS = (Format("dxf", (".dxf",), "drawing", "a plan, section or elevation for CAD, in metres",
+                  export_drawing, binary=False, listed=100),)

@@ -16,6 +16,8 @@ import io
 
 import numpy as np
 
+from castor.formats import Format
+
 MM = 72 / 25.4  # PDF points per millimetre
 
 
@@ -82,3 +84,8 @@ def export_drawing(sheet) -> bytes:
     page.showPage()
     page.save()
     return out.getvalue()
+
+
+FORMATS = (Format("pdf", (".pdf",), "drawing",
+                  "a plan, section or elevation on its sheet, for printing", export_drawing,
+                  listed=110),)

@@ -11,9 +11,10 @@ layer labelled with its name. Text is text, escaped, in Helvetica.
 from __future__ import annotations
 
 import re
-from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
+
+from castor.formats import Format
 
 FONT = "Helvetica, Arial, sans-serif"
 
@@ -40,6 +41,10 @@ def _number(x: float) -> str:
 
 
 def _item(item) -> str:
+    """One item of the sheet as an SVG element."""
+    # imported here: xml.sax.saxutils brings urllib, too slow for every start-up
+    from xml.sax.saxutils import escape
+
     from castor.drawings.sheet import Lines, Shape
 
     if isinstance(item, Lines):
@@ -67,6 +72,8 @@ def _item(item) -> str:
 
 def export_drawing(sheet) -> bytes:
     """The sheet as SVG bytes, in millimetres at the drawing's scale."""
+    from xml.sax.saxutils import escape, quoteattr
+
     width, height = _number(sheet.width), _number(sheet.height)
     out = [
         '<?xml version="1.0" encoding="UTF-8"?>',
@@ -92,3 +99,7 @@ def export_drawing(sheet) -> bytes:
         out.append("</g>")
     out.append("</svg>")
     return ("\n".join(out) + "\n").encode()
+
+
+FORMATS = (Format("svg", (".svg",), "drawing", "a plan, section or elevation as a vector drawing",
+                  export_drawing, binary=False, listed=90),)
