@@ -39,7 +39,7 @@ def _vertical_xs(segments, top=3.0) -> list[float]:
 
 @pytest.mark.parametrize("n", sorted(LINES))
 def test_a_prism_column_in_elevation_shows_each_edge_in_front_svg(tmp_path, n):
-    drawn = Drawn(_draw(tmp_path, column(n), "--view", "front"), 100, (-1, 0))
+    drawn = Drawn(_draw(tmp_path, column(n), "--view", "front"), 100)
     xs = _vertical_xs([(s[0], s[-1]) for s in drawn.lines["colonne"]])
     assert len(xs) == LINES[n]
     # the corners of the N-gon in front, first vertex at (1, 0)
@@ -57,7 +57,7 @@ def test_a_prism_column_in_elevation_shows_each_edge_in_front_dxf(tmp_path, n):
 
 
 def test_a_cylinder_in_elevation_shows_its_outlines_only(tmp_path):
-    drawn = Drawn(_draw(tmp_path, TUBE, "--view", "front"), 100, (-1, 0))
+    drawn = Drawn(_draw(tmp_path, TUBE, "--view", "front"), 100)
     assert len(_vertical_xs([(s[0], s[-1]) for s in drawn.lines["colonne"]])) == 2
 
 
