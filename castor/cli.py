@@ -87,6 +87,12 @@ def _arguments(argv):
                           help="a drawing cut by the plane z=H (a plan), x=V or y=V")
     pictures.add_argument("--scale", default=f"1:{DEFAULT_SCALE}", metavar="1:N",
                           help="printed scale of a drawing (default %(default)s)")
+    bim = p.add_argument_group("IFC")  # (and --title for drawings)
+    bim.add_argument("--title", metavar="TEXT", help="the title of a drawing or an IFC "
+                     "project (default: the '>' object's name, or the file's)")
+    bim.add_argument("--ifc-class", dest="ifc_classes", action="append", default=[],
+                     metavar="NAME=CLASS", help="IFC class of the object NAME, such as "
+                     "maison=IfcWall (repeatable; default IfcBuildingElementProxy)")
     p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
     p.add_argument("--version", action="version", version=f"castor {__version__}")
     args = p.parse_args(negative_values(argv, ("--view", "--eye", "--look", "--sun",
@@ -136,6 +142,15 @@ def _arguments(argv):
             p.error(suffix_message(args.output))
     if not available(args.format):
         p.error(f"the {args.format} format is not part of this castor yet")
+    if args.format == "ifc" or args.ifc_classes:  # IFC's options, and its optional package
+        from castor.formats.ifc import INSTALL, installed, parse_ifc_classes
+
+        try:
+            args.ifc_classes = tuple(parse_ifc_classes(args.ifc_classes).items())
+        except ValueError as exc:
+            p.error(str(exc))
+        if args.format == "ifc" and not installed():
+            p.error(f"writing IFC needs ifcopenshell, which is not installed; {INSTALL}")
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
         problem = destination_problem(path, option) if path is not None else None
         if problem is not None:
@@ -188,7 +203,8 @@ def main(argv=None) -> int:
     spec = Spec(format=args.format, target=args.output, max_polygons=args.max_polygons,
                 stats=args.stats, summary=args.summary is not None, size=args.size,
                 view=args.view, eye=args.eye, look=args.look, sun=args.sun,
-                samples=args.samples, edges=args.edges, section=args.section, scale=args.scale)
+                samples=args.samples, edges=args.edges, section=args.section, scale=args.scale,
+                title=args.title, ifc_classes=args.ifc_classes)
     result: list = []
 
     def work():

@@ -39,6 +39,8 @@ class Spec:
     edges: bool = False
     section: object = None  # castor.options.Section
     scale: float = DEFAULT_SCALE
+    title: str | None = None  # --title (a drawing's, an IFC project's)
+    ifc_classes: tuple[tuple[str, str], ...] = ()  # --ifc-class NAME=CLASS, parsed
     # how a frame's bytes are handed on: made a piece at a time as they are
     # written (``pieces``, in the process that writes them), written by a worker
     # into a file in ``spool`` when the frame is large, or else as bytes
@@ -141,6 +143,10 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
         from castor.drawings import drawing
 
         result.data = drawing(scene, frame, spec)
+    elif spec.format == "ifc":  # the IFC writer takes options: the title, the classes
+        from castor.formats.ifc import export
+
+        result.data = export(frame, spec.target, spec.title, dict(spec.ifc_classes))
     elif chosen is not None:
         from castor.formats import output
 

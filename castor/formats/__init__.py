@@ -38,6 +38,9 @@ FORMATS: dict[str, Format] = {f.name: f for f in (
     Format("glb", "glb", ".glb", "binary glTF 2.0, one node per object", "mesh", True, True),
     Format("3mf", "threemf", ".3mf", "3D Manufacturing Format, coloured, in millimetres",
            "mesh", True, True),
+    # IFC: its options (--title, --ifc-class) come from the Spec (castor.jobs)
+    Format("ifc", "ifc", ".ifc", "IFC4 for BIM programs, one element per object", "mesh",
+           False, False),
     Format("png", "png", ".png", "a ray-traced picture of the exact solids", "picture", True,
            False),
     Format("gif", "gif", ".gif", "every frame ray traced, as an animation", "picture", True,

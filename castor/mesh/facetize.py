@@ -66,7 +66,7 @@ class Facetizer:
                              "scene or raise TOLERANCE", scene.location)
         total = 0
         merger = polygons.Merger()
-        frame = Frame(scene.number, scene.where)
+        frame = Frame(scene.number, scene.where, parameters=dict(scene.parameters))
         for obj in scene.objects:
             solid = self.solid(obj.root) if obj.root is not None else engine.EMPTY
             pieces = []
@@ -81,6 +81,7 @@ class Facetizer:
                 pieces.append((tri.vertices, merged))
                 del tri
             frame.objects.append(compact(pieces, solid.origins, obj.name))
+            frame.objects[-1].where = obj.where
         # the frame's booleans, each shared subtree counted once: the same
         # figure whichever process makes the frame, whatever it had cached
         self.stats = FrameStats(self.primitive_count, booleans, time.perf_counter() - started)

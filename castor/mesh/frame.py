@@ -31,6 +31,7 @@ class FrameObject:
     origin_of: np.ndarray  # (P,) index into origins
     origins: list[Origin]
     name: str = ""  # the '>' command's object: its name, or objectK
+    where: str = ""  # FILE:LINE of its definition, or of the '>' command
 
     @property
     def polygon_count(self) -> int:
@@ -49,6 +50,7 @@ class Frame:
     number: int
     where: str  # FILE:LINE of the '>' command
     objects: list[FrameObject] = field(default_factory=list)
+    parameters: dict[str, float] = field(default_factory=dict)  # in force at the '>'
 
     @property
     def polygon_count(self) -> int:
