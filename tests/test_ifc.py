@@ -308,3 +308,36 @@ def test_web_ifc_reads_the_house_as_ifcopenshell_does(house, tmp_path):
     # web-ifc's vertices are single precision
     assert element["volume"] == pytest.approx(maison["volume"], rel=1e-5)
     assert {tuple(c) for c in element["colours"]} == {tuple(c["rgb"]) for c in maison["colours"]}
+
+
+def test_each_face_starts_at_a_true_corner():
+    import numpy as np
+
+    from castor.formats.ifc import true_corner_first
+
+    # a square with a vertex in the middle of each edge, starting at one of them,
+    # and a triangle that needs no turn
+    vertices = np.array([[1, 0, 0], [2, 0, 0], [2, 1, 0], [2, 2, 0], [1, 2, 0], [0, 2, 0],
+                         [0, 1, 0], [0, 0, 0], [5, 5, 5]], float)
+    offsets = np.array([0, 8, 11])
+    indices = np.array([7, 0, 1, 2, 3, 4, 5, 6, 8, 0, 1])  # its second vertex is straight
+    turned = true_corner_first(vertices, offsets, indices)
+    ring = [7, 0, 1, 2, 3, 4, 5, 6]
+    assert turned[:8].tolist() in [ring[k:] + ring[:k] for k in range(8)]  # the same polygon
+    assert turned[:8].tolist() != ring
+    a, b, c = vertices[turned[:3]]
+    assert np.linalg.norm(np.cross(b - a, c - b)) > 0.5  # a true corner at its second vertex
+    assert turned[8:].tolist() == [8, 0, 1]
+
+
+def test_the_quick_faces_are_create_entitys(house, monkeypatch):
+    from castor.formats import ifc
+    from castor.mesh.facetize import Facetizer
+    from castor.run import evaluated_frames
+
+    (scene, _), said = evaluated_frames(SCENE, "scene.cas")
+    frame = Facetizer().frame(scene)
+    quick = ifc.export(frame)
+    monkeypatch.setattr(ifc, "_face_maker", lambda f: lambda row: f.create_entity(
+        "IfcIndexedPolygonalFace", row))
+    assert ifc.export(frame) == quick

@@ -244,7 +244,7 @@ def _face_sets(f, obj, material: np.ndarray, style) -> list:
     create = f.create_entity
     coordinates = create("IfcCartesianPointList3D", obj.vertices.tolist())
     sizes = np.diff(obj.offsets)
-    ones = obj.indices + 1  # IFC counts from 1
+    ones = true_corner_first(obj.vertices, obj.offsets, obj.indices) + 1  # IFC counts from 1
     colours = np.unique(material)
     items = []
     for m in colours.tolist():
@@ -254,6 +254,38 @@ def _face_sets(f, obj, material: np.ndarray, style) -> list:
         create("IfcStyledItem", face_set, [style(m)], None)
         items.append(face_set)
     return items
+
+
+def true_corner_first(vertices: np.ndarray, offsets: np.ndarray,
+                      indices: np.ndarray) -> np.ndarray:
+    """The polygons' vertex numbers, each polygon turned (same vertices, same
+    order) so that its first three vertices make a true corner.
+
+    A castor polygon may have a straight corner, a vertex in the middle of an
+    edge that a neighbour ends at. A reader that takes a face's plane from its
+    first three vertices (a common shortcut) finds one this way."""
+    if len(indices) == 0:
+        return indices
+    sizes = np.diff(offsets)
+    starts = offsets[:-1]
+    following = np.arange(1, len(indices) + 1)
+    following[offsets[1:] - 1] = starts
+    previous = np.arange(-1, len(indices) - 1)
+    previous[starts] = offsets[1:] - 1
+    p = vertices[indices]
+    incoming, outgoing = p - p[previous], p[following] - p
+    turn = np.linalg.norm(np.cross(incoming, outgoing), axis=1)
+    true = turn > 1e-9 * np.linalg.norm(incoming, axis=1) * np.linalg.norm(outgoing, axis=1)
+    position = np.arange(len(indices))
+    ready = true[following[starts]]  # the second vertex is a true corner already
+    if ready.all():
+        return indices
+    # the first true corner of each polygon (its second vertex if none is)
+    first = np.minimum.reduceat(np.where(true, position, len(indices)), starts)
+    first = np.where((first < offsets[1:]) & ~ready, first, starts + 1)
+    shift = np.repeat((first - starts - 1) % sizes, sizes)
+    local = position - np.repeat(starts, sizes)
+    return indices[np.repeat(starts, sizes) + (local + shift) % np.repeat(sizes, sizes)]
 
 
 def _faces(f, ones: np.ndarray, offsets: np.ndarray, sizes: np.ndarray,
