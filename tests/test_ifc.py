@@ -213,10 +213,10 @@ def test_the_same_scene_gives_the_same_bytes_and_ids(tmp_path):
 
 
 def test_title_and_format_option(tmp_path):
-    status, out, err = run("-f", "ifc", "--title", "Maison Dupont", str(HOUSE))
+    status, out, err = run("-f", "ifc", "--title", "Maison d'Arrêt", str(HOUSE))
     assert status == 0, err
     model = ifcopenshell.file.from_string(out)
-    assert model.by_type("IfcProject")[0].Name == "Maison Dupont"
+    assert model.by_type("IfcProject")[0].Name == "Maison d'Arrêt"
     # no named object: the file's name
     (tmp_path / "cube.cas").write_text("> !cu(1, 1, 1);\n")
     status, out, err = run("-f", "ifc", "cube.cas", cwd=tmp_path)
