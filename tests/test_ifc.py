@@ -149,6 +149,8 @@ def test_the_body_is_castors_polygons_one_face_set_per_colour(house):
     assert not any(s.Closed for s in sets)  # each is part of the closed surface
     styles = model.by_type("IfcSurfaceStyle")
     assert len(styles) == 6 and len({s.Name for s in styles}) == 6
+    assert {s.Side for s in styles} == {"BOTH"}
+    assert {s.Name for s in styles} >= {"dessus", "socle", "battant"}  # named as in OBJ
     for face_set in sets:
         (styled,) = face_set.StyledByItem
         (style,) = styled.Styles

@@ -143,6 +143,7 @@ def model(frame: Frame, title: str | None = None, classes: dict[str, str] | None
     import ifcopenshell
     import ifcopenshell.guid
 
+    from castor import __version__
     from castor.formats._mesh import materials, object_names
     from castor.quantities import object_figures
 
@@ -153,8 +154,8 @@ def model(frame: Frame, title: str | None = None, classes: dict[str, str] | None
     header.file_description.description = ("ViewDefinition [ReferenceView_V1.2]",)
     header.file_name.name = f"{title}.ifc"
     header.file_name.time_stamp = TIME_STAMP
-    header.file_name.preprocessor_version = "castor"
-    header.file_name.originating_system = "castor"
+    header.file_name.preprocessor_version = f"castor {__version__}"
+    header.file_name.originating_system = f"castor {__version__}"
 
     def guid(*key: str) -> str:
         return ifcopenshell.guid.compress(uuid.uuid5(_GUID_SPACE, "\0".join((title,) + key)).hex)
@@ -193,7 +194,7 @@ def model(frame: Frame, title: str | None = None, classes: dict[str, str] | None
 
     parameters = [create("IfcPropertySingleValue", name, None,
                          create("IfcReal", float(value)), None)
-                  for name, value in getattr(frame, "parameters", {}).items()]
+                  for name, value in frame.parameters.items()]
     if parameters:
         pset = create("IfcPropertySet", guid("Castor_Parameters"), None, "Castor_Parameters",
                       "the parameter values in force at the frame's '>' command", parameters)
@@ -208,7 +209,8 @@ def model(frame: Frame, title: str | None = None, classes: dict[str, str] | None
             r, g, b = table[m].colour
             shading = create("IfcSurfaceStyleShading",
                              create("IfcColourRgb", None, float(r), float(g), float(b)), 0.0)
-            styles[m] = create("IfcSurfaceStyle", table[m].name, "POSITIVE", [shading])
+            # both sides: a section box shows the inside faces in the same colour
+            styles[m] = create("IfcSurfaceStyle", table[m].name, "BOTH", [shading])
         return styles[m]
 
     elements = []
@@ -219,8 +221,8 @@ def model(frame: Frame, title: str | None = None, classes: dict[str, str] | None
         shape = create("IfcProductDefinitionShape", None, None, [
             create("IfcShapeRepresentation", body, "Body", "Tessellation", items)])
         cls = classes.get(obj.name) or classes.get(name) or DEFAULT_CLASS
-        element = create(cls, guid("element", name), None, name, getattr(obj, "where", "")
-                         or frame.where, None, placement(storey_place), shape, None)
+        element = create(cls, guid("element", name), None, name, obj.where or frame.where,
+                         None, placement(storey_place), shape, None)
         elements.append(element)
         figures = object_figures(obj, name)
         quantities = create("IfcElementQuantity", guid("quantities", name), None,
