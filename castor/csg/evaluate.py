@@ -118,8 +118,7 @@ class Evaluator:
             else:
                 name = f"object{k}"
             root = self._node(node, env, tree.IDENTITY, 1.0, tolerance, ROOT, ROOT)
-            source = getattr(node, "location", None) or location
-            made.append(tree.Object(name, root, f"{source.file}:{source.line}"))
+            made.append(tree.Object(name, root, f"{node.location.file}:{node.location.line}"))
         if self.errors:
             raise FrameErrors(self.errors)
         parameters = tuple((k, v) for k, v in env.items() if k != "PI")
