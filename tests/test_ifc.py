@@ -343,3 +343,14 @@ def test_the_quick_faces_are_create_entitys(house, monkeypatch):
     monkeypatch.setattr(ifc, "_face_maker", lambda f: lambda row: f.create_entity(
         "IfcIndexedPolygonalFace", row))
     assert ifc.export(frame) == quick
+
+
+def test_an_empty_frame_is_a_valid_model_without_elements():
+    status, out, err = run("--no-cpp", "-f", "ifc",
+                           stdin="> $I(!cu(1, 0, 0), @t(5, 5, 5) !cu(0, 1, 0));\n")
+    assert status == 0 and "frame 1 is empty" in err
+    model = ifcopenshell.file.from_string(out)
+    assert len(model.by_type("IfcElement")) == 0
+    assert len(model.by_type("IfcBuildingStorey")) == 1
+    assert model.by_type("IfcProject")[0].Name == "castor"  # standard input has no name
+    assert _issues(model, express_rules=False) == []
