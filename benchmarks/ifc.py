@@ -9,8 +9,8 @@ site model is).
 
 For each: the whole process (`castor -o x.ifc`, median wall-clock and CPU
 seconds, peak memory), the same with `-o x.glb` for reference, and in one
-process the stages (CPU seconds, as the machine may be shared): evaluate + facetize (castor), the IFC model built with ifcopenshell's
-entity API (castor's loop and ifcopenshell's entities), the STEP text written
+process the stages (CPU seconds, as the machine may be shared): evaluate +
+facetize (castor), the IFC model built with ifcopenshell's entity API (castor's loop and ifcopenshell's entities), the STEP text written
 by ifcopenshell; and the import of ifcopenshell itself.
 
 Targets: house <= 2 s, bus shelter <= 10 s; 1,024 houses measured.
@@ -93,8 +93,10 @@ def main() -> None:
         if text is not None:
             path.write_text(text)
         flags = [f"-D{d}" for d in defines]
-        ifc_time, ifc_cpu, ifc_peak = _whole([*flags, "-o", os.path.join(work, "x.ifc"), str(path)], work)
-        glb_time, glb_cpu, glb_peak = _whole([*flags, "-o", os.path.join(work, "x.glb"), str(path)], work)
+        ifc_time, ifc_cpu, ifc_peak = _whole([*flags, "-o", os.path.join(work, "x.ifc"),
+                                              str(path)], work)
+        glb_time, glb_cpu, glb_peak = _whole([*flags, "-o", os.path.join(work, "x.glb"),
+                                              str(path)], work)
         stages = _stages(path.read_text(), str(path), defines)
         rows.append([label, f"{stages['elements']:,}", f"{stages['faces']:,}",
                      f"{stages['megabytes']:.1f}", f"{ifc_time:.2f}", f"{ifc_cpu:.2f}",
