@@ -10,8 +10,9 @@ site model is).
 For each: the whole process (`castor -o x.ifc`, median wall-clock and CPU
 seconds, peak memory), the same with `-o x.glb` for reference, and in one
 process the stages (CPU seconds, as the machine may be shared): evaluate +
-facetize (castor), the IFC model built with ifcopenshell's entity API (castor's loop and ifcopenshell's entities), the STEP text written
-by ifcopenshell; and the import of ifcopenshell itself.
+facetize (castor), the IFC model built with ifcopenshell's entity API
+(castor's loop and ifcopenshell's entities), the STEP text written by
+ifcopenshell; and the import of ifcopenshell itself.
 
 Targets: house <= 2 s, bus shelter <= 10 s; 1,024 houses measured.
 """
