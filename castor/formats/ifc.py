@@ -147,7 +147,7 @@ def model(frame: Frame, title: str | None = None, classes: dict[str, str] | None
     from castor.formats._mesh import materials, object_names
     from castor.quantities import object_figures
 
-    title = title if title is not None else default_title(frame)
+    title = title or default_title(frame)  # an empty --title is no title
     classes = classes or {}
     f = ifcopenshell.file(schema="IFC4")
     header = f.header
