@@ -62,14 +62,14 @@ def _whole(args: list[str], cwd: str) -> tuple[float, float, float]:
 def _stages(text: str, name: str, defines=()) -> dict[str, float]:
     from castor.formats import ifc
     from castor.mesh.facetize import Facetizer
-    from castor.run import evaluated_frames
+    from castor.pipeline import evaluated_frames
 
     started = time.process_time()
     [scene], said = evaluated_frames(text, name, defines=defines)
     frame = Facetizer().frame(scene)
     castor_seconds = time.process_time() - started
     started = time.process_time()
-    model = ifc.model(frame)
+    model = ifc.model(scene, frame)
     built = time.process_time() - started
     started = time.process_time()
     data = model.to_string().encode("utf-8")

@@ -35,7 +35,10 @@ import uuid
 
 import numpy as np
 
+from castor.csg import tree
+from castor.formats import Format
 from castor.mesh.frame import Frame
+from castor.settings import FrameSettings
 
 INSTALL = "pip install 'castor[ifc]'"
 DEFAULT_CLASS = "IfcBuildingElementProxy"
@@ -86,10 +89,15 @@ _GUID_SPACE = uuid.UUID("6f1c1f3e-3c1e-4d7a-9a51-0c4a5f0c2a17")  # castor's, for
 
 
 def installed() -> bool:
-    """Whether ifcopenshell can be imported (without importing it)."""
+    """Whether ifcopenshell can be imported (without importing it: castor
+    starts without it). This module itself imports without it, so the format
+    stays in the registry, and ``-o x.ifc`` says what to install."""
     import importlib.util
 
-    return importlib.util.find_spec("ifcopenshell") is not None
+    try:
+        return importlib.util.find_spec("ifcopenshell") is not None
+    except (ImportError, ValueError):  # a hidden or half-imported package
+        return False
 
 
 def element_class(text: str) -> str:
@@ -131,14 +139,23 @@ def default_title(frame: Frame) -> str:
     return stem if stem and stem != "<stdin>" else "castor"
 
 
-def export(frame: Frame, path: str | None = None, title: str | None = None,
+def write(scene: tree.Frame, frame: Frame, settings: FrameSettings) -> bytes:
+    """The registry's writer (a format of kind "bim"): the frame as an IFC4
+    file, titled by --title, of the classes --ifc-class gives."""
+    return export(scene, frame, settings.output.title, dict(settings.bim.classes))
+
+
+def export(scene: tree.Frame, frame: Frame, title: str | None = None,
            classes: dict[str, str] | None = None) -> bytes:
-    """The frame as an IFC4 file (STEP physical file text). ``classes`` maps an
-    object's name to its IFC class (``element_class``'s spelling)."""
-    return model(frame, title, classes).to_string().encode("utf-8")
+    """The frame as an IFC4 file (STEP physical file text): ``scene`` is its
+    evaluated CSG tree (the parameters, each object's source), ``frame`` its
+    polygons. ``classes`` maps an object's name to its IFC class
+    (``element_class``'s spelling)."""
+    return model(scene, frame, title, classes).to_string().encode("utf-8")
 
 
-def model(frame: Frame, title: str | None = None, classes: dict[str, str] | None = None):
+def model(scene: tree.Frame, frame: Frame, title: str | None = None,
+          classes: dict[str, str] | None = None):
     """The frame as an ``ifcopenshell.file``."""
     import ifcopenshell
     import ifcopenshell.guid
@@ -194,7 +211,7 @@ def model(frame: Frame, title: str | None = None, classes: dict[str, str] | None
 
     parameters = [create("IfcPropertySingleValue", name, None,
                          create("IfcReal", float(value)), None)
-                  for name, value in frame.parameters.items()]
+                  for name, value in scene.parameters]
     if parameters:
         pset = create("IfcPropertySet", guid("Castor_Parameters"), None, "Castor_Parameters",
                       "the parameter values in force at the frame's '>' command", parameters)
@@ -214,14 +231,15 @@ def model(frame: Frame, title: str | None = None, classes: dict[str, str] | None
         return styles[m]
 
     elements = []
-    for obj, name, material in zip(frame.objects, object_names(frame), material_of):
+    for obj, source, name, material in zip(frame.objects, scene.objects, object_names(frame),
+                                           material_of):
         if obj.polygon_count == 0:
             continue  # nothing to show: an element without a body helps no one
         items = _face_sets(f, obj, material, style)
         shape = create("IfcProductDefinitionShape", None, None, [
             create("IfcShapeRepresentation", body, "Body", "Tessellation", items)])
         cls = classes.get(obj.name) or classes.get(name) or DEFAULT_CLASS
-        element = create(cls, guid("element", name), None, name, obj.where or frame.where,
+        element = create(cls, guid("element", name), None, name, source.where or frame.where,
                          None, placement(storey_place), shape, None)
         elements.append(element)
         figures = object_figures(obj, name)
@@ -326,3 +344,7 @@ def _face_maker(f):
         face.set_attribute_value_py(0, row)
         return face
     return make
+
+
+FORMATS = (Format("ifc", (".ifc",), "bim", "IFC4 for BIM programs, one element per object",
+                  write, binary=False, listed=65),)
