@@ -85,8 +85,13 @@ def _arguments(argv):
                           help="printed scale of a drawing (default %(default)s)")
     pictures.add_argument("--sheet", metavar="SIZE", help="lay a drawing on A4 ... A0 paper "
                           "(landscape; A3-portrait for upright), with border and title block")
-    pictures.add_argument("--title", metavar="TEXT", help="a drawing's title (default: the "
-                          "'>' object's name, or the file's)")
+    # one title for every document that has one: a drawing's, an IFC project's
+    pictures.add_argument("--title", metavar="TEXT", help="the title of a drawing or an IFC "
+                          "project (default: the '>' object's name, or the file's)")
+    bim = p.add_argument_group("building models (IFC)")
+    bim.add_argument("--ifc-class", dest="ifc_classes", action="append", default=[],
+                     metavar="NAME=CLASS", help="IFC class of the object NAME, such as "
+                     "maison=IfcWall (repeatable; default IfcBuildingElementProxy)")
     p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
     p.add_argument("--version", action="version", version=f"castor {__version__}")
     args = p.parse_args(negative_values(argv, ("--view", "--eye", "--look", "--sun",
@@ -134,6 +139,15 @@ def _arguments(argv):
             args.format = "cps"  # -o /dev/null, a named pipe: the stream, as to standard output
         if args.format is None:
             p.error(suffix_message(args.output))
+    if args.format == "ifc" or args.ifc_classes:  # IFC's options, and its optional package
+        from castor.formats.ifc import INSTALL, installed, parse_ifc_classes
+
+        try:
+            args.ifc_classes = tuple(parse_ifc_classes(args.ifc_classes).items())
+        except ValueError as exc:
+            p.error(str(exc))
+        if args.format == "ifc" and not installed():
+            p.error(f"writing IFC needs ifcopenshell, which is not installed; {INSTALL}")
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
         problem = destination_problem(path, option) if path is not None else None
         if problem is not None:
@@ -177,7 +191,7 @@ PIPE_CLOSED = 128 + 13
 
 def settings_of(args, overrides: dict[str, float]):
     """The settings of each stage, from the parsed options (castor.settings)."""
-    from castor.settings import (DrawingSettings, EvaluationSettings, FrameSettings,
+    from castor.settings import (BimSettings, DrawingSettings, EvaluationSettings, FrameSettings,
                                  MeshSettings, OutputSettings, PictureSettings, ReadSettings,
                                  RunSettings, Source)
 
@@ -187,12 +201,13 @@ def settings_of(args, overrides: dict[str, float]):
     evaluation = EvaluationSettings(overrides=overrides, tolerance=args.tolerance)
     frame = FrameSettings(
         output=OutputSettings(format=args.format, target=args.output, stats=args.stats,
-                              summary=args.summary is not None),
+                              summary=args.summary is not None, title=args.title),
         mesh=MeshSettings(max_polygons=args.max_polygons),
         picture=PictureSettings(size=args.size, view=args.view, eye=args.eye, look=args.look,
                                 sun=args.sun, samples=args.samples, edges=args.edges),
         drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale,
-                                sheet=args.sheet, title=args.title))
+                                sheet=args.sheet),
+        bim=BimSettings(classes=args.ifc_classes))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)
     return source, reading, evaluation, frame, how

@@ -114,7 +114,7 @@ def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
         from castor.drawings import sheet_of
 
         result.data = chosen.write(sheet_of(
-            scene, frame, settings.drawing,
+            scene, frame, settings.drawing, output.title,
             lambda message: result.warnings.append((message, scene.location))))
     elif kind == "bim":
         result.data = chosen.write(scene, frame, settings)

@@ -45,16 +45,17 @@ def title_of(scene, title: str | None) -> str:
     return os.path.basename(scene.location.file) or "castor"
 
 
-def sheet_of(scene, frame, settings, warn=None):
+def sheet_of(scene, frame, settings, title: str | None = None, warn=None):
     """The frame drawn and laid on its sheet (castor.drawings.sheet.Sheet), as
-    ``settings`` (castor.settings.DrawingSettings) ask; what a drawing format
-    writes. ``warn(message)`` hears of dimensions left out; a drawing larger
-    than its paper is a CastorError at the '>' command."""
+    ``settings`` (castor.settings.DrawingSettings) ask, titled ``title``
+    (--title); what a drawing format writes. ``warn(message)`` hears of
+    dimensions left out; a drawing larger than its paper is a CastorError at
+    the '>' command."""
     from castor.diagnostics import CastorError
     from castor.drawings.sheet import DoesNotFit, layout
 
     result = draw(frame, settings.section, settings.view, settings.scale)
     try:
-        return layout(result, settings.sheet, title_of(scene, settings.title), scene.where, warn)
+        return layout(result, settings.sheet, title_of(scene, title), scene.where, warn)
     except DoesNotFit as exc:
         raise CastorError(str(exc), scene.location) from None
