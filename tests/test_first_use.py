@@ -302,7 +302,7 @@ def test_glb_is_y_up_with_named_nodes(tmp_path):
     # scene x 0..4, y 0..3, z 0..2.5 becomes glTF x 0..4, y (up) 0..2.5, z -3..0
     assert positions["min"] == pytest.approx([0, 0, -3])
     assert positions["max"] == pytest.approx([4, 2.5, 0])
-    assert [m["name"] for m in document["materials"]] == ["murs", "toit", "green"]
+    assert [m["name"] for m in document["materials"]] == ["murs", "toit", "rgb-0.2-0.6-0.2"]
 
 
 def test_obj_is_y_up_with_named_objects_and_materials(tmp_path):
@@ -310,7 +310,7 @@ def test_obj_is_y_up_with_named_objects_and_materials(tmp_path):
     lines = (tmp_path / "h.obj").read_text().splitlines()
     assert [l for l in lines if l.startswith("o ")] == ["o murs", "o toit", "o object3"]
     assert [l for l in lines if l.startswith("usemtl ")] == [
-        "usemtl murs", "usemtl toit", "usemtl green"]
+        "usemtl murs", "usemtl toit", "usemtl rgb-0.2-0.6-0.2"]
     points = [list(map(float, l.split()[1:])) for l in lines if l.startswith("v ")]
     heights = [p[1] for p in points]
     assert min(heights) == 0 and max(heights) == pytest.approx(2.7)
