@@ -389,8 +389,8 @@ class Output:
         if self.path is None or self.format != "cps" or has_pattern(self.path):
             return True
         if self.stream is None:
-            if had_errors:
-                return False
+            if had_errors and not is_device(self.path):
+                return False  # a device (-o /dev/null) has no old file to keep: as stdout
             from castor.formats.cps import HEADER
 
             write_atomically(self.path, HEADER.encode("utf-8"))
