@@ -321,21 +321,23 @@ _local = threading.local()
 
 
 def _lark_and_builder(tables: Tables) -> tuple[Lark, Builder]:
-    """One LALR parser for each thread (building it is the slow part of
-    start-up; lark caches its tables in the temporary directory between runs).
+    """One LALR parser for each thread: from the tables shipped in the package
+    (castor.language.tables), else built (the slow part of start-up; lark then
+    caches its tables in the temporary directory between runs).
     Its builder is handed each Parser's tables before each parse, so that
     parsers made one after another, or in other threads, never mix up scenes."""
     shared = getattr(_local, "shared", None)
     if shared is None:
+        from castor.language import tables as saved
+
         builder = Builder(tables)
-        try:
-            lark = Lark(grammar_text(), parser="lalr", lexer="contextual",
-                        start=["statement", "program"], transformer=builder,
-                        maybe_placeholders=True, cache=True)
-        except OSError:  # an unwritable temporary directory: build without the cache
-            lark = Lark(grammar_text(), parser="lalr", lexer="contextual",
-                        start=["statement", "program"], transformer=builder,
-                        maybe_placeholders=True)
+        grammar = grammar_text()
+        lark = saved.load(grammar, builder)  # the tables made when the package was built
+        if lark is None:
+            try:
+                lark = Lark(grammar, transformer=builder, cache=True, **saved.OPTIONS)
+            except OSError:  # an unwritable temporary directory: build without the cache
+                lark = Lark(grammar, transformer=builder, **saved.OPTIONS)
         shared = _local.shared = (lark, builder)
     return shared
 
