@@ -209,7 +209,7 @@ def triangles(vertices: np.ndarray, offsets: np.ndarray,
     with an assertion on such faces, and slicers flag them. Those polygons are
     cut by clipping ears at true corners instead.
     """
-    from castor.mesh.polygons import fan_triangles
+    from castor.mesh.arrays import fan_triangles
 
     straight = straight_corners(vertices, offsets, indices)
     if not straight.any():

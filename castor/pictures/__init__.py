@@ -24,7 +24,7 @@ __all__ = ["animation", "picture", "render_scene", "sample_offsets"]
 
 
 def picture(frame, spec) -> np.ndarray:
-    """The frame drawn with the picture options of ``spec`` (castor.jobs.Spec)."""
+    """The frame drawn with the picture settings ``spec`` (castor.settings.PictureSettings)."""
     scene = compile_frame(frame)
     low, high = scene.box
     camera = make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)
@@ -74,7 +74,8 @@ class _Samples:
 
 def render_scene(scene: Scene, camera: Camera, sun, samples: int, edges: bool,
                  ground: float | None = None) -> np.ndarray:
-    """The picture of a compiled scene from ``camera``: sun ``(az, el)`` or None;
+    """The picture of a compiled scene from ``camera``: sun ``(az, el)``, None or a
+    castor.options.CameraSun beside the camera (castor.pictures.shade.sun_light);
     the ground at height ``ground`` (by default, the foot of the scene)."""
     width, height = camera.width, camera.height
     low, high = scene.box
