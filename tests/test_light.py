@@ -14,13 +14,13 @@ import sys
 import numpy as np
 import pytest
 
-from castor.jobs import Spec
 from castor.options import DEFAULT_SUN, View
 from castor.pictures import picture
 from castor.pictures.camera import make_camera
 from castor.pictures.shade import GROUND_SHADOW, sun_light
 from castor.pictures.trace import compile_frame
 from castor.run import evaluated_frames
+from castor.settings import PictureSettings
 
 BOX = "> @h(2, 2, 1.5) !cu(1, 1, 1);\n"
 SHADOW = np.round(GROUND_SHADOW * 255)
@@ -34,8 +34,8 @@ def frame_of(text):
 
 
 def default_picture(**options):
-    """The box drawn with the default sun (the Spec's default, as the command's)."""
-    spec = Spec(format="png", **{"size": (320, 240), "samples": 1, **options})
+    """The box drawn with the default sun (the settings' default, as the command's)."""
+    spec = PictureSettings(**{"size": (320, 240), "samples": 1, **options})
     assert spec.sun == DEFAULT_SUN
     frame = frame_of(BOX)
     image = picture(frame, spec).astype(int)
