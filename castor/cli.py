@@ -74,8 +74,9 @@ def _arguments(argv):
                                "left, right (orthographic)")
     pictures.add_argument("--eye", metavar="X,Y,Z", help="camera position (with --look)")
     pictures.add_argument("--look", metavar="X,Y,Z", help="the point the camera looks at")
-    pictures.add_argument("--sun", default="%g,%g" % DEFAULT_SUN, metavar="AZ,EL|none",
-                          help="direction of the sun (default %(default)s), or none")
+    pictures.add_argument("--sun", default=None, metavar="AZ,EL|none",
+                          help="direction of the sun (default: the camera's azimuth + %g, "
+                               "%g high), or none" % DEFAULT_SUN)
     pictures.add_argument("--samples", default=str(DEFAULT_SAMPLES), metavar="N",
                           help="rays per pixel for anti-aliasing (default %(default)s)")
     pictures.add_argument("--edges", action="store_true", help="outline silhouettes and creases")
@@ -106,7 +107,7 @@ def _arguments(argv):
         args.samples = parse_count(args.samples, "--samples", 1, 256)
         args.size = parse_size(args.size)
         args.view = parse_view(args.view)
-        args.sun = parse_sun(args.sun)
+        args.sun = DEFAULT_SUN if args.sun is None else parse_sun(args.sun)
         args.scale = parse_scale(args.scale)
         args.section = parse_section(args.section) if args.section is not None else None
         args.sheet = parse_sheet(args.sheet) if args.sheet is not None else None

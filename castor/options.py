@@ -11,11 +11,20 @@ import math
 import re
 from typing import NamedTuple
 
+class CameraSun(NamedTuple):
+    """The default sun: ``turn`` degrees beside the camera's azimuth and
+    ``elevation`` high, so that every face the camera sees is lit
+    (castor.pictures.shade.sun_light turns it into a direction)."""
+
+    turn: float
+    elevation: float
+
+
 DEFAULT_TOLERANCE = 0.01
 DEFAULT_MAX_POLYGONS = 20_000_000
 DEFAULT_SIZE = (800, 600)
 DEFAULT_VIEW = (-60.0, 25.0)
-DEFAULT_SUN = (135.0, 50.0)
+DEFAULT_SUN = CameraSun(20.0, 45.0)  # the camera's azimuth + 20, 45 high (CLI.md)
 DEFAULT_SAMPLES = 4
 DEFAULT_SCALE = 100  # 1:100
 DEFAULT_PORT = 8000

@@ -64,7 +64,7 @@ class PictureSettings:
     view: object = None  # castor.options.View
     eye: tuple | None = None
     look: tuple | None = None
-    sun: tuple | None = DEFAULT_SUN
+    sun: tuple | None = DEFAULT_SUN  # (az, el), None, or castor.options.CameraSun
     samples: int = DEFAULT_SAMPLES
     edges: bool = False
 

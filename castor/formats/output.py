@@ -382,8 +382,8 @@ class Output:
         if self.path is None or not self.streamed or has_pattern(self.path):
             return True
         if self.stream is None:
-            if had_errors:
-                return False
+            if had_errors and not is_device(self.path):
+                return False  # a device (-o /dev/null) has no old file to keep: as stdout
             write_atomically(self.path, self.header)
             return True
         stream, self.stream = self.stream, None

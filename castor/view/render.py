@@ -45,8 +45,7 @@ def _shade(picture: Picture, camera: Camera, normals: np.ndarray) -> np.ndarray:
     """Polygon colours lit as castor's pictures are (castor.pictures.shade), by
     the default sun, without shadows; the normals are turned to the viewer."""
     from castor.options import DEFAULT_SUN
-    from castor.pictures.camera import direction
-    from castor.pictures.shade import intensity
+    from castor.pictures.shade import intensity, sun_light
 
     if camera.orthographic:
         towards = np.broadcast_to(-camera.forward, normals.shape)
@@ -57,7 +56,8 @@ def _shade(picture: Picture, camera: Camera, normals: np.ndarray) -> np.ndarray:
     # one direction to the viewer for every polygon, so that the pieces of a
     # flat face are lit alike
     towards = np.broadcast_to(-camera.forward, normals.shape)
-    strength = intensity(normals, towards, direction(*DEFAULT_SUN), np.ones(len(normals)))
+    light, _ = sun_light(DEFAULT_SUN, camera)  # beside the camera, as castor's pictures
+    strength = intensity(normals, towards, light, np.ones(len(normals)))
     return np.clip(picture.colours * strength[:, None], 0, 1)
 
 
