@@ -1,0 +1,191 @@
+"""The scene's parameters for a customizer: ``castor --params`` and ``-p FILE -P NAME``.
+
+``--params`` prints every parameter with its annotation (LANGUAGE.md §10) as
+JSON. ``-p``/``-P`` read a named set of values from the JSON file the live
+preview saves (OpenSCAD's customizer format)::
+
+    {"parameterSets": {"tall": {"H": "3.2", "N": "4"}}, "fileFormatVersion": "1"}
+
+and give each as ``--set`` would. The values are numbers (or numbers written
+as text, as OpenSCAD writes them), never expressions.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+
+
+class SetError(Exception):
+    """A parameter file or set that cannot be used (a usage error)."""
+
+
+def _read_scene(files: list[str]) -> list[tuple[str, str]]:
+    sources = []
+    for name in files or ["-"]:
+        if name == "-":
+            sources.append(("<stdin>", sys.stdin.read()))
+            continue
+        try:
+            with open(name, encoding="utf-8", errors="replace") as handle:
+                sources.append((name, handle.read()))
+        except OSError as exc:
+            raise SetError(f"cannot read '{name}': {exc.strerror}") from None
+    return sources
+
+
+def scene_analysis(args, settings, reporter=None):
+    """The check of the scene files of the command line (castor.lsp.evaluate)."""
+    from castor.lsp.evaluate import analyse
+
+    sources = _read_scene(args.files)
+    (first, text), more = sources[0], tuple(sources[1:])
+    analysis = analyse(text, first, settings, args.defines, args.include_dirs, args.undefines,
+                       more=more, quiet=getattr(args, "quiet", False))
+    return analysis
+
+
+def params_command(args, settings, stdout=None, stderr=None) -> int:
+    """``castor --params``: the parameters as JSON on standard output; warnings and
+    errors on standard error as castor prints them. Exit status as castor's."""
+    from castor.diagnostics import Reporter
+    from castor.lsp.evaluate import parameters
+
+    stdout = stdout or sys.stdout
+    reporter = Reporter(stream=stderr or sys.stderr, quiet=args.quiet)
+    try:
+        analysis = scene_analysis(args, settings)
+    except SetError as exc:
+        (stderr or sys.stderr).write(f"castor: error: {exc}\n")
+        return 2
+    found, warnings = parameters(analysis)
+    for source, number in _source_lines(analysis):
+        reporter.source_lines[source] = number
+    diagnostics = list(analysis.diagnostics) + [
+        _as_diagnostic(w) for w in warnings]
+    try:
+        for d in sorted(diagnostics, key=_order):
+            if d.kind == "error":
+                reporter.error(_error(d))
+            elif d.kind == "warning":
+                reporter.warning(d.message, d.location)
+    except Exception:  # too many errors: stop saying them
+        pass
+    document = {"file": analysis.file,
+                "parameters": [p.as_json() for p in found]}
+    stdout.write(json.dumps(document, indent=2) + "\n")
+    stdout.flush()
+    return 1 if any(d.kind == "error" for d in analysis.diagnostics) else 0
+
+
+def _order(d):
+    return (d.location is None, d.location or ("", 0, 0))
+
+
+def _as_diagnostic(warning):
+    from castor.lsp.evaluate import Diagnostic
+
+    return Diagnostic("warning", warning.message, warning.location)
+
+
+def _error(d):
+    from castor.diagnostics import CastorError
+
+    return CastorError(d.message, d.location)
+
+
+def _source_lines(analysis):
+    for file in list(analysis.texts):
+        text = analysis.texts[file]
+        for number, line in enumerate(text.split("\n"), 1):
+            yield (file, number), line
+
+
+def load_set(path: str, name: str | None) -> dict[str, float]:
+    """The values of the set ``name`` in the parameter file ``path``; SetError
+    with what there is when the file, the set or a value is not right."""
+    try:
+        with open(path, encoding="utf-8") as handle:
+            document = json.load(handle)
+    except OSError as exc:
+        raise SetError(f"cannot read the parameter file '{path}': {exc.strerror}") from None
+    except (ValueError, UnicodeDecodeError) as exc:
+        raise SetError(f"the parameter file '{path}' is not JSON ({exc}); it holds "
+                       f'{{"parameterSets": {{"NAME": {{"H": "3.2"}}}}, '
+                       f'"fileFormatVersion": "1"}}') from None
+    sets = document.get("parameterSets") if isinstance(document, dict) else None
+    if not isinstance(sets, dict):
+        raise SetError(f"the parameter file '{path}' has no \"parameterSets\" object, as "
+                       f"OpenSCAD's customizer writes it")
+    there = ", ".join(sorted(sets)) or "none"
+    if name is None:
+        raise SetError(f"-p {path} needs -P NAME, the set to use (sets in the file: {there})")
+    values = sets.get(name)
+    if not isinstance(values, dict):
+        raise SetError(f"no parameter set '{name}' in '{path}' (sets in the file: {there})")
+    out: dict[str, float] = {}
+    for key, value in values.items():
+        number = _number(value)
+        if number is None:
+            raise SetError(f"the set '{name}' in '{path}' gives {key} the value {value!r}, "
+                           f"which is not a number")
+        out[key] = number
+    return out
+
+
+def _number(value) -> float | None:
+    if isinstance(value, bool):
+        return float(value)  # OpenSCAD's checkboxes: true is 1, false 0
+    if isinstance(value, (int, float)):
+        number = float(value)
+    elif isinstance(value, str):
+        text = value.strip()
+        if text in ("true", "false"):
+            return 1.0 if text == "true" else 0.0
+        try:
+            number = float(text)
+        except ValueError:
+            return None
+    else:
+        return None
+    return number if math.isfinite(number) else None
+
+
+def set_overrides(args, settings) -> dict[str, float]:
+    """The -p/-P values as overrides (each checked against the scene's parameters);
+    raises SetError."""
+    values = load_set(args.parameter_file, args.parameter_set)
+    analysis = scene_analysis(args, settings)
+    known = {d.name for d in analysis.definitions if d.kind == "parameter"}
+    unknown = sorted(set(values) - known)
+    if unknown:
+        raise SetError(f"the set '{args.parameter_set}' in '{args.parameter_file}' names "
+                       f"{', '.join(unknown)}, which the scene does not define (its parameters: "
+                       f"{', '.join(sorted(known)) or 'none'})")
+    return values
+
+
+def save_set(path: str, name: str, values: dict[str, float]) -> None:
+    """Add or replace the set ``name`` in the parameter file ``path`` (written
+    beside, then renamed), keeping the other sets."""
+    import os
+    import tempfile
+
+    document = {"parameterSets": {}, "fileFormatVersion": "1"}
+    try:
+        with open(path, encoding="utf-8") as handle:
+            loaded = json.load(handle)
+        if isinstance(loaded, dict) and isinstance(loaded.get("parameterSets"), dict):
+            document = loaded
+    except (OSError, ValueError, UnicodeDecodeError):
+        pass
+    document["parameterSets"][name] = {key: format(value, ".15g")
+                                       for key, value in values.items()}
+    document.setdefault("fileFormatVersion", "1")
+    directory = os.path.dirname(os.path.abspath(path))
+    handle, temporary = tempfile.mkstemp(dir=directory, prefix=".castor-", suffix=".json")
+    with os.fdopen(handle, "w", encoding="utf-8") as out:
+        json.dump(document, out, indent=2)
+        out.write("\n")
+    os.replace(temporary, path)

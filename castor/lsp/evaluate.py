@@ -1,0 +1,191 @@
+"""The one adapter between the editor's tools and castor's pipeline.
+
+``analyse`` runs a buffer's text (unsaved) through what ``castor --check`` runs
+(preprocess, reader, parser, interpreter; every frame evaluated into its CSG
+tree, none facetized) and keeps what an editor asks about: every diagnostic
+with its location, each parameter and object definition in the order they ran
+(with the parameter's value there), the files ``#include`` opened, and the
+symbol tables at the end. ``castor --params``, ``-p``/``-P`` and the language
+server read the pipeline through this module only, so that a change of the
+pipeline's interface changes this file and no other.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import re
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+from castor.diagnostics import CastorError, Location, Reporter, TooManyErrors
+
+
+class Overtaken(Exception):
+    """A newer edit came while this analysis ran: its result is not wanted."""
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    kind: str  # "error", "warning" or "note"
+    message: str
+    location: Location | None
+
+
+@dataclass(frozen=True)
+class Definition:
+    """A parameter or object definition, or a '>' command, where it ran."""
+
+    kind: str  # "parameter", "object" or "frame"
+    name: str
+    location: Location
+    value: float | None = None  # a parameter's value just after its definition
+    node: object = None  # an object's scene-graph node
+
+
+@dataclass
+class Analysis:
+    file: str  # the main file's name as locations give it
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    definitions: list[Definition] = field(default_factory=list)
+    included: list[str] = field(default_factory=list)
+    parameters: dict[str, float] = field(default_factory=dict)  # at the end
+    objects: dict[str, object] = field(default_factory=dict)
+    texts: dict[str, str] = field(default_factory=dict)  # file -> its text as analysed
+    seconds: float = 0.0
+
+    def source_text(self, file: str) -> str | None:
+        """A file's text: the buffer for the main file, else as it is on disk."""
+        if file not in self.texts:
+            try:
+                with open(file, encoding="utf-8", errors="replace") as handle:
+                    self.texts[file] = handle.read()
+            except OSError:
+                return None
+        return self.texts[file]
+
+
+class _Collector(Reporter):
+    """Keeps each diagnostic with its location mapped out of macro expansions,
+    as castor prints it."""
+
+    def __init__(self, quiet: bool = False):
+        super().__init__(stream=io.StringIO(), quiet=quiet)
+        self.diagnostics: list[Diagnostic] = []
+
+    def _emit(self, kind: str, message: str, location: Location | None) -> None:
+        if location is not None and self.expansions is not None:
+            text = self.source_lines.get((location.file, location.line))
+            mapped = self.expansions(location.file, location.line, text)
+            if mapped is not None:
+                column, _ = mapped.locate(location.column)
+                location = Location(location.file, location.line, column)
+        self.diagnostics.append(Diagnostic(kind, message, location))
+
+    def _emit_plain(self, text: str) -> None:
+        pass  # nothing printed: the diagnostics are kept
+
+
+def analyse(text: str, file: str, settings=None, defines=(), include_dirs=(), undefines=(),
+            cancelled: Callable[[], bool] = lambda: False, quiet: bool = False,
+            more: tuple[tuple[str, str], ...] = ()) -> Analysis:
+    """Check a scene's text as ``castor --check`` does (``more``: the (name, text)
+    of files read after it, as castor joins its FILE arguments); raises Overtaken
+    as soon as ``cancelled()`` says so (between statements)."""
+    from castor.interpreter import Interpreter, Settings
+    from castor.language.preprocess import preprocess
+    from castor.language.reader import Reader
+    from castor.language.scene import Facetize, ObjectDef, ParamDef
+
+    started = time.perf_counter()
+    settings = settings or Settings()
+    reporter = _Collector(quiet)
+    shown = _shown(file)
+    analysis = Analysis(shown, texts={shown: text, **{_shown(n): t for n, t in more}})
+
+    class Recording(Interpreter):
+        def execute(self, item) -> None:
+            if cancelled():
+                raise Overtaken()
+            super().execute(item)
+            if isinstance(item, ParamDef):
+                analysis.definitions.append(Definition(
+                    "parameter", item.name, item.location, self.tables.parameters.get(item.name)))
+            elif isinstance(item, ObjectDef):
+                analysis.definitions.append(Definition("object", item.name, item.location,
+                                                       node=item.node))
+            elif isinstance(item, Facetize):
+                analysis.definitions.append(Definition("frame", ">", item.location,
+                                                       node=item.objects))
+
+    interpreter = Recording(settings, reporter, None)
+    try:
+        source = preprocess([(file, text), *more], list(defines), list(undefines), list(include_dirs), reporter,
+                            analysis.included)
+        interpreter.run(Reader(reporter, directives_allowed=True).chunks(source.splitlines()),
+                        streaming=False)
+    except TooManyErrors:
+        pass
+    except RecursionError:
+        reporter.diagnostics.append(Diagnostic("error", "the scene is nested too deeply",
+                                               Location(shown, 1, 1)))
+    analysis.diagnostics = reporter.diagnostics
+    analysis.parameters = dict(interpreter.tables.parameters)
+    analysis.objects = dict(interpreter.tables.objects)
+    analysis.seconds = time.perf_counter() - started
+    return analysis
+
+
+def _shown(name: str) -> str:
+    """A file name as locations give it (relative to the current directory when inside)."""
+    here = os.path.abspath("") + os.sep
+    return name[len(here):] if name.startswith(here) else name
+
+
+def parameters(analysis: Analysis):
+    """The scene's parameters as a customizer offers them, and the warnings
+    about malformed annotations (castor.language.annotations)."""
+    from castor.language.annotations import annotate
+
+    return annotate([(d.name, d.location, d.value) for d in analysis.definitions
+                     if d.kind == "parameter"], analysis.source_text)
+
+
+def object_figures(analysis: Analysis, name: str, tolerance: float | None = None) -> dict | None:
+    """Bounding box and volume of the object ``name`` with the values at the end
+    of the scene, or None when it cannot be made (errors, or over the limit)."""
+    from castor.csg.evaluate import Evaluator
+    from castor.jobs import Job, Spec, make
+
+    node = analysis.objects.get(name)
+    if node is None:
+        return None
+    env = dict(analysis.parameters)
+    if tolerance is not None:
+        env["TOLERANCE"] = tolerance
+    try:
+        scene = Evaluator().frame((node,), env, 1, name, node.location)
+    except (CastorError, RecursionError):
+        return None
+    result = make(Job(scene, Spec(format=None, summary=True, max_polygons=2_000_000)))
+    if result.errors or result.summary is None:
+        return None
+    return result.summary
+
+
+_DEFINE = re.compile(r"^[ \t]*#[ \t]*define[ \t]+([A-Za-z_]\w*)")
+
+
+def macro_definitions(analysis: Analysis) -> list[tuple[str, Location]]:
+    """Every ``#define`` of the main file and the files it includes."""
+    out = []
+    for file in [analysis.file] + [_shown(f) for f in analysis.included]:
+        text = analysis.source_text(file)
+        if text is None:
+            continue
+        for number, line in enumerate(text.split("\n"), 1):
+            match = _DEFINE.match(line)
+            if match:
+                out.append((match[1], Location(file, number, match.start(1) + 1)))
+    return out
