@@ -301,12 +301,26 @@ def _server():
                 return document.uri
         return uri_of(location.file)
 
+    figures_lock = threading.Lock()
+
+    def figures(analysis, name: str):
+        """An object's box and volume, made once per analysis (one at a time: the
+        facetizer's caches are shared)."""
+        from castor.lsp.evaluate import object_figures
+
+        with figures_lock:
+            cache = analysis.__dict__.setdefault("figures", {})
+            if name not in cache:
+                cache[name] = object_figures(analysis, name)
+            return cache[name]
+
     @server.feature(types.TEXT_DOCUMENT_HOVER)
+    @server.thread()  # an object's figures may take a while: the protocol goes on
     def hover(ls, params: types.HoverParams):
         analysis, cursor = at(params.text_document.uri, params.position)
         if analysis is None:
             return None
-        found = knowledge.hover(analysis, *cursor)
+        found = knowledge.hover(analysis, *cursor, figures=figures)
         if found is None or found[0] is None:
             return None
         text, word = found
