@@ -166,6 +166,12 @@ def set_overrides(args, settings) -> dict[str, float]:
     return values
 
 
+def _shortest(value: float) -> str:
+    """The shortest text that reads back as the same double ('3.2', '4')."""
+    text = repr(float(value))
+    return text[:-2] if text.endswith(".0") else text
+
+
 def save_set(path: str, name: str, values: dict[str, float]) -> None:
     """Add or replace the set ``name`` in the parameter file ``path`` (written
     beside, then renamed), keeping the other sets."""
@@ -180,7 +186,7 @@ def save_set(path: str, name: str, values: dict[str, float]) -> None:
             document = loaded
     except (OSError, ValueError, UnicodeDecodeError):
         pass
-    document["parameterSets"][name] = {key: format(value, ".15g")
+    document["parameterSets"][name] = {key: _shortest(value)
                                        for key, value in values.items()}
     document.setdefault("fileFormatVersion", "1")
     directory = os.path.dirname(os.path.abspath(path))
