@@ -147,3 +147,32 @@ def test_values_from_the_page_are_checked_numbers(house):
     assert post(json.dumps({"save": "../../x"}))[0] == 400
     status, body = post(json.dumps({"values": {"H": 3.1}}))
     assert status == 200 and json.loads(body)["command"] == "castor --set H=3.1 house.cas"
+
+
+def test_a_face_shows_where_its_primitive_is_written_and_a_click_copies_it(page, house):
+    import re
+
+    from test_serve_browser import BAR, REVEAL
+
+    path, _ = house
+    image = picture(page, "source")
+    blue = near(image, REVEAL)
+    inner = blue.copy()  # away from the reveal's edges
+    for dy in (-2, 0, 2):
+        for dx in (-2, 0, 2):
+            inner &= np.roll(np.roll(blue, dy, axis=0), dx, axis=1)
+    ys, xs = np.nonzero(inner)
+    x, y = int(xs[len(xs) // 2]), int(ys[len(ys) // 2]) + BAR
+    page.mouse.move(x, y)
+    page.wait_for_selector("#pointed:not([hidden])", timeout=5000)
+    source = page.inner_text("#pointed-source")
+    match = re.fullmatch(r"house\.cas:(\d+):(\d+): !cu", source)
+    assert match, source
+    line, column = int(match[1]), int(match[2])
+    written = path.read_text().split("\n")[line - 1]
+    # the reveals are cut by the macro TROU: the place is its use, as written
+    assert written[column - 1:].startswith("TROU"), written
+    page.mouse.down()
+    page.mouse.up()
+    page.wait_for_function("() => document.body.dataset.copied !== undefined")
+    assert page.evaluate("document.body.dataset.copied") == f"house.cas:{line}:{column}"

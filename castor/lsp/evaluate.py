@@ -75,16 +75,38 @@ class _Collector(Reporter):
         self.diagnostics: list[Diagnostic] = []
 
     def _emit(self, kind: str, message: str, location: Location | None) -> None:
-        if location is not None and self.expansions is not None:
-            text = self.source_lines.get((location.file, location.line))
-            mapped = self.expansions(location.file, location.line, text)
-            if mapped is not None:
-                column, _ = mapped.locate(location.column)
-                location = Location(location.file, location.line, column)
-        self.diagnostics.append(Diagnostic(kind, message, location))
+        self.diagnostics.append(Diagnostic(kind, message, written_at(self, location)))
 
     def _emit_plain(self, text: str) -> None:
         pass  # nothing printed: the diagnostics are kept
+
+
+def written_at(reporter: Reporter, location: Location | None) -> Location | None:
+    """A location as written: out of a macro's expansion to the macro's use in the
+    line as the user wrote it (as castor's diagnostics point)."""
+    if location is None or reporter.expansions is None:
+        return location
+    text = reporter.source_lines.get((location.file, location.line))
+    mapped = reporter.expansions(location.file, location.line, text)
+    if mapped is None:
+        return location
+    column, _ = mapped.locate(location.column)
+    return Location(location.file, location.line, column)
+
+
+def primitive_places(frame, reporter: Reporter) -> dict[str, str]:
+    """``FILE:LINE:COL`` where each primitive of an evaluated frame is written,
+    by its path (as the faces made of it carry), through macros and includes."""
+    from castor.csg.tree import leaves
+
+    places: dict[str, str] = {}
+    for obj in frame.objects:
+        if obj.root is None:
+            continue
+        for leaf, _, path in leaves(obj.root):
+            if path not in places:
+                places[path] = f"{written_at(reporter, leaf.location)}: !{leaf.kind}"
+    return places
 
 
 def analyse(text: str, file: str, settings=None, defines=(), include_dirs=(), undefines=(),

@@ -80,8 +80,9 @@ class Panel:
     def as_json(self) -> dict:
         offered = []
         for parameter in self.parameters():
-            if parameter.hidden:
-                continue
+            if parameter.hidden or (parameter.annotation.control == "number"
+                                    and not _literal(parameter.expression)):
+                continue  # as OpenSCAD's customizer: a value worked out is not offered
             entry = parameter.as_json()
             entry["default"] = entry["value"]
             if parameter.name in self.base:
@@ -185,3 +186,10 @@ class Panel:
 
 def _plain(value: float):
     return int(value) if value == int(value) and abs(value) < 2 ** 53 else value
+
+
+_LITERAL = re.compile(r"-?\s*(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def _literal(expression: str) -> bool:
+    return bool(_LITERAL.fullmatch(expression.strip()))

@@ -47,11 +47,13 @@ class DrawnFrame:
     box: tuple[tuple[float, float, float], tuple[float, float, float]] | None
     origins: tuple[tuple[str, tuple[float, float, float]], ...]  # (path, colour)
     data: bytes = field(repr=False)
+    sources: dict = field(default_factory=dict, repr=False, compare=False)  # path -> FILE:LINE:COL
 
     def as_json(self) -> dict:
         return {"number": self.number, "where": self.where, "polygons": self.polygons,
                 "triangles": self.triangles, "box": self.box,
-                "origins": [{"path": path, "colour": colour} for path, colour in self.origins]}
+                "origins": [{"path": path, "colour": colour, "source": self.sources.get(path)}
+                            for path, colour in self.origins]}
 
 
 @dataclass(frozen=True)
@@ -114,10 +116,10 @@ def evaluate(job: Job, cancelled: Callable[[], bool] = lambda: False) -> Evaluat
     frames: list[DrawnFrame] = []
     included: list[str] = []
 
-    def on_frame(frame) -> None:
+    def on_frame(frame, sources: dict) -> None:
         if cancelled():
             raise Overtaken()
-        frames.append(drawn(frame))
+        frames.append(drawn(frame, sources))
 
     try:
         chunks = _checked(_chunks(job, reporter, included), cancelled)
@@ -155,7 +157,9 @@ def _interpret(settings, reporter: Reporter, chunks, on_frame: Callable,
         for error in result.errors:
             reporter.error(error)
         if result.mesh is not None:
-            on_frame(result.mesh)
+            from castor.lsp.evaluate import primitive_places  # where each face is written
+
+            on_frame(result.mesh, primitive_places(scene, reporter))
 
     Interpreter(settings, reporter, submit).run(chunks, streaming=False)
 
@@ -198,8 +202,9 @@ def _checked(chunks, cancelled: Callable[[], bool]):
         yield chunk
 
 
-def drawn(frame) -> DrawnFrame:
-    """A castor.mesh.frame.Frame as triangles for the page."""
+def drawn(frame, sources: dict | None = None) -> DrawnFrame:
+    """A castor.mesh.frame.Frame as triangles for the page; ``sources``: where
+    each primitive is written, by its path."""
     import numpy as np
 
     from castor.mesh.polygons import fan_triangles
@@ -218,4 +223,5 @@ def drawn(frame) -> DrawnFrame:
                tuple(float(v) for v in points.max(axis=0)))
     number_array = np.concatenate(numbers) if numbers else np.zeros(0, "<u4")
     return DrawnFrame(frame.number, frame.where, frame.polygon_count, len(positions), box,
-                      tuple(origins), positions.tobytes() + number_array.tobytes())
+                      tuple(origins), positions.tobytes() + number_array.tobytes(),
+                      sources or {})

@@ -338,7 +338,23 @@
     $("pointed-swatch").style.background =
       `rgb(${c.map((v) => Math.round(Math.min(1, Math.max(0, v)) * 255)).join(",")})`;
     $("pointed-where").textContent = `frame ${frame.meta.number} · ${frame.meta.where}`;
+    // where the primitive is written: a click copies it (vi +LINE FILE, or a jump)
+    $("pointed-source").textContent = origin.source || "";
+    state.pointedSource = origin.source || null;
     box.hidden = false;
+  }
+
+  // A face's FILE:LINE:COL to the clipboard; the page says so (and keeps it
+  // in the document for whoever reads it where no clipboard is allowed).
+  function copied(source) {
+    const text = source.replace(/: ![a-z]+$/, "");
+    document.body.dataset.copied = text;
+    const done = () => { $("status").textContent = `copied ${text}`; };
+    if (navigator.clipboard && navigator.clipboard.writeText) {
+      navigator.clipboard.writeText(text).then(done, done);
+    } else {
+      done();
+    }
   }
 
   // ---- the camera ----
@@ -368,9 +384,16 @@
     canvas.setPointerCapture(e.pointerId);
     const pan = e.button === 1 || e.button === 2 || e.shiftKey;
     state.drag = { x: e.clientX, y: e.clientY, pan };
+    state.pressed = { x: e.clientX, y: e.clientY, source: state.pointedSource };
     $("pointed").hidden = true;
   });
   canvas.addEventListener("pointerup", (e) => {
+    const pressed = state.pressed;
+    state.pressed = null;
+    if (pressed && pressed.source && e.button === 0 &&
+        Math.abs(e.clientX - pressed.x) + Math.abs(e.clientY - pressed.y) < 4) {
+      copied(pressed.source);  // a click, not a turn of the camera
+    }
     state.drag = null;
     canvas.releasePointerCapture(e.pointerId);
     redraw();
