@@ -382,3 +382,25 @@ def test_a_scene_that_explodes_gives_a_diagnostic(client: Client, scene: Path):
     client.at("textDocument/hover", uri, 0, 1)
     assert time.monotonic() - started < 2
     assert isinstance(found, list)  # answered: no crash, no hang
+
+
+def test_an_included_file_opened_is_analysed_as_part_of_its_scene(client: Client, scene: Path):
+    main = scene / "bus_shelter.cas"
+    uri = client.open(main)
+    assert client.diagnostics(uri, 1) == []
+    shelter = scene / "bus_shelter" / "shelter.cas"
+    shelter_uri = client.open(shelter)  # alone, its colour macros would be undefined
+    # saved with an error: the scene is analysed again, the error shown in the include
+    text = shelter.read_text()
+    broken = text.replace("LA = 5;", "LA = 5 +;")
+    shelter.write_text(broken)
+    client.change(shelter_uri, broken, 2)
+    client.notify("textDocument/didSave", {"textDocument": {"uri": shelter_uri}})
+    found = client.diagnostics(shelter_uri)
+    assert found[0]["range"]["start"]["line"] == _line(broken, "LA = 5 +;")
+    assert "expected" in found[0]["message"]
+    assert not any("ACIER_VERT" in d["message"] for d in found)  # its macros are known
+    shelter.write_text(text)
+    client.change(shelter_uri, text, 3)
+    client.notify("textDocument/didSave", {"textDocument": {"uri": shelter_uri}})
+    assert client.diagnostics(shelter_uri) == []

@@ -176,3 +176,40 @@ def test_a_face_shows_where_its_primitive_is_written_and_a_click_copies_it(page,
     page.mouse.up()
     page.wait_for_function("() => document.body.dataset.copied !== undefined")
     assert page.evaluate("document.body.dataset.copied") == f"house.cas:{line}:{column}"
+
+
+def test_a_save_in_the_editor_keeps_the_panel_values(house):
+    import http.client
+
+    path, server = house
+    host, port = server.httpd.server_address[:2]
+
+    def scene():
+        connection = http.client.HTTPConnection(host, port, timeout=10)
+        connection.request("GET", "/scene.json")
+        return json.loads(connection.getresponse().read())
+
+    def settle(version, seconds=30):
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            now = scene()
+            if now["version"] > version and not now["evaluating"]:
+                return now
+            time.sleep(0.05)
+        raise TimeoutError
+
+    first = settle(0)
+    top = first["frames"][0]["box"][1][2]
+    connection = http.client.HTTPConnection(host, port, timeout=10)
+    connection.request("POST", "/parameters", body=json.dumps({"values": {"H": 4}}),
+                       headers={"Content-Type": "application/json"})
+    assert connection.getresponse().status == 200
+    raised = settle(first["version"])
+    assert raised["frames"][0]["box"][1][2] == pytest.approx(top + 1.1)
+    # the editor saves the scene (another change): the panel's H stays in force
+    text = path.read_text()
+    path.write_text(text.replace("#define TUILE    0.70, 0.28, 0.18",
+                                 "#define TUILE    0.15, 0.65, 0.25"))
+    saved = settle(raised["version"])
+    assert saved["frames"][0]["box"][1][2] == pytest.approx(top + 1.1)
+    assert [0.15, 0.65, 0.25] in [o["colour"] for o in saved["frames"][0]["origins"]]

@@ -230,7 +230,22 @@ def _server():
                      f"typing (at most {MAX_BUFFER / 1e6:g} MB); castor --check reads it",
                      version)
             return
+        including = including_scene(document)
+        if including is not None:
+            return  # its scene's analysis speaks for it (on each save: see did_save)
         worker.submit(document)
+
+    def including_scene(document: _Document) -> _Document | None:
+        """An open scene whose last analysis #included this document's file: the
+        file is analysed as part of it, with its macros and parameters, not alone."""
+        if document.path is None:
+            return None
+        mine = os.path.realpath(document.path)
+        for other in documents.values():
+            if other is not document and other.analysis is not None and any(
+                    os.path.realpath(f) == mine for f in other.analysis.included):
+                return other
+        return None
 
     @server.feature(types.INITIALIZE)
     def initialize(ls, params: types.InitializeParams):
@@ -259,7 +274,14 @@ def _server():
     @server.feature(types.TEXT_DOCUMENT_DID_SAVE)
     def did_save(ls, params: types.DidSaveTextDocumentParams):
         document = documents.get(params.text_document.uri)
-        if document is not None and document.path is not None:
+        if document is None or document.path is None:
+            return
+        for other in list(documents.values()):  # the scenes that include it see the save
+            if other is not document and other.analysis is not None and any(
+                    os.path.realpath(f) == os.path.realpath(document.path)
+                    for f in other.analysis.included):
+                worker.submit(other)
+        if including_scene(document) is None:
             worker.submit(document)  # the files it includes may have changed
 
     @server.feature(types.TEXT_DOCUMENT_DID_CLOSE)
