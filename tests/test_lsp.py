@@ -404,3 +404,21 @@ def test_an_included_file_opened_is_analysed_as_part_of_its_scene(client: Client
     client.change(shelter_uri, text, 3)
     client.notify("textDocument/didSave", {"textDocument": {"uri": shelter_uri}})
     assert client.diagnostics(shelter_uri) == []
+
+
+def test_hover_and_definition_inside_an_included_file(client: Client, scene: Path):
+    uri = client.open(scene / "bus_shelter.cas")
+    client.diagnostics(uri, 1)
+    shelter = scene / "bus_shelter" / "shelter.cas"
+    text = shelter.read_text()
+    shelter_uri = client.open(shelter)
+    line = _line(text, "LA = 5;")
+    assert client.at("textDocument/hover", shelter_uri, line, 0)["contents"]["value"] \
+        .startswith("LA = 5 ")
+    use = _line(text, "tube =")
+    column = text.split("\n")[use].index("ACIER_VERT")
+    found = client.at("textDocument/definition", shelter_uri, use, column + 1)[0]
+    assert found["uri"] == (scene / "bus_shelter" / "colours.cas").as_uri()
+    symbols = client.request("textDocument/documentSymbol",
+                             {"textDocument": {"uri": shelter_uri}})["result"]
+    assert [s["name"] for s in symbols][:4] == ["X0", "LA", "PA", "HA"]

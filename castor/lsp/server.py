@@ -400,11 +400,11 @@ def _server():
 
     @server.feature(types.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
     def document_symbol(ls, params: types.DocumentSymbolParams):
-        document = documents.get(params.text_document.uri)
-        if document is None or document.analysis is None:
+        analysis, cursor = at(params.text_document.uri, types.Position(line=0, character=0))
+        if analysis is None:
             return []
         out = []
-        for s in knowledge.symbols(document.analysis, document.analysis.file):
+        for s in knowledge.symbols(analysis, cursor[0]):
             whole = lsp_range(s.location, s.end)
             out.append(types.DocumentSymbol(name=s.name, kind=symbol_kinds[s.kind], range=whole,
                                             selection_range=whole, detail=s.detail))
