@@ -89,3 +89,69 @@ def test_neovim_client_shows_diagnostics_hover_and_definition(tmp_path: Path):
     assert definition["range"]["start"]["line"] == 1  # 'mur =' on the second line
     assert found["after_edit"] == 0
     assert scene.read_text().count("murr") == 1  # the buffer was never written
+
+
+VIM = shutil.which("vim")
+
+VIM_SCRIPT = r"""
+let g:added = []
+function! LspAddServer(servers)
+  call extend(g:added, a:servers)
+endfunction
+let g:defined = {}
+let &runtimepath = '@VIM@,@FAKE@,' . &runtimepath
+runtime plugin/castor_lsp.vim
+doautocmd VimEnter
+doautocmd User lsp_setup
+runtime ale_linters/castor/castor_lsp.vim
+let g:result = #{added: g:added, cmd: g:registered.cmd({}), allowlist: g:registered.allowlist,
+      \ ale_name: g:defined.name, ale_lsp: g:defined.lsp,
+      \ ale_command: g:defined.command(1), ale_executable: g:defined.executable(1)}
+call writefile([json_encode(g:result)], '@RESULT@')
+qall!
+"""
+
+FAKE_VIM_LSP = """
+function! lsp#register_server(info) abort
+  let g:registered = a:info
+endfunction
+"""
+
+FAKE_ALE = """
+function! ale#linter#Define(filetype, linter) abort
+  let g:defined = a:linter
+  let g:defined.filetype = a:filetype
+endfunction
+function! ale#Escape(text) abort
+  return shellescape(a:text)
+endfunction
+"""
+
+
+@pytest.mark.skipif(VIM is None, reason="vim is not installed (Debian: apt install vim)")
+def test_vim9_files_register_the_server_with_each_client(tmp_path: Path):
+    """Debian's Vim 9 sources vim/ as a user's Vim would; the three clients'
+    registration functions (yegappan/lsp's LspAddServer, vim-lsp's
+    lsp#register_server, ALE's ale#linter#Define) are stood in for, and what
+    castor's files hand them is checked."""
+    fake = tmp_path / "fake"
+    (fake / "autoload" / "ale" / "linter").mkdir(parents=True)
+    (fake / "autoload" / "lsp.vim").write_text(FAKE_VIM_LSP)
+    (fake / "autoload" / "ale").mkdir(exist_ok=True)
+    (fake / "autoload" / "ale" / "linter.vim").write_text(FAKE_ALE.split("function! ale#Escape")[0])
+    (fake / "autoload" / "ale.vim").write_text("function! ale#Escape" +
+                                               FAKE_ALE.split("function! ale#Escape")[1])
+    result = tmp_path / "result.json"
+    script = tmp_path / "test.vim"
+    script.write_text(VIM_SCRIPT.replace("@VIM@", str(ROOT / "vim")).replace("@FAKE@", str(fake))
+                      .replace("@RESULT@", str(result)))
+    run = subprocess.run([VIM, "-N", "-u", "NONE", "-i", "NONE", "-es", "-S", str(script)],
+                         cwd=tmp_path, capture_output=True, timeout=60,
+                         env=dict(os.environ, HOME=str(tmp_path)))
+    assert result.exists(), (run.stdout + run.stderr).decode()[-2000:]
+    found = json.loads(result.read_text())
+    assert found["added"] == [{"name": "castor", "filetype": ["castor"], "path": "castor",
+                               "args": ["--lsp"]}]
+    assert found["cmd"] == ["castor", "--lsp"] and found["allowlist"] == ["castor"]
+    assert found["ale_name"] == "castor_lsp" and found["ale_lsp"] == "stdio"
+    assert found["ale_command"] == "'castor' '--lsp'" and found["ale_executable"] == "castor"

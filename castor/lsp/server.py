@@ -150,6 +150,8 @@ def _server():
             pass
 
     def _publish(document: _Document, analysis, problem: str | None, version: int) -> None:
+        if documents.get(document.uri) is not document:
+            return  # closed meanwhile: nothing more is said of it
         by_uri: dict[str, list] = {document.uri: []}
         if analysis is not None:
             document.analysis = analysis
