@@ -304,6 +304,7 @@ def test_completion_lists(client: Client, scene: Path):
     assert {i["label"] for i in items} == set(PRIMITIVES)
     torus = next(i for i in items if i["label"] == "to")
     assert torus["detail"] == "!to(R, G, B, K)"
+    assert torus["insertText"] == "to"  # this client fills in no snippets
     edited = text + "\nx = @"
     client.change(uri, edited, 3)
     items = client.at("textDocument/completion", uri, last, 5)["items"]
@@ -422,3 +423,24 @@ def test_hover_and_definition_inside_an_included_file(client: Client, scene: Pat
     symbols = client.request("textDocument/documentSymbol",
                              {"textDocument": {"uri": shelter_uri}})["result"]
     assert [s["name"] for s in symbols][:4] == ["X0", "LA", "PA", "HA"]
+
+
+def test_completion_snippets_for_a_client_that_fills_them_in(scene: Path):
+    c = Client(scene)
+    try:
+        c.request("initialize", {"processId": None, "rootUri": scene.as_uri(), "capabilities": {
+            "textDocument": {"completion": {"completionItem": {"snippetSupport": True}}}}})
+        c.notify("initialized", {})
+        uri = c.open(scene / "house.cas", "x = @")
+        items = {i["label"]: i for i in c.at("textDocument/completion", uri, 0, 5)["items"]}
+        assert items["t"]["insertText"] == "t(${1:X}, ${2:Y}, ${3:Z})"
+        assert items["t"]["insertTextFormat"] == 2
+        assert items["h"]["insertText"] == "h(${1:KX}, ${2:KY}, ${3:KZ})"
+        uri = c.open(scene / "house.cas", "x = !", version=2)
+        items = {i["label"]: i for i in c.at("textDocument/completion", uri, 0, 5)["items"]}
+        assert items["to"]["insertText"] == "to(${1:R}, ${2:G}, ${3:B}, ${4:K})"
+        assert items["ex"]["insertText"] == "ex(${1:R}, ${2:G}, ${3:B})"
+        assert c.stop() == 0
+    finally:
+        if c.process.poll() is None:
+            c.process.kill()

@@ -176,6 +176,11 @@ def vocabulary_text(word: str) -> str | None:
     return None
 
 
+def _short(line: str, most: int = 160) -> str:
+    """A line as a hover shows it: at most ``most`` characters."""
+    return line if len(line) <= most else line[:most - 1] + "…"
+
+
 def _number(value) -> str:
     return "undefined" if value is None else f"{value:.10g}"
 
@@ -193,7 +198,7 @@ def hover(analysis: Analysis, file: str, line: int, column: int,
     found = macros(analysis).get(name)
     if found is not None:
         source = (analysis.source_text(found.file) or "").split("\n")
-        body = source[found.line - 1].strip() if 0 < found.line <= len(source) else ""
+        body = _short(source[found.line - 1].strip()) if 0 < found.line <= len(source) else ""
         return f"macro {name}, {found.file}:{found.line}\n{body}", word
     if name[0].isupper():
         return _parameter_hover(analysis, file, line, column, name), word
@@ -233,7 +238,7 @@ def _object_hover(analysis, name, figures) -> str | None:
         return f"object {name}: not defined"
     where = places[-1]
     source = (analysis.source_text(where.file) or "").split("\n")
-    first = source[where.line - 1].strip() if 0 < where.line <= len(source) else ""
+    first = _short(source[where.line - 1].strip()) if 0 < where.line <= len(source) else ""
     text = f"object {name}, {where.file}:{where.line}\n{first}"
     summary = figures(analysis, name)
     if summary:
@@ -253,6 +258,12 @@ class Completion:
     documentation: str
     kind: str  # "primitive", "transform", "boolean", "parameter", "object", "macro"
     insert: str
+    snippet: str | None = None  # with its arguments as placeholders: cu(${1:R}, ...)
+
+
+def _snippet(name: str, arguments: list[str]) -> str:
+    holes = ", ".join(f"${{{k}:{a}}}" for k, a in enumerate(arguments, 1))
+    return f"{name}({holes})"
 
 
 def completions(analysis: Analysis | None, text: str, file: str, line: int,
@@ -266,12 +277,14 @@ def completions(analysis: Analysis | None, text: str, file: str, line: int,
         sigil = match.group(1)
         if sigil == "!":
             return [Completion(name, f"!{name}({p.form})", f"{p.title}: {p.solid}", "primitive",
-                               name) for name, p in PRIMITIVES.items()]
+                               name, _snippet(name, p.form.split(", ")[:p.count]))
+                    for name, p in PRIMITIVES.items()]
         if sigil == "@":
             return [Completion(name, f"@{name}({t.form})", f"{t.title}: {t.meaning}", "transform",
-                               name) for name, t in TRANSFORMS.items()]
-        return [Completion(name, f"${name}(A, B, ...)", what, "boolean", name)
-                for name, what in BOOLEANS.items()]
+                               name, _snippet(name, t.form.split(" or ")[-1].split(", ")))
+                    for name, t in TRANSFORMS.items()]
+        return [Completion(name, f"${name}(A, B, ...)", what, "boolean", name,
+                           _snippet(name, ["A", "B"])) for name, what in BOOLEANS.items()]
     if analysis is None:
         return []
     out: dict[str, Completion] = {}

@@ -392,9 +392,14 @@ def _server():
         file = analysis.file if analysis is not None else ""
         items = knowledge.completions(analysis, text, file, params.position.line + 1,
                                       params.position.character + 1)
+        snippets = _snippets(ls)
         return types.CompletionList(is_incomplete=False, items=[
-            types.CompletionItem(label=c.label, kind=kinds[c.kind], detail=c.detail,
-                                 documentation=c.documentation or None, insert_text=c.insert)
+            types.CompletionItem(
+                label=c.label, kind=kinds[c.kind], detail=c.detail,
+                documentation=c.documentation or None,
+                insert_text=c.snippet if snippets and c.snippet else c.insert,
+                insert_text_format=types.InsertTextFormat.Snippet if snippets and c.snippet
+                else types.InsertTextFormat.PlainText)
             for c in items])
 
     symbol_kinds = {"parameter": types.SymbolKind.Constant, "object": types.SymbolKind.Object,
@@ -417,6 +422,15 @@ def _server():
         worker.stop()
 
     return server
+
+
+def _snippets(ls) -> bool:
+    """Whether the client fills in snippets (the vocabulary's arguments as placeholders)."""
+    try:
+        return bool(ls.client_capabilities.text_document.completion.completion_item
+                    .snippet_support)
+    except AttributeError:
+        return False
 
 
 def main(args=None) -> int:
