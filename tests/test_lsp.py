@@ -444,3 +444,29 @@ def test_completion_snippets_for_a_client_that_fills_them_in(scene: Path):
     finally:
         if c.process.poll() is None:
             c.process.kill()
+
+
+BROKEN = {
+    "syntax.cas": "a = !cu(1, 0, 0;\nb = @t(1, 2) !cu(1, 0, 0);\n> a b;\n",
+    "names.cas": "#define C 1, 0, 0\nA = B + 1;\nx = @h(A, 1, 1) !cu(C);\ny = $U(x, z);\n> y;\n",
+    "geometry.cas": "t = !to(1, 0, 0, 1.5);\np = !pr(1, 0, 0, 2.5);\nX = 1 / 0;\n> t, p;\n",
+    "macro.cas": "#define HOLE(W) @h(W, 1, 1) !cu(1, 0, 0, Q)\nh = HOLE(2);\n> h;\n",
+}
+
+
+@pytest.mark.parametrize("name", sorted(BROKEN))
+def test_the_analysis_says_what_castor_check_says(tmp_path: Path, monkeypatch, name: str):
+    """Every diagnostic of castor --check, at the same place, with the same words."""
+    from castor.lsp.evaluate import analyse
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / name).write_text(BROKEN[name])
+    run = subprocess.run([sys.executable, "-m", "castor", "--check", name], cwd=tmp_path,
+                         capture_output=True, text=True, timeout=60,
+                         env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    printed = [line for line in run.stderr.splitlines()
+               if line.startswith(name + ":") and (": error: " in line or ": warning: " in line)]
+    assert printed  # the scene has faults
+    found = [f"{d.location}: {d.kind}: {d.message}"
+             for d in analyse(BROKEN[name], str(tmp_path / name)).diagnostics]
+    assert found == printed
