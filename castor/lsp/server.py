@@ -439,7 +439,12 @@ def main(args=None) -> int:
 
     logging.basicConfig(level=logging.CRITICAL, stream=sys.stderr)  # nothing on the pipe
     sys.setrecursionlimit(_RECURSION_LIMIT)
-    server = _server()
+    try:
+        server = _server()
+    except ImportError as exc:
+        sys.stderr.write(f"castor: error: --lsp needs pygls and lsprotocol ({exc.name} is "
+                         f"missing): pip install 'castor[lsp]'\n")
+        return 2
     stdin, stdout = sys.stdin.buffer, sys.stdout.buffer
     sys.stdout = sys.stderr  # a stray print must never corrupt the protocol's stream
     try:
