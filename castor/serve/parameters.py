@@ -37,12 +37,13 @@ class Panel:
         self.defines, self.undefines, self.include_dirs = defines, undefines, include_dirs
         self.values: dict[str, float] = {}  # changed by the page
         self.lock = threading.Lock()
-        self._listed: tuple | None = None  # (stamp, parameters, warnings)
+        self._listed: tuple | None = None  # (stamp, parameters)
+        self._included: tuple[str, ...] = ()  # the files #include opened, watched too
 
     # --- what is on offer
     def _stamp(self) -> tuple:
         stamp = []
-        for name in self.files:
+        for name in self.files + self._included:
             try:
                 info = os.stat(name)
                 stamp.append((name, info.st_mtime_ns, info.st_size))
@@ -73,8 +74,9 @@ class Panel:
                                list(self.include_dirs), list(self.undefines), more=more,
                                quiet=True)
             found = parameters(analysis)[0]
+            self._included = tuple(analysis.included)
         with self.lock:
-            self._listed = (stamp, found)
+            self._listed = (self._stamp(), found)
         return found
 
     def as_json(self) -> dict:
