@@ -220,11 +220,21 @@ def test_overtaken_edits_are_dropped(client: Client, scene: Path):
     path = scene / "house.cas"
     text = path.read_text()
     uri = client.open(path)
+    assert client.diagnostics(uri, 1) == []
     for version in range(2, 12):
         client.change(uri, text + f"\nX{version} = ;\n", version)
     client.change(uri, text, 12)
-    found = client.diagnostics(uri, 12)
+    published = []
+
+    def until_last(m):
+        if m.get("method") == "textDocument/publishDiagnostics" and m["params"]["uri"] == uri:
+            published.append(m["params"]["version"])
+            return m["params"]["version"] == 12
+        return False
+
+    found = client.wait(until_last)["params"]["diagnostics"]
     assert found == []
+    assert len(published) <= 3, published  # the overtaken edits were dropped, not published
 
 
 def test_hover_parameter_value_and_annotation(client: Client, scene: Path):
