@@ -174,9 +174,14 @@ def parameters(analysis: Analysis):
                      if d.kind == "parameter"], analysis.source_text)
 
 
+# an object larger than this is not made for a hover (its figures say why)
+HOVER_POLYGONS = 2_000_000
+
+
 def object_figures(analysis: Analysis, name: str, tolerance: float | None = None) -> dict | None:
     """Bounding box and volume of the object ``name`` with the values at the end
-    of the scene, or None when it cannot be made (errors, or over the limit)."""
+    of the scene (castor's summary), ``{"refused": why}`` when it cannot be made
+    (over the limit), or None when it has errors."""
     from castor.csg.evaluate import Evaluator
     from castor.jobs import Job, Spec, make
 
@@ -190,9 +195,9 @@ def object_figures(analysis: Analysis, name: str, tolerance: float | None = None
         scene = Evaluator().frame((node,), env, 1, name, node.location)
     except (CastorError, RecursionError):
         return None
-    result = make(Job(scene, Spec(format=None, summary=True, max_polygons=2_000_000)))
-    if result.errors or result.summary is None:
-        return None
+    result = make(Job(scene, Spec(format=None, summary=True, max_polygons=HOVER_POLYGONS)))
+    if result.errors:
+        return {"refused": result.errors[0].message}
     return result.summary
 
 

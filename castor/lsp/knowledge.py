@@ -241,7 +241,9 @@ def _object_hover(analysis, name, figures) -> str | None:
     first = _short(source[where.line - 1].strip()) if 0 < where.line <= len(source) else ""
     text = f"object {name}, {where.file}:{where.line}\n{first}"
     summary = figures(analysis, name)
-    if summary:
+    if summary and "refused" in summary:
+        text += f"\nbox and volume not made: {summary['refused']}"
+    elif summary:
         for obj in summary.get("objects", []):
             low, high = obj["bbox"] if obj.get("bbox") else (None, None)
             if low is not None:
