@@ -61,7 +61,9 @@ class Annotation:
 
 
 @dataclass
-class Warning_:
+class Malformed:
+    """A malformed annotation: a warning at its position, never an error."""
+
     message: str
     location: Location
 
@@ -130,7 +132,7 @@ def comment_after_statement(line: str, start: int) -> tuple[str, int] | None:
     return None
 
 
-def parse_annotation(text: str, location: Location) -> tuple[Annotation, Warning_ | None]:
+def parse_annotation(text: str, location: Location) -> tuple[Annotation, Malformed | None]:
     """An annotation from a comment's text; ``location`` is where the text starts.
     A malformed bracket gives a plain number input and a warning."""
     stripped = text.strip()
@@ -140,7 +142,7 @@ def parse_annotation(text: str, location: Location) -> tuple[Annotation, Warning
     close = stripped.find("]")
     where = Location(location.file, location.line, location.column + lead)
     if close < 0:
-        return Annotation(description=stripped), Warning_(
+        return Annotation(description=stripped), Malformed(
             "parameter annotation: '[' without its ']'; write [MIN:MAX], [MIN:STEP:MAX] "
             "or [A, B, C]", where)
     inside, description = stripped[1:close], stripped[close + 1:].strip()
@@ -157,7 +159,7 @@ def parse_annotation(text: str, location: Location) -> tuple[Annotation, Warning
         else:
             problem = f"[{inside}] is neither a maximum, a range nor a list of choices"
     if problem is not None:
-        return Annotation(description=description), Warning_(
+        return Annotation(description=description), Malformed(
             f"parameter annotation: {problem}; the parameter is offered as a number input",
             where)
     return annotation, None
@@ -246,14 +248,14 @@ def expression_text(lines: list[str], line: int, column: int) -> str:
     return " ".join("".join(pieces).split())
 
 
-def annotate(definitions, source_text) -> tuple[list[Parameter], list[Warning_]]:
+def annotate(definitions, source_text) -> tuple[list[Parameter], list[Malformed]]:
     """The parameters a customizer offers, from the pipeline's definitions.
 
     ``definitions``: (name, location, value) of each parameter definition in the
     order they ran; ``source_text(file)``: the file's text as written, or None.
     Each parameter is taken at its first definition."""
     parameters: list[Parameter] = []
-    warnings: list[Warning_] = []
+    warnings: list[Malformed] = []
     seen: set[str] = set()
     lines_of: dict[str, list[str] | None] = {}
     groups: dict[str, list[tuple[int, str]]] = {}
