@@ -83,8 +83,8 @@ def slider_times(runs: int) -> list[float]:
     except ImportError:
         return []
     sys.path.insert(0, str(HERE.parent))
-    from castor.interpreter import Settings
-    from castor.serve.scene import Job
+    from castor.serve.scene import Watched
+    from castor.settings import Source
     from castor.serve.server import PreviewServer
     from test_serve_browser import FLAGS
 
@@ -96,7 +96,7 @@ def slider_times(runs: int) -> list[float]:
         text = (HERE.parent / "examples" / "house.cas").read_text()
         old = next(line for line in text.split("\n") if line.startswith("H = 2.9;"))
         (work / "house.cas").write_text(text.replace(old, "H = 2.9; // [2.5:0.1:4] walls"))
-        server = PreviewServer(Job(("house.cas",), Settings()), "127.0.0.1", 0).start()
+        server = PreviewServer(Watched(Source(("house.cas",))), "127.0.0.1", 0).start()
         with sync_playwright() as driver:
             browser = driver.chromium.launch(executable_path="/usr/bin/chromium", args=FLAGS)
             page = browser.new_page(viewport={"width": 900, "height": 650})

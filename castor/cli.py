@@ -14,15 +14,11 @@ import sys
 import threading
 
 from castor import __version__
-from castor.diagnostics import CastorError, Reporter
+from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
 from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
                             DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
                             parse_point, parse_scale, parse_section, parse_size, parse_sun,
                             parse_view)
-
-USAGE_ERROR = 2
-_STACK_BYTES = 512 * 1024 * 1024
-_RECURSION_LIMIT = 200_000
 
 
 class _Parser(argparse.ArgumentParser):
@@ -133,8 +129,7 @@ def _arguments(argv):
         if not re.fullmatch(r"[A-Za-z_]\w*", name.strip()):
             p.error(f"-U takes a macro NAME (letters, digits and _), not {name!r}")
     from castor.formats import format_for_suffix
-    from castor.formats.output import (available, destination_problem, is_device,
-                                       suffix_message)
+    from castor.formats.output import destination_problem, is_device, suffix_message
 
     if args.format is None:
         args.format = format_for_suffix(args.output) if args.output else "cps"
@@ -142,8 +137,6 @@ def _arguments(argv):
             args.format = "cps"  # -o /dev/null, a named pipe: the stream, as to standard output
         if args.format is None:
             p.error(suffix_message(args.output))
-    if not available(args.format):
-        p.error(f"the {args.format} format is not part of this castor yet")
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
         problem = destination_problem(path, option) if path is not None else None
         if problem is not None:
@@ -185,42 +178,63 @@ def _overrides(parser, sets: list[str]) -> dict[str, float]:
 PIPE_CLOSED = 128 + 13
 
 
+def settings_of(args, overrides: dict[str, float]):
+    """The settings of each stage, from the parsed options (castor.settings)."""
+    from castor.settings import (DrawingSettings, EvaluationSettings, FrameSettings,
+                                 MeshSettings, OutputSettings, PictureSettings, ReadSettings,
+                                 RunSettings, Source)
+
+    source = Source(tuple(args.files))
+    reading = ReadSettings(tuple(args.defines), tuple(args.undefines), tuple(args.include_dirs),
+                           args.no_cpp)
+    evaluation = EvaluationSettings(overrides=overrides, tolerance=args.tolerance)
+    frame = FrameSettings(
+        output=OutputSettings(format=args.format, target=args.output, stats=args.stats,
+                              summary=args.summary is not None),
+        mesh=MeshSettings(max_polygons=args.max_polygons),
+        picture=PictureSettings(size=args.size, view=args.view, eye=args.eye, look=args.look,
+                                sun=args.sun, samples=args.samples, edges=args.edges),
+        drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale))
+    how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
+                      summary=args.summary)
+    return source, reading, evaluation, frame, how
+
+
 def main(argv=None) -> int:
     parser, args = _arguments(sys.argv[1:] if argv is None else argv)
     reporter = Reporter(quiet=args.quiet)
-    from castor.interpreter import Settings
-    from castor.jobs import Spec
-    from castor.run import UsageError, run
+    from castor.pipeline import RECURSION_LIMIT, STACK_BYTES
+    from castor.run import run
 
-    settings = Settings(overrides=_overrides(parser, args.sets), tolerance=args.tolerance)
+    source, reading, evaluation, frame, how = settings_of(args, _overrides(parser, args.sets))
     if args.lsp:
         from castor.lsp.server import main as language_server
 
         return language_server(args)
     if args.parameter_file is not None or args.parameter_set is not None:
-        from castor.lsp.customizer import SetError, set_overrides
+        from castor.lsp.customizer import SetError, readable, set_overrides
 
         if args.parameter_file is None:
             parser.error(f"-P {args.parameter_set} names a set of a parameter file; give the "
                          f"file with -p FILE")
+        source = readable(source)
         try:  # an explicit --set wins over the set's value
-            settings.overrides = {**set_overrides(args, settings), **settings.overrides}
+            evaluation.overrides = {**set_overrides(args.parameter_file, args.parameter_set,
+                                                    source, reading, evaluation),
+                                    **evaluation.overrides}
         except SetError as exc:
             sys.stderr.write(f"castor: error: {exc}\n")
             return USAGE_ERROR
     if args.params:
         from castor.lsp.customizer import params_command
 
-        return params_command(args, settings)
-    spec = Spec(format=args.format, target=args.output, max_polygons=args.max_polygons,
-                stats=args.stats, summary=args.summary is not None, size=args.size,
-                view=args.view, eye=args.eye, look=args.look, sun=args.sun,
-                samples=args.samples, edges=args.edges, section=args.section, scale=args.scale)
+        return params_command(source, reading, evaluation, quiet=args.quiet)
     result: list = []
 
     def work():
         try:
-            result.append(run(args, settings, spec, reporter))
+            result.append(run(source, reporter, reading=reading, evaluation=evaluation,
+                              settings=frame, how=how))
         except UsageError as exc:
             sys.stderr.write(f"castor: {exc}\n")
             result.append(USAGE_ERROR)
@@ -230,12 +244,10 @@ def main(argv=None) -> int:
     # A scene graph is many long-lived objects and few cycles: collect rarely.
     gc.set_threshold(100_000, 50, 100)
     # Deeply nested scenes recurse deeply: run on a thread with a large stack.
-    sys.setrecursionlimit(_RECURSION_LIMIT)
+    sys.setrecursionlimit(RECURSION_LIMIT)
     if args.serve:
-        from castor.serve.server import serve
-
-        return serve(args, settings)
-    threading.stack_size(_STACK_BYTES)
+        return _serve(args, source, reading, evaluation)
+    threading.stack_size(STACK_BYTES)
     thread = threading.Thread(target=work, name="castor", daemon=True)
     thread.start()
     try:
@@ -287,6 +299,26 @@ def main(argv=None) -> int:
         _quiet_stdout()
         return USAGE_ERROR
     return outcome
+
+
+def _serve(args, source, reading, evaluation) -> int:
+    """``castor --serve``: its usage errors, then the preview server until Ctrl-C."""
+    def usage(message: str) -> int:
+        sys.stderr.write(f"castor: error: {message}\n")
+        return USAGE_ERROR
+
+    if not args.files or "-" in args.files:
+        return usage("--serve needs a scene file to watch (not standard input)")
+    if args.output or args.check:
+        return usage("--serve shows the frames in a web browser; it writes nothing "
+                     f"({'-o' if args.output else '--check'} goes without --serve)")
+    from castor.serve.scene import Watched
+    from castor.serve.server import serve
+
+    try:
+        return serve(Watched(source, reading, evaluation, quiet=args.quiet), args.bind, args.port)
+    except UsageError as exc:
+        return usage(str(exc))
 
 
 def entry() -> None:

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass, field
 from typing import Callable, Iterable
 
 from castor.diagnostics import CastorError, Reporter, TooManyErrors
@@ -21,22 +20,18 @@ from castor.language.parse import Parser, SkippedDefinition
 from castor.language.reader import Chunk
 from castor.language.scene import Facetize, ObjectDef, ParamDef, Tables
 from castor.options import DEFAULT_TOLERANCE
+from castor.settings import EvaluationSettings
 
 
 # statements parsed by one call to the parser when the input is not streamed
 BATCH = 500
 
 
-@dataclass
-class Settings:
-    overrides: dict[str, float] = field(default_factory=dict)  # --set NAME=value
-    tolerance: float | None = None
-
-
 class Interpreter:
     """Holds the symbol tables and runs statements against them."""
 
-    def __init__(self, settings: Settings, reporter: Reporter, submit: Callable | None):
+    def __init__(self, settings: EvaluationSettings, reporter: Reporter,
+                 submit: Callable | None):
         from castor.csg.evaluate import Evaluator
 
         self.settings = settings
@@ -154,4 +149,4 @@ def frames_text(numbers: list[int]) -> str:
     return "frames " + ", ".join(str(n) for n in numbers)
 
 
-__all__ = ["Interpreter", "Settings", "TooManyErrors", "frames_text"]
+__all__ = ["Interpreter", "TooManyErrors", "frames_text"]

@@ -50,13 +50,19 @@ def run_view(*args, stdin=None, cwd=None):
 
 # --- 6, 7, 8: outputs that cannot be written are usage errors (exit 2)
 
+def _written_suffixes() -> str:
+    """Every ending castor writes, once each, in the registry's order."""
+    from castor.formats import FORMATS
+
+    return " ".join(dict.fromkeys(f.suffix for f in FORMATS.values()))
+
+
 @pytest.mark.parametrize("name, message", [
     ("x.dwg", "castor: error: cannot tell the format of 'x.dwg' from its extension; use one "
-              "of .cps .off .obj .stl .ply .glb .3mf .png .gif .svg .dxf, or give the format "
-              "with -f NAME"),
+              f"of {_written_suffixes()}, or give the format with -f NAME"),
     ("x.gltf", "castor: error: cannot tell the format of 'x.gltf' from its extension (castor "
-               "writes glTF as one binary file, .glb); use one of .cps .off .obj .stl .ply "
-               ".glb .3mf .png .gif .svg .dxf, or give the format with -f NAME"),
+               f"writes glTF as one binary file, .glb); use one of {_written_suffixes()}, or "
+               "give the format with -f NAME"),
     ("nodir/x.stl", "castor: error: cannot write 'nodir/x.stl': the directory 'nodir' does "
                     "not exist"),
     ("f-%03d-%03d.stl", "castor: error: -o f-%03d-%03d.stl: 2 frame-number patterns; a path "

@@ -472,6 +472,7 @@ BROKEN = {
 def test_the_analysis_says_what_castor_check_says(tmp_path: Path, monkeypatch, name: str):
     """Every diagnostic of castor --check, at the same place, with the same words."""
     from castor.lsp.evaluate import analyse
+    from castor.settings import Source
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / name).write_text(BROKEN[name])
@@ -482,5 +483,5 @@ def test_the_analysis_says_what_castor_check_says(tmp_path: Path, monkeypatch, n
                if line.startswith(name + ":") and (": error: " in line or ": warning: " in line)]
     assert printed  # the scene has faults
     found = [f"{d.location}: {d.kind}: {d.message}"
-             for d in analyse(BROKEN[name], str(tmp_path / name)).diagnostics]
+             for d in analyse(Source(text=BROKEN[name], name=str(tmp_path / name))).diagnostics]
     assert found == printed

@@ -15,8 +15,8 @@ import time
 import numpy as np
 import pytest
 
-from castor.interpreter import Settings
-from castor.serve.scene import Job
+from castor.serve.scene import Watched
+from castor.settings import Source
 from castor.serve.server import PreviewServer
 
 from test_serve_browser import CHROMIUM, FLAGS, HEIGHT, ROOF, ROOT, WIDTH, near, picture
@@ -35,7 +35,7 @@ def house(tmp_path, monkeypatch):
     text = (ROOT and open(os.path.join(ROOT, "examples", "house.cas")).read())
     old = next(line for line in text.split("\n") if line.startswith("H = 2.9;"))
     (tmp_path / "house.cas").write_text(text.replace(old, ANNOTATED))
-    server = PreviewServer(Job(("house.cas",), Settings()), "127.0.0.1", 0).start()
+    server = PreviewServer(Watched(Source(("house.cas",))), "127.0.0.1", 0).start()
     yield tmp_path / "house.cas", server
     server.close()
 

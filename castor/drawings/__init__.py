@@ -4,7 +4,7 @@ A frame's solids are seen along one of the six orthographic directions;
 with a section plane, everything between the viewer and the plane is taken
 away, the cut regions become poché and what lies beyond is drawn with its
 hidden parts removed. The result is a ``Drawing`` of plain arrays in
-metres, which castor.formats.svg and castor.formats.dxf write out.
+metres, which the drawing formats of castor.formats (svg, dxf) write out.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from castor.drawings.model import Drawing, Layer, View, view_for
 from castor.drawings.cut import cut_loops, section_area
 from castor.drawings.hidden import seen_lines
 
-__all__ = ["Drawing", "Layer", "View", "draw", "drawing", "section_area"]
+__all__ = ["Drawing", "Layer", "View", "draw", "section_area"]
 
 
 def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
@@ -28,12 +28,3 @@ def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
               for k, (o, c, l) in enumerate(zip(objects, cuts, lines))]
     return Drawing(layers, seen, scale)
 
-
-def drawing(scene, frame, spec) -> bytes:
-    """The frame drawn and written in the spec's format (svg or dxf)."""
-    result = draw(frame, spec.section, spec.view, spec.scale)
-    if spec.format == "dxf":
-        from castor.formats.dxf import export_drawing
-    else:
-        from castor.formats.svg import export_drawing
-    return export_drawing(result)

@@ -1,9 +1,9 @@
 """Hidden-line removal: the edges a viewer sees, each cut where it passes
 behind a face.
 
-The edges drawn are the true edges of the solids: between polygons that are
-not coplanar, unless they are neighbouring facets of one curved primitive
-(a small angle between polygons of one origin), and the silhouettes, where a
+The edges drawn are the true edges of the solids, the creases
+(castor.mesh.creases: between polygons that are not coplanar, unless they
+are facets of one curved surface of one primitive), and the silhouettes, where a
 face turned towards the viewer meets one turned away. Polygons come whole,
 so a flat face is never crossed by the diagonals of its triangles. Each edge
 is then tested against every triangle that could hide it (found through a
@@ -20,11 +20,9 @@ import math
 import numpy as np
 
 from castor.drawings.cut import polygon_edges
-from castor.mesh.polygons import fan_triangles
+from castor.mesh.arrays import fan_triangles
+from castor.mesh.creases import creases, curved_kinds, guessed_same_surface, same_surface
 
-# neighbouring polygons of one primitive meeting at less than this are
-# facets of a curved surface: their edge is drawn only as a silhouette
-SMOOTH_ANGLE = math.radians(40)
 PAIRS_PER_CHUNK = 1_000_000
 
 
@@ -60,12 +58,22 @@ def _edges(obj, seen: np.ndarray, normals: np.ndarray, facing: float) -> np.ndar
     q = np.where(has_twin, polygon[np.minimum(twin, len(key) - 1)], p)
     front = normals[:, 2] > facing
     cosine = np.einsum("ij,ij->i", normals[p], normals[q])
-    same_origin = obj.origin_of[p] == obj.origin_of[q]
-    crease = cosine < 1 - 1e-9
-    smooth = same_origin & (cosine > math.cos(SMOOTH_ANGLE))
+    crease = creases(cosine, _same_surface(obj, p, q, cosine))
     silhouette = front[p] != front[q]
-    drawn = np.where(has_twin, (crease & ~smooth & (front[p] | front[q])) | silhouette, front[p])
+    drawn = np.where(has_twin, (crease & (front[p] | front[q])) | silhouette, front[p])
     return np.column_stack([lo[starts], hi[starts]])[drawn]
+
+
+def _same_surface(obj, p: np.ndarray, q: np.ndarray, cosine: np.ndarray) -> np.ndarray:
+    """Whether polygons p and q are facets of one curved surface of one
+    primitive: from the surfaces the frame carries, or guessed from their
+    primitives' kinds where it carries none."""
+    same_origin = obj.origin_of[p] == obj.origin_of[q]
+    if obj.surface_of is not None:
+        return same_surface(obj.origin_of[p], obj.origin_of[q], obj.surface_of[p],
+                            obj.surface_of[q])
+    curved = curved_kinds([o.kind for o in obj.origins])
+    return guessed_same_surface(same_origin, curved[obj.origin_of[p]], cosine)
 
 
 def _grid_cells(lo, hi, origin, cell, size):

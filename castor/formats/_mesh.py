@@ -118,7 +118,7 @@ def materials(frame: Frame) -> tuple[list[Material], list[np.ndarray]]:
     most of the area of that colour (``toit``, ``fenetre``), else after the
     colour ('beige'); names are unique.
     """
-    from castor.mesh.polygons import fan_triangles
+    from castor.mesh.arrays import fan_triangles
 
     keys: dict[tuple, int] = {}
     votes: list[dict[str, float]] = []
@@ -207,7 +207,7 @@ def triangles(vertices: np.ndarray, offsets: np.ndarray,
     with an assertion on such faces, and slicers flag them. Those polygons are
     cut by clipping ears at true corners instead.
     """
-    from castor.mesh.polygons import fan_triangles
+    from castor.mesh.arrays import fan_triangles
 
     straight = straight_corners(vertices, offsets, indices)
     if not straight.any():

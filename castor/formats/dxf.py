@@ -12,6 +12,8 @@ from __future__ import annotations
 import io
 import re
 
+from castor.formats import Format
+
 CUT_WEIGHT = 50  # hundredths of a millimetre
 SEEN_WEIGHT = 18
 
@@ -54,3 +56,7 @@ def export_drawing(drawing) -> bytes:
     stream = io.StringIO()
     doc.write(stream)
     return stream.getvalue().encode("utf-8")
+
+
+FORMATS = (Format("dxf", (".dxf",), "drawing", "a plan, section or elevation for CAD, in metres",
+                  export_drawing, binary=False, listed=100),)

@@ -10,9 +10,10 @@ layer labelled with the object's name.
 from __future__ import annotations
 
 import re
-from xml.sax.saxutils import quoteattr
 
 import numpy as np
+
+from castor.formats import Format
 
 MARGIN = 10.0  # mm
 CUT_PEN = 0.5  # mm
@@ -43,6 +44,9 @@ def _number(x: float) -> str:
 
 def export_drawing(drawing) -> bytes:
     """The drawing as SVG bytes, in millimetres at the drawing's scale."""
+    # imported here: xml.sax.saxutils brings urllib, too slow for every start-up
+    from xml.sax.saxutils import quoteattr
+
     mm = 1000.0 / drawing.scale  # millimetres on paper per metre
     (x0, y0), (x1, y1) = drawing.box()
     width = (x1 - x0) * mm + 2 * MARGIN
@@ -82,3 +86,7 @@ def export_drawing(drawing) -> bytes:
         out.append("</g>")
     out.append("</svg>")
     return ("\n".join(out) + "\n").encode()
+
+
+FORMATS = (Format("svg", (".svg",), "drawing", "a plan, section or elevation as a vector drawing",
+                  export_drawing, binary=False, listed=90),)

@@ -16,61 +16,61 @@ import json
 import math
 import sys
 
+from castor.diagnostics import CastorError, Diagnostic, TooManyErrors
+
 
 class SetError(Exception):
     """A parameter file or set that cannot be used (a usage error)."""
 
 
-def _read_scene(files: list[str]) -> list[tuple[str, str]]:
-    sources = []
-    for name in files or ["-"]:
-        if name == "-":
-            sources.append(("<stdin>", sys.stdin.read()))
-            continue
-        try:
-            with open(name, encoding="utf-8", errors="replace") as handle:
-                sources.append((name, handle.read()))
-        except OSError as exc:
-            raise SetError(f"cannot read '{name}': {exc.strerror}") from None
-    return sources
+def readable(source):
+    """The source with standard input read once into memory, so that -p/-P and the
+    run that follows both see it (castor.settings.Source)."""
+    from dataclasses import replace
+
+    if source.text is None and tuple(source.files) in ((), ("-",)):
+        return replace(source, files=(), text=sys.stdin.read(), name="<stdin>")
+    return source
 
 
-def scene_analysis(args, settings, reporter=None):
-    """The check of the scene files of the command line (castor.lsp.evaluate)."""
+def scene_analysis(source, reading, evaluation, quiet: bool = False):
+    """The check of the scene files of the command line (castor.lsp.evaluate);
+    SetError when a file cannot be read."""
+    from castor.diagnostics import UsageError
     from castor.lsp.evaluate import analyse
 
-    sources = _read_scene(args.files)
-    (first, text), more = sources[0], tuple(sources[1:])
-    analysis = analyse(text, first, settings, args.defines, args.include_dirs, args.undefines,
-                       more=more, quiet=getattr(args, "quiet", False))
-    return analysis
+    try:
+        return analyse(source, reading, evaluation, quiet=quiet)
+    except UsageError as exc:
+        raise SetError(str(exc).removeprefix("error: ")) from None
 
 
-def params_command(args, settings, stdout=None, stderr=None) -> int:
+def params_command(source, reading, evaluation, quiet: bool = False, stdout=None,
+                   stderr=None) -> int:
     """``castor --params``: the parameters as JSON on standard output; warnings and
     errors on standard error as castor prints them. Exit status as castor's."""
     from castor.diagnostics import Reporter
     from castor.lsp.evaluate import parameters
 
     stdout = stdout or sys.stdout
-    reporter = Reporter(stream=stderr or sys.stderr, quiet=args.quiet)
+    reporter = Reporter(stream=stderr or sys.stderr, quiet=quiet)
     try:
-        analysis = scene_analysis(args, settings)
+        analysis = scene_analysis(readable(source), reading, evaluation, quiet)
     except SetError as exc:
         (stderr or sys.stderr).write(f"castor: error: {exc}\n")
         return 2
     found, warnings = parameters(analysis)
-    for source, number in _source_lines(analysis):
-        reporter.source_lines[source] = number
+    for where, text in _source_lines(analysis):
+        reporter.source_lines[where] = text
     diagnostics = list(analysis.diagnostics) + [
-        _as_diagnostic(w) for w in warnings]
+        Diagnostic("warning", w.message, w.location) for w in warnings]
     try:
         for d in sorted(diagnostics, key=_order):
             if d.kind == "error":
-                reporter.error(_error(d))
+                reporter.error(CastorError(d.message, d.location))
             elif d.kind == "warning":
                 reporter.warning(d.message, d.location)
-    except Exception:  # too many errors: stop saying them
+    except TooManyErrors:  # stop saying them
         pass
     document = {"file": analysis.file,
                 "parameters": [p.as_json() for p in found]}
@@ -81,18 +81,6 @@ def params_command(args, settings, stdout=None, stderr=None) -> int:
 
 def _order(d):
     return (d.location is None, d.location or ("", 0, 0))
-
-
-def _as_diagnostic(warning):
-    from castor.lsp.evaluate import Diagnostic
-
-    return Diagnostic("warning", warning.message, warning.location)
-
-
-def _error(d):
-    from castor.diagnostics import CastorError
-
-    return CastorError(d.message, d.location)
 
 
 def _source_lines(analysis):
@@ -152,15 +140,16 @@ def _number(value) -> float | None:
     return number if math.isfinite(number) else None
 
 
-def set_overrides(args, settings) -> dict[str, float]:
-    """The -p/-P values as overrides (each checked against the scene's parameters);
-    raises SetError."""
-    values = load_set(args.parameter_file, args.parameter_set)
-    analysis = scene_analysis(args, settings)
+def set_overrides(path: str, name: str | None, source, reading, evaluation) -> dict[str, float]:
+    """The values of the set ``name`` of the parameter file ``path`` as overrides,
+    each checked against the scene's parameters; raises SetError. ``source`` has
+    standard input read already (``readable``)."""
+    values = load_set(path, name)
+    analysis = scene_analysis(source, reading, evaluation, quiet=True)
     known = {d.name for d in analysis.definitions if d.kind == "parameter"}
     unknown = sorted(set(values) - known)
     if unknown:
-        raise SetError(f"the set '{args.parameter_set}' in '{args.parameter_file}' names "
+        raise SetError(f"the set '{name}' in '{path}' names "
                        f"{', '.join(unknown)}, which the scene does not define (its parameters: "
                        f"{', '.join(sorted(known)) or 'none'})")
     return values

@@ -1,36 +1,30 @@
 """The one adapter between the editor's tools and castor's pipeline.
 
-``analyse`` runs a buffer's text (unsaved) through what ``castor --check`` runs
-(preprocess, reader, parser, interpreter; every frame evaluated into its CSG
-tree, none facetized) and keeps what an editor asks about: every diagnostic
-with its location, each parameter and object definition in the order they ran
-(with the parameter's value there), the files ``#include`` opened, and the
-symbol tables at the end. ``castor --params``, ``-p``/``-P`` and the language
-server read the pipeline through this module only, so that a change of the
-pipeline's interface changes this file and no other.
+``analyse`` runs a scene (an editor's unsaved buffer, or files) through
+castor.pipeline.evaluate as ``castor --check`` does (preprocess, reader,
+parser, interpreter; every frame evaluated into its CSG tree, none facetized)
+and keeps what an editor asks about: every diagnostic with its location as
+written (out of macro expansions), each parameter and object definition in
+the order they ran (with the parameter's value there), the files ``#include``
+opened, and the symbol tables at the end. ``castor --params``, ``-p``/``-P``,
+the live preview's parameters panel and the language server read the
+pipeline through this module only.
 """
 
 from __future__ import annotations
 
-import io
 import os
 import re
-import time
 from dataclasses import dataclass, field
 from typing import Callable
 
-from castor.diagnostics import CastorError, Location, Reporter, TooManyErrors
+from castor.diagnostics import (CastorError, CollectingReporter, Diagnostic, Location,
+                                Reporter)
+from castor.pipeline import Overtaken, evaluate
+from castor.settings import EvaluationSettings, ReadSettings, Source
 
-
-class Overtaken(Exception):
-    """A newer edit came while this analysis ran: its result is not wanted."""
-
-
-@dataclass(frozen=True)
-class Diagnostic:
-    kind: str  # "error", "warning" or "note"
-    message: str
-    location: Location | None
+__all__ = ["Analysis", "Definition", "Diagnostic", "Overtaken", "analyse", "macro_definitions",
+           "object_figures", "parameters", "primitive_places", "written_at"]
 
 
 @dataclass(frozen=True)
@@ -66,19 +60,15 @@ class Analysis:
         return self.texts[file]
 
 
-class _Collector(Reporter):
+class _Collector(CollectingReporter):
     """Keeps each diagnostic with its location mapped out of macro expansions,
-    as castor prints it."""
+    as castor prints it; prints nothing (an editor shows the diagnostics)."""
 
-    def __init__(self, quiet: bool = False):
-        super().__init__(stream=io.StringIO(), quiet=quiet)
-        self.diagnostics: list[Diagnostic] = []
-
-    def _emit(self, kind: str, message: str, location: Location | None) -> None:
+    def _keep(self, kind: str, message: str, location: Location | None) -> None:
         self.diagnostics.append(Diagnostic(kind, message, written_at(self, location)))
 
     def _emit_plain(self, text: str) -> None:
-        pass  # nothing printed: the diagnostics are kept
+        pass
 
 
 def written_at(reporter: Reporter, location: Location | None) -> Location | None:
@@ -109,27 +99,26 @@ def primitive_places(frame, reporter: Reporter) -> dict[str, str]:
     return places
 
 
-def analyse(text: str, file: str, settings=None, defines=(), include_dirs=(), undefines=(),
+def analyse(source: Source, reading: ReadSettings = ReadSettings(),
+            evaluation: EvaluationSettings | None = None,
             cancelled: Callable[[], bool] = lambda: False, quiet: bool = False,
-            more: tuple[tuple[str, str], ...] = ()) -> Analysis:
-    """Check a scene's text as ``castor --check`` does (``more``: the (name, text)
-    of files read after it, as castor joins its FILE arguments); raises Overtaken
-    as soon as ``cancelled()`` says so (between statements)."""
-    from castor.interpreter import Interpreter, Settings
-    from castor.language.preprocess import preprocess
-    from castor.language.reader import Reader
+            unreadable: Callable[[str, str], None] | None = None) -> Analysis:
+    """Check a scene as ``castor --check`` does, with castor.pipeline.evaluate;
+    raises Overtaken as soon as ``cancelled()`` says so (between statements).
+    A file that cannot be read goes to ``unreadable`` (None: UsageError)."""
+    import time
+
+    from castor.interpreter import Interpreter
     from castor.language.scene import Facetize, ObjectDef, ParamDef
 
     started = time.perf_counter()
-    settings = settings or Settings()
     reporter = _Collector(quiet)
-    shown = _shown(file)
-    analysis = Analysis(shown, texts={shown: text, **{_shown(n): t for n, t in more}})
+    files = source.files if source.text is None else (source.name,)
+    shown = _shown(files[0]) if files else "<stdin>"
+    analysis = Analysis(shown, texts={shown: source.text} if source.text is not None else {})
 
     class Recording(Interpreter):
         def execute(self, item) -> None:
-            if cancelled():
-                raise Overtaken()
             super().execute(item)
             if isinstance(item, ParamDef):
                 analysis.definitions.append(Definition(
@@ -141,20 +130,18 @@ def analyse(text: str, file: str, settings=None, defines=(), include_dirs=(), un
                 analysis.definitions.append(Definition("frame", ">", item.location,
                                                        node=item.objects))
 
-    interpreter = Recording(settings, reporter, None)
+    interpreter = None
     try:
-        source = preprocess([(file, text), *more], list(defines), list(undefines), list(include_dirs), reporter,
-                            analysis.included)
-        interpreter.run(Reader(reporter, directives_allowed=True).chunks(source.splitlines()),
-                        streaming=False)
-    except TooManyErrors:
-        pass
+        interpreter = evaluate(source, reporter, None, reading=reading, evaluation=evaluation,
+                               included=analysis.included, unreadable=unreadable,
+                               cancelled=cancelled, interpreter=Recording)
     except RecursionError:
         reporter.diagnostics.append(Diagnostic("error", "the scene is nested too deeply",
                                                Location(shown, 1, 1)))
     analysis.diagnostics = reporter.diagnostics
-    analysis.parameters = dict(interpreter.tables.parameters)
-    analysis.objects = dict(interpreter.tables.objects)
+    if interpreter is not None:
+        analysis.parameters = dict(interpreter.tables.parameters)
+        analysis.objects = dict(interpreter.tables.objects)
     analysis.seconds = time.perf_counter() - started
     return analysis
 
@@ -183,7 +170,8 @@ def object_figures(analysis: Analysis, name: str, tolerance: float | None = None
     of the scene (castor's summary), ``{"refused": why}`` when it cannot be made
     (over the limit), or None when it has errors."""
     from castor.csg.evaluate import Evaluator
-    from castor.jobs import Job, Spec, make
+    from castor.jobs import Job, make
+    from castor.settings import FrameSettings, MeshSettings, OutputSettings
 
     node = analysis.objects.get(name)
     if node is None:
@@ -195,7 +183,8 @@ def object_figures(analysis: Analysis, name: str, tolerance: float | None = None
         scene = Evaluator().frame((node,), env, 1, name, node.location)
     except (CastorError, RecursionError):
         return None
-    result = make(Job(scene, Spec(format=None, summary=True, max_polygons=HOVER_POLYGONS)))
+    result = make(Job(scene, FrameSettings(output=OutputSettings(format=None, summary=True),
+                                           mesh=MeshSettings(max_polygons=HOVER_POLYGONS))))
     if result.errors:
         return {"refused": result.errors[0].message}
     return result.summary

@@ -21,8 +21,6 @@ from castor.diagnostics import Location
 
 # a buffer larger than this is not analysed while typing (castor --check reads it)
 MAX_BUFFER = 4_000_000
-_STACK_BYTES = 512 * 1024 * 1024
-_RECURSION_LIMIT = 200_000
 
 
 @dataclass
@@ -44,8 +42,10 @@ class Worker:
         self.pending: dict[str, tuple[_Document, int, str]] = {}
         self.latest: dict[str, int] = {}
         self.stopped = False
+        from castor.pipeline import STACK_BYTES
+
         size = threading.stack_size()
-        threading.stack_size(_STACK_BYTES)  # deep scenes recurse deeply, as in castor
+        threading.stack_size(STACK_BYTES)  # deep scenes recurse deeply, as in castor
         try:
             self.thread = threading.Thread(target=self._run, name="castor-analysis", daemon=True)
         finally:
@@ -68,6 +68,7 @@ class Worker:
 
     def _run(self) -> None:
         from castor.lsp.evaluate import Overtaken, analyse
+        from castor.settings import Source
 
         while True:
             with self.lock:
@@ -77,7 +78,7 @@ class Worker:
                     return
                 uri, (document, version, text) = self.pending.popitem()
             try:
-                analysis = analyse(text, document.path,
+                analysis = analyse(Source(text=text, name=document.path),
                                    cancelled=lambda: self._overtaken(uri, version))
             except Overtaken:
                 continue
@@ -438,7 +439,9 @@ def main(args=None) -> int:
     import logging
 
     logging.basicConfig(level=logging.CRITICAL, stream=sys.stderr)  # nothing on the pipe
-    sys.setrecursionlimit(_RECURSION_LIMIT)
+    from castor.pipeline import RECURSION_LIMIT
+
+    sys.setrecursionlimit(RECURSION_LIMIT)
     try:
         server = _server()
     except ImportError as exc:

@@ -24,7 +24,7 @@ __all__ = ["animation", "picture", "render_scene", "sample_offsets"]
 
 
 def picture(frame, spec) -> np.ndarray:
-    """The frame drawn with the picture options of ``spec`` (castor.jobs.Spec)."""
+    """The frame drawn with the picture settings ``spec`` (castor.settings.PictureSettings)."""
     scene = compile_frame(frame)
     low, high = scene.box
     camera = make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)

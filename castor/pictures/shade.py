@@ -38,9 +38,13 @@ def shoulder_light(right: np.ndarray, up: np.ndarray, forward: np.ndarray) -> np
 
 def edges(key: np.ndarray, depth: np.ndarray, normals: np.ndarray) -> np.ndarray:
     """(H, W) strengths 0..1 of outline edges from per-pixel surface numbers
-    (-1: nothing), depths and normals: a silhouette where the surface ends or
-    the depth jumps, a crease where the normal turns; never between two
-    coplanar pieces of a face, whatever primitives they come from."""
+    (-1: nothing; equal on one flat face or one curved surface of one
+    primitive), depths and normals: a silhouette where the surface ends or
+    the depth jumps, a crease where two surfaces meet (castor.mesh.creases);
+    never between two coplanar pieces of a face, whatever primitives they
+    come from, nor within one curved surface, however fast it turns."""
+    from castor.mesh.creases import creases
+
     h, w = key.shape
     strength = np.zeros((h, w), np.float32)
     hit = key >= 0
@@ -52,7 +56,7 @@ def edges(key: np.ndarray, depth: np.ndarray, normals: np.ndarray) -> np.ndarray
         near = np.minimum(np.where(ha, da, np.inf), np.where(hb, db, np.inf))
         with np.errstate(invalid="ignore"):
             jump = np.abs(da - db) > 0.02 * near + 1e-9
-        turn = np.einsum("ijk,ijk->ij", normals[a], normals[b]) < 0.9
+        turn = creases(np.einsum("ijk,ijk->ij", normals[a], normals[b]), key[a] == key[b])
         line = (ha != hb) | (ha & hb & (jump | turn))
         # draw on the nearer side, so that a silhouette sits on the object
         a_nearer = np.where(ha & ~hb, True, np.where(hb & ~ha, False, da <= db))

@@ -29,12 +29,13 @@ class PanelError(Exception):
 class Panel:
     """The parameters on offer and the values the page has changed."""
 
-    def __init__(self, files: tuple[str, ...], settings, defines=(), undefines=(),
-                 include_dirs=()):
+    def __init__(self, files: tuple[str, ...], evaluation, reading):
+        """``evaluation``, ``reading``: the command line's (castor.settings)."""
         self.files = files
-        self.base = dict(settings.overrides)  # the command line's --set
-        self.tolerance = settings.tolerance
-        self.defines, self.undefines, self.include_dirs = defines, undefines, include_dirs
+        self.base = dict(evaluation.overrides)  # the command line's --set
+        self.tolerance = evaluation.tolerance
+        self.reading = reading
+        self.defines, self.include_dirs = reading.defines, reading.include_dirs
         self.values: dict[str, float] = {}  # changed by the page
         self.lock = threading.Lock()
         self._listed: tuple | None = None  # (stamp, parameters)
@@ -53,28 +54,19 @@ class Panel:
 
     def parameters(self):
         """The scene's parameters (castor.lsp.evaluate), listed again when a file changes."""
-        from castor.interpreter import Settings
         from castor.lsp.evaluate import analyse, parameters
+        from castor.settings import Source
 
         stamp = self._stamp()
         with self.lock:
             if self._listed is not None and self._listed[0] == stamp:
                 return self._listed[1]
-        sources = []
-        for name in self.files:
-            try:
-                with open(name, encoding="utf-8", errors="replace") as handle:
-                    sources.append((name, handle.read()))
-            except OSError:
-                pass
-        found = []
-        if sources:
-            (first, text), more = sources[0], tuple(sources[1:])
-            analysis = analyse(text, first, Settings(), list(self.defines),
-                               list(self.include_dirs), list(self.undefines), more=more,
-                               quiet=True)
-            found = parameters(analysis)[0]
-            self._included = tuple(analysis.included)
+        # the scene's own values (not the command line's --set), a file that
+        # cannot be read left out (the preview says so)
+        analysis = analyse(Source(tuple(self.files)), self.reading, quiet=True,
+                           unreadable=lambda name, reason: None)
+        found = parameters(analysis)[0]
+        self._included = tuple(analysis.included)
         with self.lock:
             self._listed = (self._stamp(), found)
         return found

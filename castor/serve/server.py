@@ -28,7 +28,8 @@ from dataclasses import dataclass
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
 
-from castor.serve.scene import Diagnostic, DrawnFrame, Evaluation, Job, Overtaken, evaluate
+from castor.diagnostics import UsageError
+from castor.serve.scene import Diagnostic, DrawnFrame, Evaluation, Overtaken, Watched, evaluate
 from castor.serve.watch import Watcher
 
 POLL_SECONDS = 0.05  # how often the files are looked at
@@ -84,7 +85,7 @@ class Snapshot:
 class Preview:
     """The scene's current state, kept up to date with the files on disk."""
 
-    def __init__(self, job: Job, report=None):
+    def __init__(self, job: Watched, report=None):
         self.job = job
         self.report = report  # called with each Evaluation (to print on stderr)
         # versions count from 1 again when castor is started again: a page that
@@ -101,17 +102,17 @@ class Preview:
         self._watcher_lock = threading.Lock()
         from castor.serve.parameters import Panel
 
-        self.panel = Panel(job.files, job.settings, job.defines, job.undefines, job.include_dirs)
+        self.panel = Panel(job.files, job.evaluation, job.reading)
 
     def apply(self, overrides: dict[str, float], tolerance: float | None) -> None:
         """Evaluate again with the panel's values, as --set gives them."""
         from dataclasses import replace
 
-        from castor.interpreter import Settings
+        from castor.settings import EvaluationSettings
 
         with self.state:
-            self.job = replace(self.job, settings=Settings(overrides=overrides,
-                                                           tolerance=tolerance))
+            self.job = replace(self.job, evaluation=EvaluationSettings(overrides=overrides,
+                                                                       tolerance=tolerance))
             self._wanted += 1
             self.state.notify_all()
 
@@ -380,7 +381,7 @@ def _pages() -> dict[str, bytes]:
 class PreviewServer:
     """The preview and its server, started and stopped together."""
 
-    def __init__(self, job: Job, bind: str = "127.0.0.1", port: int = 0, report=None):
+    def __init__(self, job: Watched, bind: str = "127.0.0.1", port: int = 0, report=None):
         self.preview = Preview(job, report)
         kind = _Server6 if ":" in bind else _Server
         pages = _pages()
@@ -428,36 +429,25 @@ class PreviewServer:
             thread.join(timeout=1.0)
 
 
-def serve(args, settings) -> int:
-    """``castor --serve``: serve until Ctrl-C; the exit status."""
-    from castor.cli import _STACK_BYTES, USAGE_ERROR
+def serve(watched: Watched, bind: str = "127.0.0.1", port: int = 0) -> int:
+    """``castor --serve``: serve until Ctrl-C; the exit status. A scene file that
+    cannot be read, or an address that cannot be listened on, raises UsageError."""
+    from castor.pipeline import STACK_BYTES
 
-    def usage(message: str) -> int:
-        sys.stderr.write(f"castor: error: {message}\n")
-        return USAGE_ERROR
-
-    if not args.files or "-" in args.files:
-        return usage("--serve needs a scene file to watch (not standard input)")
-    if args.output or args.check:
-        return usage("--serve shows the frames in a web browser; it writes nothing "
-                     f"({'-o' if args.output else '--check'} goes without --serve)")
-    for name in args.files:
+    for name in watched.files:
         try:
             with open(name, "rb"):
                 pass
         except OSError as exc:
-            return usage(f"cannot read '{name}': {exc.strerror}")
-    job = Job(tuple(args.files), settings, tuple(args.defines), tuple(args.undefines),
-              tuple(args.include_dirs), args.no_cpp, args.quiet)
+            raise UsageError(f"cannot read '{name}': {exc.strerror}") from None
     try:
-        server = PreviewServer(job, args.bind, args.port, report=_print_evaluation)
+        server = PreviewServer(watched, bind, port, report=_print_evaluation)
     except OSError as exc:
-        return usage(f"cannot listen on {args.bind} port {args.port}: "
-                     f"{exc.strerror or exc}")
+        raise UsageError(f"cannot listen on {bind} port {port}: {exc.strerror or exc}") from None
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGTERM, _interrupt)
-    server.start(_STACK_BYTES)
-    sys.stderr.write(f"castor: serving {' '.join(args.files)} at {server.url} "
+    server.start(STACK_BYTES)
+    sys.stderr.write(f"castor: serving {' '.join(watched.files)} at {server.url} "
                      "(Ctrl-C stops)\n")
     sys.stderr.flush()
     try:
