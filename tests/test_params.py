@@ -90,6 +90,28 @@ def test_params_json(scene: Path):
     assert warnings[1].startswith("s.cas:8:11: warning: parameter annotation: [a:b]")
 
 
+@pytest.mark.parametrize("options", [("--check",), ("--check", "--no-cpp"), ("-o", "s.obj")])
+def test_castor_warns_of_a_malformed_annotation_once_as_params_does(scene: Path, options):
+    """castor and castor --check say what --params says of the annotations, once
+    per parameter (at its first definition), through macros too."""
+    text = SCENE.replace("Z = 2; // [a:b]", "#define ZED 2\nZ = ZED; // [a:b]")
+    if "--no-cpp" in options:
+        text = SCENE
+    (scene / "s.cas").write_text(text)
+    run = castor(*options, "s.cas", cwd=scene)
+    assert run.returncode == 0, run.stderr
+    warnings = [line for line in run.stderr.splitlines() if ": warning: " in line]
+    line = 8 if "--no-cpp" in options else 9
+    assert len(warnings) == 2, run.stderr
+    assert warnings[0].startswith("s.cas:6:22: warning: parameter annotation: the range")
+    assert warnings[1].startswith(f"s.cas:{line}:{11 if line == 8 else 13}: warning: "
+                                  f"parameter annotation: [a:b]")
+    params = castor("--params", "s.cas", cwd=scene) if "--no-cpp" not in options else None
+    if params is not None:
+        assert [w for w in params.stderr.splitlines() if ": warning: " in w] == warnings
+    assert "warning" not in castor(*options, "-q", "s.cas", cwd=scene).stderr  # -q: quiet
+
+
 def test_params_with_set_and_included_file(tmp_path: Path):
     (tmp_path / "part.cas").write_text("/* [Part] */\nW = 2; // [1:5] width\n")
     (tmp_path / "main.cas").write_text('#include "part.cas"\nL = W * 2;\n')

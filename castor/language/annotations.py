@@ -248,6 +248,17 @@ def expression_text(lines: list[str], line: int, column: int) -> str:
     return " ".join("".join(pieces).split())
 
 
+def malformed(line: str, location: Location) -> Malformed | None:
+    """The warning about the annotation on the line of a parameter's definition
+    (``line``: its text; ``location``: where the definition starts), if malformed:
+    what castor and castor --check say as they run."""
+    comment = comment_after_statement(line, max(location.column - 1, 0))
+    if comment is None:
+        return None
+    text, start = comment
+    return parse_annotation(text, Location(location.file, location.line, start + 1))[1]
+
+
 def annotate(definitions, source_text) -> tuple[list[Parameter], list[Malformed]]:
     """The parameters a customizer offers, from the pipeline's definitions.
 

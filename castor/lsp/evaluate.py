@@ -118,6 +118,9 @@ def analyse(source: Source, reading: ReadSettings = ReadSettings(),
     analysis = Analysis(shown, texts={shown: source.text} if source.text is not None else {})
 
     class Recording(Interpreter):
+        def check_annotation(self, statement) -> None:
+            pass  # parameters() says it, against the text as written
+
         def execute(self, item) -> None:
             super().execute(item)
             if isinstance(item, ParamDef):
