@@ -14,11 +14,12 @@ from pathlib import Path
 
 from hypothesis import HealthCheck, example, given, settings, strategies as st
 
-from castor.cli import _RECURSION_LIMIT, main
+from castor.cli import main
+from castor.pipeline import RECURSION_LIMIT
 
 # castor raises the recursion limit for deep scenes; raise it before hypothesis
 # looks, so that running castor in-process does not change it under its feet.
-sys.setrecursionlimit(_RECURSION_LIMIT)
+sys.setrecursionlimit(RECURSION_LIMIT)
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 SEED_SCENES = [
