@@ -91,6 +91,13 @@ def _arguments(argv):
                           help="a drawing cut by the plane z=H (a plan), x=V or y=V")
     pictures.add_argument("--scale", default=f"1:{DEFAULT_SCALE}", metavar="1:N",
                           help="printed scale of a drawing (default %(default)s)")
+    # one title for every document that has one: a drawing's, an IFC project's
+    pictures.add_argument("--title", metavar="TEXT", help="the title of a drawing or an IFC "
+                          "project (default: the '>' object's name, or the file's)")
+    bim = p.add_argument_group("building models (IFC)")
+    bim.add_argument("--ifc-class", dest="ifc_classes", action="append", default=[],
+                     metavar="NAME=CLASS", help="IFC class of the object NAME, such as "
+                     "maison=IfcWall (repeatable; default IfcBuildingElementProxy)")
     p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
     p.add_argument("--version", action="version", version=f"castor {__version__}")
     args = p.parse_args(negative_values(argv, ("--view", "--eye", "--look", "--sun",
@@ -137,6 +144,15 @@ def _arguments(argv):
             args.format = "cps"  # -o /dev/null, a named pipe: the stream, as to standard output
         if args.format is None:
             p.error(suffix_message(args.output))
+    if args.format == "ifc" or args.ifc_classes:  # IFC's options, and its optional package
+        from castor.formats.ifc import INSTALL, installed, parse_ifc_classes
+
+        try:
+            args.ifc_classes = tuple(parse_ifc_classes(args.ifc_classes).items())
+        except ValueError as exc:
+            p.error(str(exc))
+        if args.format == "ifc" and not installed():
+            p.error(f"writing IFC needs ifcopenshell, which is not installed; {INSTALL}")
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
         problem = destination_problem(path, option) if path is not None else None
         if problem is not None:
@@ -180,7 +196,7 @@ PIPE_CLOSED = 128 + 13
 
 def settings_of(args, overrides: dict[str, float]):
     """The settings of each stage, from the parsed options (castor.settings)."""
-    from castor.settings import (DrawingSettings, EvaluationSettings, FrameSettings,
+    from castor.settings import (BimSettings, DrawingSettings, EvaluationSettings, FrameSettings,
                                  MeshSettings, OutputSettings, PictureSettings, ReadSettings,
                                  RunSettings, Source)
 
@@ -190,11 +206,12 @@ def settings_of(args, overrides: dict[str, float]):
     evaluation = EvaluationSettings(overrides=overrides, tolerance=args.tolerance)
     frame = FrameSettings(
         output=OutputSettings(format=args.format, target=args.output, stats=args.stats,
-                              summary=args.summary is not None),
+                              summary=args.summary is not None, title=args.title),
         mesh=MeshSettings(max_polygons=args.max_polygons),
         picture=PictureSettings(size=args.size, view=args.view, eye=args.eye, look=args.look,
                                 sun=args.sun, samples=args.samples, edges=args.edges),
-        drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale))
+        drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale),
+        bim=BimSettings(classes=args.ifc_classes))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)
     return source, reading, evaluation, frame, how

@@ -5,7 +5,7 @@ and an editor's language server from their own; the library (castor.pipeline,
 castor.jobs, castor.run) reads them and never sees an argparse namespace.
 Each stage has its own: what the reader and the preprocessor take, what the
 evaluation takes (``EvaluationSettings``), then for each frame what the
-facetizer, the ray tracer, the drawings and the output take.
+facetizer, the ray tracer, the drawings, a building model and the output take.
 """
 
 from __future__ import annotations
@@ -79,6 +79,16 @@ class DrawingSettings:
 
 
 @dataclass(frozen=True)
+class BimSettings:
+    """Making a building model of the frame (castor.formats.ifc)."""
+
+    # --ifc-class NAME=CLASS: the IFC class of the objects so named, as
+    # (name, class) pairs (castor.formats.ifc.parse_ifc_classes); the others
+    # are IfcBuildingElementProxy
+    classes: tuple[tuple[str, str], ...] = ()
+
+
+@dataclass(frozen=True)
 class OutputSettings:
     """What a frame is written as, what is said about it, and how its bytes travel."""
 
@@ -86,6 +96,7 @@ class OutputSettings:
     target: str | None = None  # -o PATH (a pattern is filled in per frame)
     stats: bool = False  # one line of figures per frame
     summary: bool = False  # a quantity take-off record per frame
+    title: str | None = None  # --title: a drawing's, an IFC project's (None: its default)
     keep_mesh: bool = False  # hand the mesh frame back (the live preview wants it)
     # how a frame's bytes are handed on: made a piece at a time as they are
     # written (``pieces``, in the process that writes them), written by a worker
@@ -104,6 +115,7 @@ class FrameSettings:
     mesh: MeshSettings = MeshSettings()
     picture: PictureSettings = PictureSettings()
     drawing: DrawingSettings = DrawingSettings()
+    bim: BimSettings = BimSettings()
 
     @property
     def format(self) -> str | None:

@@ -118,10 +118,11 @@ class Evaluator:
             else:
                 name = f"object{k}"
             root = self._node(node, env, tree.IDENTITY, 1.0, tolerance, ROOT, ROOT)
-            made.append(tree.Object(name, root))
+            made.append(tree.Object(name, root, f"{node.location.file}:{node.location.line}"))
         if self.errors:
             raise FrameErrors(self.errors)
-        return tree.Frame(number, where, location, tuple(made))
+        parameters = tuple((k, v) for k, v in env.items() if k != "PI")
+        return tree.Frame(number, where, location, tuple(made), parameters)
 
     def _fail(self, error: CastorError) -> None:
         key = (error.message, error.location)
