@@ -49,6 +49,12 @@ def _arguments(argv):
                    "execute statements as they arrive")
     p.add_argument("-s", "--set", dest="sets", action="append", default=[], metavar="NAME=EXPR",
                    help="give parameter NAME this value; the scene's assignments to it are ignored")
+    p.add_argument("-p", dest="parameter_file", metavar="FILE",
+                   help="take parameter values from FILE (the live preview's JSON), with -P")
+    p.add_argument("-P", dest="parameter_set", metavar="NAME",
+                   help="the parameter set NAME of the -p FILE, as if each were a --set")
+    p.add_argument("--params", action="store_true",
+                   help="write the scene's parameters and annotations as JSON, nothing else")
     p.add_argument("-t", "--tolerance", type=float, metavar="T",
                    help=f"facet tolerance in scene units (default {DEFAULT_TOLERANCE})")
     p.add_argument("--check", action="store_true", help="read and evaluate everything, write nothing")
@@ -62,6 +68,8 @@ def _arguments(argv):
                    help="send frames to a Dask cluster (tcp://host:8786)")
     p.add_argument("--serve", action="store_true",
                    help="live preview in a web browser, evaluated again at each save")
+    p.add_argument("--lsp", action="store_true",
+                   help="run as a language server for editors on standard input and output")
     p.add_argument("--port", default=str(DEFAULT_PORT), metavar="N",
                    help=f"--serve: the port (default {DEFAULT_PORT}, or the next free one)")
     p.add_argument("--bind", default="127.0.0.1", metavar="ADDRESS",
@@ -221,6 +229,28 @@ def main(argv=None) -> int:
     from castor.run import run
 
     source, reading, evaluation, frame, how = settings_of(args, _overrides(parser, args.sets))
+    if args.lsp:
+        from castor.lsp.server import main as language_server
+
+        return language_server(args)
+    if args.parameter_file is not None or args.parameter_set is not None:
+        from castor.lsp.customizer import SetError, readable, set_overrides
+
+        if args.parameter_file is None:
+            parser.error(f"-P {args.parameter_set} names a set of a parameter file; give the "
+                         f"file with -p FILE")
+        source = readable(source)
+        try:  # an explicit --set wins over the set's value
+            evaluation.overrides = {**set_overrides(args.parameter_file, args.parameter_set,
+                                                    source, reading, evaluation),
+                                    **evaluation.overrides}
+        except SetError as exc:
+            sys.stderr.write(f"castor: error: {exc}\n")
+            return USAGE_ERROR
+    if args.params:
+        from castor.lsp.customizer import params_command
+
+        return params_command(source, reading, evaluation, quiet=args.quiet)
     result: list = []
 
     def work():

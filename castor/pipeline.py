@@ -45,7 +45,8 @@ def evaluate(source: Source, reporter: Reporter, on_frame: Callable | None, *,
              evaluation: EvaluationSettings | None = None,
              included: list[str] | None = None,
              unreadable: Callable[[str, str], None] | None = None,
-             cancelled: Callable[[], bool] | None = None):
+             cancelled: Callable[[], bool] | None = None,
+             interpreter: Callable | None = None):
     """Read, preprocess and interpret ``source``: each frame's evaluated CSG tree
     (castor.csg.tree.Frame) goes to ``on_frame`` as soon as its '>' command has run
     (None: evaluate only). Diagnostics go to ``reporter``; the run stops early
@@ -55,10 +56,13 @@ def evaluate(source: Source, reporter: Reporter, on_frame: Callable | None, *,
     ``included`` receives the path of every file #include opened; a file that
     cannot be read goes to ``unreadable(name, reason)`` and is skipped, or
     raises UsageError when that is None; ``cancelled()``, when given, is asked
-    between statements, and True raises Overtaken."""
+    between statements, and True raises Overtaken; ``interpreter``: a subclass of
+    castor.interpreter.Interpreter to run instead (a language server's records
+    what each statement defined)."""
     from castor.interpreter import Interpreter
 
-    interpreter = Interpreter(evaluation or EvaluationSettings(), reporter, on_frame)
+    interpreter = (interpreter or Interpreter)(evaluation or EvaluationSettings(), reporter,
+                                               on_frame)
     try:
         pieces = statements(source, reading, reporter, included, unreadable)
         if cancelled is not None:
@@ -166,14 +170,16 @@ class Checked:
 def frames(source: Source, *, reading: ReadSettings = ReadSettings(),
            evaluation: EvaluationSettings | None = None, mesh: MeshSettings | None = None,
            quiet: bool = False, on_mesh: Callable | None = None,
-           cancelled: Callable[[], bool] = lambda: False) -> Checked:
+           cancelled: Callable[[], bool] = lambda: False,
+           reporter: CollectingReporter | None = None) -> Checked:
     """Evaluate ``source`` in this process and, with ``mesh``, facetize each frame
     (its errors, such as too many polygons, become diagnostics); nothing is
     written. ``on_mesh`` is given each mesh frame as it is made (and then the
     result keeps none: a long animation is not held whole); ``cancelled()``
-    is asked between statements and frames (True raises Overtaken)."""
+    is asked between statements and frames (True raises Overtaken); ``reporter``:
+    the caller's, to ask after the run where a place was written (through macros)."""
     started = time.perf_counter()
-    reporter = CollectingReporter(quiet)
+    reporter = reporter if reporter is not None else CollectingReporter(quiet)
     trees: list = []
     meshes: list = []
     included: list[str] = []

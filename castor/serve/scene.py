@@ -6,10 +6,10 @@ process, so that a save costs the evaluation only and not castor's start-up.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable
 
-from castor.diagnostics import Diagnostic
+from castor.diagnostics import CollectingReporter, Diagnostic
 from castor.pipeline import Overtaken, frames
 from castor.settings import EvaluationSettings, MeshSettings, ReadSettings, Source
 
@@ -29,11 +29,13 @@ class DrawnFrame:
     box: tuple[tuple[float, float, float], tuple[float, float, float]] | None
     origins: tuple[tuple[str, tuple[float, float, float]], ...]  # (path, colour)
     data: bytes = field(repr=False)
+    sources: dict = field(default_factory=dict, repr=False, compare=False)  # path -> FILE:LINE:COL
 
     def as_json(self) -> dict:
         return {"number": self.number, "where": self.where, "polygons": self.polygons,
                 "triangles": self.triangles, "box": self.box,
-                "origins": [{"path": path, "colour": colour} for path, colour in self.origins]}
+                "origins": [{"path": path, "colour": colour, "source": self.sources.get(path)}
+                            for path, colour in self.origins]}
 
 
 @dataclass(frozen=True)
@@ -67,12 +69,20 @@ class Evaluation:
 def evaluate(watched: Watched, cancelled: Callable[[], bool] = lambda: False) -> Evaluation:
     """Evaluate the scene files and facetize each frame here, whose facetizer keeps
     the shared subtrees of one save for the next; raises Overtaken as soon as
-    ``cancelled()`` says so (between statements and between frames)."""
+    ``cancelled()`` says so (between statements and between frames). Each face
+    knows where its primitive is written (FILE:LINE:COL, through macros)."""
+    from castor.lsp.evaluate import primitive_places
+
     shown: list[DrawnFrame] = []
+    reporter = CollectingReporter(watched.quiet)
     checked = frames(watched.source, reading=watched.reading, evaluation=watched.evaluation,
                      mesh=MeshSettings(), quiet=watched.quiet,
-                     on_mesh=lambda mesh: shown.append(drawn(mesh)), cancelled=cancelled)
-    return Evaluation(tuple(shown), checked.diagnostics, checked.included, checked.seconds,
+                     on_mesh=lambda mesh: shown.append(drawn(mesh)), cancelled=cancelled,
+                     reporter=reporter)
+    trees = {tree.number: tree for tree in checked.trees}
+    placed = tuple(replace(frame, sources=primitive_places(trees[frame.number], reporter))
+                   if frame.number in trees else frame for frame in shown)
+    return Evaluation(placed, checked.diagnostics, checked.included, checked.seconds,
                       checked.printed)
 
 

@@ -100,6 +100,21 @@ class Preview:
         self._frames_ids = 0
         self._watcher = Watcher(job.files)
         self._watcher_lock = threading.Lock()
+        from castor.serve.parameters import Panel
+
+        self.panel = Panel(job.files, job.evaluation, job.reading)
+
+    def apply(self, overrides: dict[str, float], tolerance: float | None) -> None:
+        """Evaluate again with the panel's values, as --set gives them."""
+        from dataclasses import replace
+
+        from castor.settings import EvaluationSettings
+
+        with self.state:
+            self.job = replace(self.job, evaluation=EvaluationSettings(overrides=overrides,
+                                                                       tolerance=tolerance))
+            self._wanted += 1
+            self.state.notify_all()
 
     def state_key(self) -> tuple[int, bool]:
         return self.snapshot.version, self.evaluating
@@ -199,6 +214,9 @@ class _Handler(BaseHTTPRequestHandler):
             with preview.state:
                 snapshot, evaluating = preview.snapshot, preview.evaluating
             self._send(200, snapshot.as_json(preview.name, evaluating), "application/json", head)
+        elif path == "/parameters.json":
+            self._send(200, json.dumps(preview.panel.as_json()).encode(), "application/json",
+                       head)
         elif path == "/events" and not head:
             self._events()
         elif match := _FRAME.fullmatch(path):
@@ -211,6 +229,42 @@ class _Handler(BaseHTTPRequestHandler):
                            "text/plain; charset=utf-8", head)
         else:
             self._send(404, b"not found\n", "text/plain; charset=utf-8", head)
+
+    def do_POST(self):
+        """``/parameters``: a change from the parameters panel (castor.serve.parameters)."""
+        from castor.serve.parameters import PanelError
+
+        if not self._host_allowed() or not self._same_origin():
+            self._send(403, b"unknown host\n", "text/plain; charset=utf-8", False)
+            return
+        kind = self.headers.get("Content-Type", "").partition(";")[0].strip().lower()
+        length = self.headers.get("Content-Length", "")
+        if self.path != "/parameters":
+            self._send(404, b"not found\n", "text/plain; charset=utf-8", False)
+            return
+        if kind != "application/json" or not length.isdigit() or int(length) > 65536:
+            self._send(400, b"send JSON (application/json), at most 64 kB\n",
+                       "text/plain; charset=utf-8", False)
+            return
+        preview = self.server.preview
+        try:
+            request = json.loads(self.rfile.read(int(length)) or b"null")
+            overrides, tolerance = preview.panel.change(request)
+        except (ValueError, PanelError) as exc:
+            body = json.dumps({"error": str(exc)}).encode()
+            self._send(400, body, "application/json", False)
+            return
+        if not (isinstance(request, dict) and "save" in request):
+            preview.apply(overrides, tolerance)
+        self._send(200, json.dumps(preview.panel.as_json()).encode(), "application/json", False)
+
+    def _same_origin(self) -> bool:
+        """A POST from another site's page is refused (its Origin is not ours)."""
+        origin = self.headers.get("Origin")
+        if origin is None:
+            return True
+        host = self.headers.get("Host", "")
+        return origin in (f"http://{host}", f"https://{host}")
 
     def _host_allowed(self) -> bool:
         """On the loopback address, only pages of this machine may talk to us (a
