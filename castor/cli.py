@@ -219,16 +219,13 @@ def main(argv=None) -> int:
         return _serve(args, source, reading, evaluation)
     threading.stack_size(STACK_BYTES)
     thread = threading.Thread(target=work, name="castor", daemon=True)
+    stopped_by = _stop_on_signals()
     thread.start()
     try:
         while thread.is_alive():
             thread.join(0.2)
     except KeyboardInterrupt:
-        sys.stderr.write("castor: interrupted\n")
-        from castor.formats.output import remove_temporaries
-
-        remove_temporaries()  # a file being written, spooled frames: no half file left
-        os._exit(130)
+        _interrupted(128 + stopped_by[0])
     outcome = result[0] if result else 1
     if isinstance(outcome, BrokenPipeError):
         _quiet_stdout()
@@ -271,6 +268,41 @@ def main(argv=None) -> int:
     return outcome
 
 
+def _stop_on_signals() -> list[int]:
+    """SIGTERM stops castor as Ctrl-C does; the list says which signal came."""
+    import signal
+
+    stopped_by = [signal.SIGINT]
+
+    def terminate(signum, frame):
+        stopped_by[0] = signum
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, terminate)
+    return stopped_by
+
+
+def _interrupted(status: int) -> None:
+    """Ctrl-C or SIGTERM: every process castor started ends now, no half file stays."""
+    from castor.formats.output import remove_temporaries
+    from castor.run import end_processes
+
+    try:  # the run's thread goes on until the exit: whatever it says now, nobody reads
+        stderr = os.dup(2)
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, 2)
+    except OSError:
+        stderr = None
+    end_processes()  # the workers first: they write the spooled frames
+    remove_temporaries()  # a file being written, spooled frames: no half file left
+    if stderr is not None:
+        try:
+            os.write(stderr, b"castor: interrupted\n")
+        except OSError:
+            pass
+    os._exit(status)
+
+
 def _serve(args, source, reading, evaluation) -> int:
     """``castor --serve``: its usage errors, then the preview server until Ctrl-C."""
     def usage(message: str) -> int:
@@ -299,6 +331,9 @@ def entry() -> None:
     at once. Output is flushed first.
     """
     status = main()
+    from castor.run import release_processes
+
+    release_processes()  # else the resource tracker may warn of leaked semaphores
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

@@ -150,7 +150,8 @@ def _spooled(pieces, frame, output: OutputSettings):
     from castor.formats import output as destination
 
     try:
-        fd, path = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=output.spool)
+        fd, path = tempfile.mkstemp(prefix=f".castor-{output.spool_owner}-", suffix=".tmp",
+                                    dir=output.spool)
     except OSError:
         return b"".join(pieces)
     try:
@@ -166,6 +167,25 @@ def _spooled(pieces, frame, output: OutputSettings):
         os.unlink(path)  # the driver was stopped: nobody will write or remove the file
         return b""
     return destination.Spooled(path)
+
+
+def worker_started() -> None:
+    """A worker process's first step: Ctrl-C is for the driver, which stops the
+    workers itself (a worker would print a traceback otherwise), and a worker
+    ends when its parent, the forkserver, does (it ends with castor), even if
+    castor was killed outright."""
+    import signal
+    import sys
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            pass
 
 
 def _alive(pid: int) -> bool:

@@ -234,7 +234,76 @@ def executor_for(jobs: int, scheduler: str | None):
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     context = multiprocessing.get_context("forkserver")
     context.set_forkserver_preload(["castor.jobs", "castor.mesh.facetize"])
-    return ProcessPoolExecutor(max_workers=jobs, mp_context=context), jobs
+    from castor.jobs import worker_started
+
+    executor = ProcessPoolExecutor(max_workers=jobs, mp_context=context,
+                                   initializer=worker_started)
+    _started.append(executor)
+    return executor, jobs
+
+
+# the process pools this run started, and the directories their workers spool
+# frames into: what ``end_processes`` stops and cleans when the run is stopped
+_started: list = []
+_spools: list[str] = []
+
+
+def end_processes() -> None:
+    """Stop at once every process this run started, and remove what they were
+    writing: castor was interrupted (Ctrl-C, SIGTERM) and is about to exit.
+
+    The workers are killed (they may be deep in the engine, deaf to anything
+    gentler), then the forkserver they came from; the multiprocessing
+    semaphores are released so that the resource tracker, which ends when the
+    last of us has, has nothing to report."""
+    import glob
+    import signal
+
+    pids = []
+    for executor in _started:
+        pids.extend(process.pid for process in list((getattr(executor, "_processes", None)
+                                                       or {}).values()))
+    try:
+        from multiprocessing import forkserver
+
+        pids.append(forkserver._forkserver._forkserver_pid)
+    except (ImportError, AttributeError):
+        pass
+    for pid in pids:
+        if pid:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except OSError:
+                pass
+    for pid in pids:  # gone before their half-written spooled frames are removed
+        if pid:
+            try:
+                os.waitpid(pid, 0)
+            except OSError:
+                pass
+    for directory in _spools:
+        for path in glob.glob(os.path.join(glob.escape(directory), f".castor-{os.getpid()}-*")):
+            try:
+                os.unlink(path)
+            except OSError:
+                pass
+    release_processes()
+
+
+def release_processes() -> None:
+    """Release what multiprocessing still holds (its named semaphores), as its
+    exit handler would: castor ends with os._exit or by SIGPIPE, which skip it,
+    and the resource tracker would then warn of \"leaked semaphore objects\"."""
+    import sys as _sys
+
+    if "multiprocessing" not in _sys.modules:
+        return
+    from multiprocessing import util
+
+    try:
+        util._run_finalizers(0)
+    except Exception:
+        pass
 
 
 def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSettings(),
@@ -261,8 +330,9 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
         # made as they are written: one piece in memory
         settings = replace(settings, output=replace(out, pieces=True))
     elif how.scheduler is None:
-        settings = replace(settings, output=replace(out, spool=_spool_directory(out.target),
-                                                    spool_owner=os.getpid()))
+        spool = _spool_directory(out.target)
+        _spools.append(spool)
+        settings = replace(settings, output=replace(out, spool=spool, spool_owner=os.getpid()))
     sequencer = Sequencer(reporter, output, settings, executor, window=2 * max(1, workers or 1))
     if output is not None:
         output.start()
