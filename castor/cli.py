@@ -22,10 +22,27 @@ from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_POR
 
 
 class _Parser(argparse.ArgumentParser):
+    """argparse, whose usage errors are the one line that says what is wrong and
+    a hint, never the usage text before it (CLI.md)."""
+
     def error(self, message):
-        self.print_usage(sys.stderr)
-        sys.stderr.write(f"castor: error: {message}\n")
+        if message.startswith("unrecognized arguments:"):
+            message += self._closest(message.split(":", 1)[1].split())
+        sys.stderr.write(f"castor: error: {message}\ntry 'castor --help'\n")
         sys.exit(USAGE_ERROR)
+
+    def _closest(self, words: list[str]) -> str:
+        """' (did you mean --summary?)' for a misspelt option among ``words``."""
+        import difflib
+
+        known = [option for action in self._actions for option in action.option_strings
+                 if option.startswith("--")]
+        for word in words:
+            if word.startswith("--"):
+                close = difflib.get_close_matches(word.partition("=")[0], known, n=1)
+                if close:
+                    return f" (did you mean {close[0]}?)"
+        return ""
 
 
 def _arguments(argv):
