@@ -104,8 +104,15 @@ def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
             result.stats = (f"castor: frame {scene.number} {scene.where}: picture "
                             f"{size[0]}x{size[1]}, {settings.picture.samples} samples per pixel, "
                             f"{time.perf_counter() - started:.3f} s")
+        if output.summary:  # the take-off is written whatever the output (OUTPUT.md)
+            from castor.quantities import summary_record
+
+            result.summary = summary_record(_facetizer(settings.mesh, merge=True).frame(scene))
         return
-    facetizer = _facetizer(settings.mesh, merge=chosen is None or not chosen.triangles_only)
+    # a file of triangles skips merging them into polygons, unless the take-off
+    # counts the frame's polygons
+    merge = chosen is None or not chosen.triangles_only or output.summary
+    facetizer = _facetizer(settings.mesh, merge=merge)
     frame = facetizer.frame(scene)
     if frame.polygon_count == 0:
         result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
