@@ -89,7 +89,7 @@ def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
         from castor.pictures import picture
 
         started = time.perf_counter()
-        if all(obj.root is None for obj in scene.objects):
+        if _draws_nothing(scene, settings.mesh):
             result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
                                     scene.location))
         if not chosen.one_frame:
@@ -145,6 +145,41 @@ def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
             result.stats = stats_line(frame, stats.primitives, stats.booleans, stats.seconds)
         if output.summary:
             result.summary = summary_record(frame)
+
+
+def _draws_nothing(scene: tree.Frame, mesh: MeshSettings) -> bool:
+    """Whether the frame's objects have no volume, as its polygons would say, for a
+    picture, which is traced from the solids and never facetized: rays along each
+    axis through a grid over the frame's box find something in almost every frame
+    at once; only when they all miss is the frame facetized to be sure."""
+    import numpy as np
+
+    from castor.pictures.trace import compile_frame
+
+    compiled = compile_frame(scene)
+    if compiled.root is None:
+        return True
+    low, high = (np.asarray(corner, float) for corner in compiled.box)
+    if not np.all(high > low):
+        return True
+    steps = (np.arange(PROBES) + 0.5) / PROBES
+    for axis in range(3):
+        u, v = (a for a in range(3) if a != axis)
+        grid_u, grid_v = np.meshgrid(low[u] + steps * (high[u] - low[u]),
+                                     low[v] + steps * (high[v] - low[v]))
+        origins = np.empty((grid_u.size, 3))
+        origins[:, u], origins[:, v] = grid_u.ravel(), grid_v.ravel()
+        origins[:, axis] = low[axis] - 1.0
+        directions = np.zeros_like(origins)
+        directions[:, axis] = 1.0
+        t = compiled.spans(origins, directions)[0]
+        with np.errstate(invalid="ignore"):
+            if np.any(t[:, 1::2] - t[:, 0::2] > 0):
+                return False
+    return _facetizer(mesh, merge=True).frame(scene).polygon_count == 0
+
+
+PROBES = 32  # rays on a side of the grid that looks for something in a picture's frame
 
 
 def _spooled(pieces, frame, output: OutputSettings):
