@@ -18,7 +18,7 @@ from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
 from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
                             DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
                             parse_point, parse_scale, parse_section, parse_size, parse_sun,
-                            parse_view)
+                            parse_view, OPTION_OUTPUTS)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -99,11 +99,22 @@ def _arguments(argv):
     pictures.add_argument("--section", metavar="AXIS=VALUE",
                           help="a drawing cut by the plane z=H (a plan), x=V or y=V")
     pictures.add_argument("--scale", default=f"1:{DEFAULT_SCALE}", metavar="1:N",
-                          help="printed scale of a drawing (default %(default)s)")
+                          help="printed scale of a drawing (default %(default)s), or the scale "
+                               "of a 3MF model (default 1:1)")
     p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
     p.add_argument("--version", action="version", version=f"castor {__version__}")
+    # the options that act on some outputs only (OPTION_OUTPUTS): which were given
+    not_given = object()
+    dests = {option: p._option_string_actions[option].dest for option in OPTION_OUTPUTS
+             if option in p._option_string_actions}
     args = p.parse_args(negative_values(argv, ("--view", "--eye", "--look", "--sun",
-                                               "--section")))
+                                               "--section")),
+                        namespace=argparse.Namespace(**{d: not_given for d in dests.values()}))
+    args.given = [option for option, dest in dests.items()
+                  if getattr(args, dest) is not not_given]
+    for option, dest in dests.items():
+        if getattr(args, dest) is not_given:
+            setattr(args, dest, p._option_string_actions[option].default)
     if args.tolerance is not None and not (args.tolerance > 0 and args.tolerance < float("inf")):
         p.error(f"--tolerance must be a positive number, not {args.tolerance}")
     if args.max_polygons < 1:
@@ -189,6 +200,9 @@ PIPE_CLOSED = 128 + 13
 
 def settings_of(args, overrides: dict[str, float]):
     """The settings of each stage, from the parsed options (castor.settings)."""
+    from dataclasses import replace
+
+    from castor.options import acts_on
     from castor.settings import (DrawingSettings, EvaluationSettings, FrameSettings,
                                  MeshSettings, OutputSettings, PictureSettings, ReadSettings,
                                  RunSettings, Source)
@@ -204,6 +218,9 @@ def settings_of(args, overrides: dict[str, float]):
         picture=PictureSettings(size=args.size, view=args.view, eye=args.eye, look=args.look,
                                 sun=args.sun, samples=args.samples, edges=args.edges),
         drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale))
+    if "--scale" in args.given and acts_on("--scale", args.format, "mesh"):
+        # a model's scale (3MF): 1 scene unit = 1000/N mm (OUTPUT.md)
+        frame = replace(frame, output=replace(frame.output, model_scale=1 / args.scale))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)
     return source, reading, evaluation, frame, how
@@ -216,6 +233,8 @@ def main(argv=None) -> int:
     from castor.run import run
 
     source, reading, evaluation, frame, how = settings_of(args, _overrides(parser, args.sets))
+    if not args.serve:
+        _warn_without_effect(args, reporter)
     result: list = []
 
     def work():
@@ -283,6 +302,15 @@ def main(argv=None) -> int:
         _quiet_stdout()
         return USAGE_ERROR
     return outcome
+
+
+def _warn_without_effect(args, reporter) -> None:
+    """Each option given that has no effect on the chosen output, once (CLI.md)."""
+    from castor.formats import FORMATS
+    from castor.options import without_effect
+
+    for message in without_effect(args.given, args.format, FORMATS[args.format].kind):
+        reporter.warning(message)
 
 
 def _stop_on_signals() -> list[int]:

@@ -127,7 +127,8 @@ def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
     elif chosen is not None:
         from castor.formats import output as destination
 
-        pieces, result.companions = destination.encode_pieces(frame, output.format,
+        written = frame if output.model_scale == 1 else _scaled(frame, output.model_scale)
+        pieces, result.companions = destination.encode_pieces(written, output.format,
                                                               output.target)
         if output.pieces:
             result.data = pieces  # made as they are written
@@ -145,6 +146,14 @@ def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
             result.stats = stats_line(frame, stats.primitives, stats.booleans, stats.seconds)
         if output.summary:
             result.summary = summary_record(frame)
+
+
+def _scaled(frame, factor: float):
+    """The frame's polygons times ``factor``: a model at its scale (--scale 1:N)."""
+    from dataclasses import replace
+
+    return replace(frame, objects=[replace(obj, vertices=obj.vertices * factor)
+                                   for obj in frame.objects])
 
 
 def _draws_nothing(scene: tree.Frame, mesh: MeshSettings) -> bool:

@@ -347,9 +347,6 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
         if interpreter.frames_attempted == 0 and not how.check and not reporter.errors:
             reporter.warning("the scene has no '>' command, so nothing was written; "
                              "'> OBJECT;' writes an object's polygons")
-        if settings.drawing.section is not None and chosen.kind != "drawing":
-            reporter.warning(f"--section makes a drawing (-o NAME.svg or NAME.dxf); it is "
-                             f"ignored for {out.format}")
     except BaseException:
         if output is not None:
             output.abandon()  # a single stream file half made stays out of place
