@@ -317,8 +317,9 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
 
     evaluation = evaluation or EvaluationSettings()
     for name in source.files:
-        if name != "-" and not os.access(name, os.R_OK):
-            reason = "no such file" if not os.path.exists(name) else "permission denied"
+        if name != "-" and (not os.access(name, os.R_OK) or os.path.isdir(name)):
+            reason = "no such file" if not os.path.exists(name) else \
+                "it is a directory" if os.path.isdir(name) else "permission denied"
             raise UsageError(f"error: cannot read '{name}': {reason}")
     out = settings.output
     chosen = FORMATS[out.format]
@@ -360,7 +361,8 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
         sequencer.discard_pending()
     try:
         _finish_collected(out, how, settings, sequencer)
-        if output is not None and not output.finish(reporter.errors > 0):
+        if output is not None and not output.finish(reporter.errors > 0,
+                                                    interpreter.frames_attempted):
             reporter.note(f"castor: {out.target} not written: there were errors and no frame")
     except BaseException:
         if output is not None:
