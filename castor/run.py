@@ -33,6 +33,7 @@ class Sequencer:
         self.settings = settings
         self.executor = executor
         self.window = window  # frames in flight at most
+        self.scheduled = executor is not None and hasattr(executor, "castor_client")
         self.stderr = reporter.stream
         self.pending: deque = deque()  # message text, or a future of a Result
         self.in_flight = 0
@@ -89,7 +90,10 @@ class Sequencer:
             while self.in_flight >= self.window:
                 self.ready.wait()
             self.in_flight += 1
-            future = self.executor.submit(make, job)
+            if isinstance(self.executor, _process_pools()) or self.scheduled:
+                future = self.executor.submit(make, job)
+            else:  # this process's thread: a long frame shows its progress
+                future = self.executor.submit(_make_showing_progress, job, self.stderr)
             future.castor_scene = scene
             self.pending.append(future)
         future.add_done_callback(self._done)
@@ -185,6 +189,13 @@ class Sequencer:
             self.pending.clear()
 
 
+def _make_showing_progress(job: Job, stream) -> Result:
+    from castor.progress import Progress
+
+    with Progress(f"frame {job.scene.number} {job.scene.where}", stream):
+        return make(job)
+
+
 def _discard(data) -> None:
     if data is not None and not isinstance(data, bytes):
         from castor.formats.output import discard
@@ -224,7 +235,12 @@ def executor_for(jobs: int, scheduler: str | None):
     if jobs == 0:
         jobs = os.cpu_count() or 1
     if jobs <= 1:
-        return None, 1
+        # one thread that makes and writes the frames while this one evaluates the
+        # next: the engine's booleans and the writing need no lock of Python's, so an
+        # animation overlaps its stages even on one core's worth of jobs
+        from concurrent.futures import ThreadPoolExecutor
+
+        return ThreadPoolExecutor(max_workers=1, thread_name_prefix="castor-frames"), 1
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
@@ -327,7 +343,7 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
     if not how.check and not (chosen.kind == "picture" and not chosen.one_frame):
         output = Output(out.target, out.format)
     executor, workers = (None, 1) if how.check else executor_for(how.jobs, how.scheduler)
-    if executor is None:
+    if executor is None or not isinstance(executor, _process_pools()):
         # made as they are written: one piece in memory
         settings = replace(settings, output=replace(out, pieces=True))
     elif how.scheduler is None:
@@ -369,6 +385,12 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
             output.abandon()
         raise
     return 1 if reporter.errors else 0
+
+
+def _process_pools() -> type:
+    from concurrent.futures import ProcessPoolExecutor
+
+    return ProcessPoolExecutor
 
 
 def _spool_directory(target: str | None) -> str:
