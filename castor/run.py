@@ -343,7 +343,7 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
     if not how.check and not (chosen.kind == "picture" and not chosen.one_frame):
         output = Output(out.target, out.format)
     executor, workers = (None, 1) if how.check else executor_for(how.jobs, how.scheduler)
-    if executor is None or not isinstance(executor, _process_pools()):
+    if executor is None or (how.scheduler is None and not isinstance(executor, _process_pools())):
         # made as they are written: one piece in memory
         settings = replace(settings, output=replace(out, pieces=True))
     elif how.scheduler is None:
