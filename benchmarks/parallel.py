@@ -1,13 +1,18 @@
 """Frames in parallel: a 24-frame animation of a block of houses whose windows
-slide from frame to frame (about half a second of work a frame), made with
---jobs 1, --jobs 2, and on a Dask cluster of two one-thread workers started
+slide from frame to frame (about half a second of work a frame), made by plain
+castor, with --jobs 1, --jobs 2, and on a Dask cluster of two one-thread workers started
 from the command line as a user would (`dask scheduler`, `dask worker`).
 The outputs are compared byte for byte.
 
-Targets: --jobs 2 at least 1.7x faster than --jobs 1; the cluster at least 1.5x.
+Targets: plain castor at least as fast as --jobs 1; --jobs 2 at least 1.7x
+faster than plain castor; the cluster at least 1.5x. Besides the wall-clock
+seconds, the CPU seconds of castor and the processes it waited for
+(RUSAGE_CHILDREN: the workers of --jobs 2, children of the forkserver, are not
+counted), since the machine may be shared. NO_DASK=1 leaves the cluster out.
 """
 
 import os
+import resource
 import shutil
 import socket
 import subprocess
@@ -37,16 +42,21 @@ def free_port() -> int:
 
 
 def run(args, scene_path):
-    best, out = None, None
+    """The best wall-clock seconds of RUNS runs, the CPU seconds of that run, the output."""
+    best, cpu, out = None, None, None
     for _ in range(RUNS):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         started = time.perf_counter()
         result = subprocess.run([*castor_command(), *args, scene_path], capture_output=True)
         seconds = time.perf_counter() - started
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
         if result.returncode != 0:
             raise SystemExit(result.stderr.decode()[:500])
-        best = seconds if best is None else min(best, seconds)
+        if best is None or seconds < best:
+            best = seconds
+            cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         out = result.stdout
-    return best, out
+    return best, cpu, out
 
 
 def main():
@@ -55,12 +65,14 @@ def main():
     with open(scene, "w") as handle:
         handle.write(SCENE)
     rows = []
-    one, reference = run(["--jobs", "1"], scene)
-    rows.append(["--jobs 1", f"{one:.2f}", f"{one / 24:.2f}", "1.00", "yes"])
-    two, out = run(["--jobs", "2"], scene)
-    rows.append(["--jobs 2", f"{two:.2f}", f"{two / 24:.2f}", f"{one / two:.2f}",
-                 "yes" if out == reference else "NO"])
-    dask = shutil.which("dask")
+    plain, cpu, reference = run([], scene)
+    rows.append(["plain castor", f"{plain:.2f}", f"{cpu:.2f}", f"{plain / 24:.2f}", "1.00",
+                 "yes"])
+    for how in (["--jobs", "1"], ["--jobs", "2"]):
+        seconds, cpu, out = run(how, scene)
+        rows.append([" ".join(how), f"{seconds:.2f}", f"{cpu:.2f}", f"{seconds / 24:.2f}",
+                     f"{plain / seconds:.2f}", "yes" if out == reference else "NO"])
+    dask = shutil.which("dask") if not os.environ.get("NO_DASK") else None
     if dask:
         port = free_port()
         address = f"tcp://127.0.0.1:{port}"
@@ -73,9 +85,10 @@ def main():
         try:
             time.sleep(6)  # the workers join the scheduler
             run(["--scheduler", address], scene)  # warm the workers (imports)
-            cluster, out = run(["--scheduler", address], scene)
-            rows.append(["Dask, 2 one-thread workers", f"{cluster:.2f}", f"{cluster / 24:.2f}",
-                         f"{one / cluster:.2f}", "yes" if out == reference else "NO"])
+            cluster, cpu, out = run(["--scheduler", address], scene)
+            rows.append(["Dask, 2 one-thread workers", f"{cluster:.2f}", f"{cpu:.2f}",
+                         f"{cluster / 24:.2f}", f"{plain / cluster:.2f}",
+                         "yes" if out == reference else "NO"])
         finally:
             for process in [*workers, scheduler]:
                 process.terminate()
@@ -83,7 +96,7 @@ def main():
                 process.wait(timeout=30)
     print("24 frames of 64 houses whose windows slide (whole processes, best of "
           f"{RUNS}):")
-    print(table(rows, ["how", "seconds", "s/frame", "speed-up", "same bytes"]))
+    print(table(rows, ["how", "seconds", "CPU s", "s/frame", "speed-up", "same bytes"]))
     shutil.rmtree(directory, ignore_errors=True)
 
 

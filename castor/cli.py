@@ -18,14 +18,37 @@ from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
 from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
                             DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
                             parse_point, parse_scale, parse_section, parse_size, parse_sun,
-                            parse_sheet, parse_view)
+                            parse_sheet, parse_view, OPTION_OUTPUTS)
+
+
+class _NotGiven(list):
+    """The value of an option before the command line gives it: a list, so that an
+    appending option (--ifc-class) can add to it, and an object of its own, so
+    that any value the command line gives is told from it."""
 
 
 class _Parser(argparse.ArgumentParser):
+    """argparse, whose usage errors are the one line that says what is wrong and
+    a hint, never the usage text before it (CLI.md)."""
+
     def error(self, message):
-        self.print_usage(sys.stderr)
-        sys.stderr.write(f"castor: error: {message}\n")
+        if message.startswith("unrecognized arguments:"):
+            message += self._closest(message.split(":", 1)[1].split())
+        sys.stderr.write(f"castor: error: {message}\ntry 'castor --help'\n")
         sys.exit(USAGE_ERROR)
+
+    def _closest(self, words: list[str]) -> str:
+        """' (did you mean --summary?)' for a misspelt option among ``words``."""
+        import difflib
+
+        known = [option for action in self._actions for option in action.option_strings
+                 if option.startswith("--")]
+        for word in words:
+            if word.startswith("--"):
+                close = difflib.get_close_matches(word.partition("=")[0], known, n=1)
+                if close:
+                    return f" (did you mean {close[0]}?)"
+        return ""
 
 
 def _arguments(argv):
@@ -91,7 +114,8 @@ def _arguments(argv):
     pictures.add_argument("--section", metavar="AXIS=VALUE",
                           help="a drawing cut by the plane z=H (a plan), x=V or y=V")
     pictures.add_argument("--scale", default=f"1:{DEFAULT_SCALE}", metavar="1:N",
-                          help="printed scale of a drawing (default %(default)s)")
+                          help="printed scale of a drawing (default %(default)s), or the scale "
+                               "of a 3MF model (default 1:1)")
     pictures.add_argument("--sheet", metavar="SIZE", help="lay a drawing on A4 ... A0 paper "
                           "(landscape; A3-portrait for upright), with border and title block")
     # one title for every document that has one: a drawing's, an IFC project's
@@ -103,8 +127,19 @@ def _arguments(argv):
                      "maison=IfcWall (repeatable; default IfcBuildingElementProxy)")
     p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
     p.add_argument("--version", action="version", version=f"castor {__version__}")
+    # the options that act on some outputs only (OPTION_OUTPUTS): which were given
+    dests = {option: p._option_string_actions[option].dest for option in OPTION_OUTPUTS
+             if option in p._option_string_actions}
+    unset = {dest: _NotGiven() for dest in dests.values()}  # told apart from any value
     args = p.parse_args(negative_values(argv, ("--view", "--eye", "--look", "--sun",
-                                               "--section")))
+                                               "--section")),
+                        namespace=argparse.Namespace(**unset))
+    args.given = [option for option, dest in dests.items()
+                  if getattr(args, dest) is not unset[dest] or unset[dest]]
+    for option, dest in dests.items():
+        value = getattr(args, dest)
+        if value is unset[dest]:  # an appending option adds to it: a plain list then
+            setattr(args, dest, list(value) if value else p._option_string_actions[option].default)
     if args.tolerance is not None and not (args.tolerance > 0 and args.tolerance < float("inf")):
         p.error(f"--tolerance must be a positive number, not {args.tolerance}")
     if args.max_polygons < 1:
@@ -200,6 +235,9 @@ PIPE_CLOSED = 128 + 13
 
 def settings_of(args, overrides: dict[str, float]):
     """The settings of each stage, from the parsed options (castor.settings)."""
+    from dataclasses import replace
+
+    from castor.options import acts_on
     from castor.settings import (BimSettings, DrawingSettings, EvaluationSettings, FrameSettings,
                                  MeshSettings, OutputSettings, PictureSettings, ReadSettings,
                                  RunSettings, Source)
@@ -217,6 +255,9 @@ def settings_of(args, overrides: dict[str, float]):
         drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale,
                                 sheet=args.sheet),
         bim=BimSettings(classes=args.ifc_classes))
+    if "--scale" in args.given and acts_on("--scale", args.format, "mesh"):
+        # a model's scale (3MF): 1 scene unit = 1000/N mm (OUTPUT.md)
+        frame = replace(frame, output=replace(frame.output, model_scale=1 / args.scale))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)
     return source, reading, evaluation, frame, how
@@ -251,6 +292,8 @@ def main(argv=None) -> int:
         from castor.lsp.customizer import params_command
 
         return params_command(source, reading, evaluation, quiet=args.quiet)
+    if not args.serve:
+        _warn_without_effect(args, reporter)
     result: list = []
 
     def work():
@@ -271,16 +314,13 @@ def main(argv=None) -> int:
         return _serve(args, source, reading, evaluation)
     threading.stack_size(STACK_BYTES)
     thread = threading.Thread(target=work, name="castor", daemon=True)
+    stopped_by = _stop_on_signals()
     thread.start()
     try:
         while thread.is_alive():
             thread.join(0.2)
     except KeyboardInterrupt:
-        sys.stderr.write("castor: interrupted\n")
-        from castor.formats.output import remove_temporaries
-
-        remove_temporaries()  # a file being written, spooled frames: no half file left
-        os._exit(130)
+        _interrupted(128 + stopped_by[0])
     outcome = result[0] if result else 1
     if isinstance(outcome, BrokenPipeError):
         _quiet_stdout()
@@ -323,6 +363,50 @@ def main(argv=None) -> int:
     return outcome
 
 
+def _warn_without_effect(args, reporter) -> None:
+    """Each option given that has no effect on the chosen output, once (CLI.md)."""
+    from castor.formats import FORMATS
+    from castor.options import without_effect
+
+    for message in without_effect(args.given, args.format, FORMATS[args.format].kind):
+        reporter.warning(message)
+
+
+def _stop_on_signals() -> list[int]:
+    """SIGTERM stops castor as Ctrl-C does; the list says which signal came."""
+    import signal
+
+    stopped_by = [signal.SIGINT]
+
+    def terminate(signum, frame):
+        stopped_by[0] = signum
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, terminate)
+    return stopped_by
+
+
+def _interrupted(status: int) -> None:
+    """Ctrl-C or SIGTERM: every process castor started ends now, no half file stays."""
+    from castor.formats.output import remove_temporaries
+    from castor.run import end_processes
+
+    try:  # the run's thread goes on until the exit: whatever it says now, nobody reads
+        stderr = os.dup(2)
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, 2)
+    except OSError:
+        stderr = None
+    end_processes()  # the workers first: they write the spooled frames
+    remove_temporaries()  # a file being written, spooled frames: no half file left
+    if stderr is not None:
+        try:
+            os.write(stderr, b"castor: interrupted\n")
+        except OSError:
+            pass
+    os._exit(status)
+
+
 def _serve(args, source, reading, evaluation) -> int:
     """``castor --serve``: its usage errors, then the preview server until Ctrl-C."""
     def usage(message: str) -> int:
@@ -351,6 +435,9 @@ def entry() -> None:
     at once. Output is flushed first.
     """
     status = main()
+    from castor.run import release_processes
+
+    release_processes()  # else the resource tracker may warn of leaked semaphores
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

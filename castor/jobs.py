@@ -89,7 +89,7 @@ def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
         from castor.pictures import picture
 
         started = time.perf_counter()
-        if all(obj.root is None for obj in scene.objects):
+        if _draws_nothing(scene, settings.mesh):
             result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
                                     scene.location))
         if not chosen.one_frame:
@@ -104,8 +104,15 @@ def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
             result.stats = (f"castor: frame {scene.number} {scene.where}: picture "
                             f"{size[0]}x{size[1]}, {settings.picture.samples} samples per pixel, "
                             f"{time.perf_counter() - started:.3f} s")
+        if output.summary:  # the take-off is written whatever the output (OUTPUT.md)
+            from castor.quantities import summary_record
+
+            result.summary = summary_record(_facetizer(settings.mesh, merge=True).frame(scene))
         return
-    facetizer = _facetizer(settings.mesh, merge=chosen is None or not chosen.triangles_only)
+    # a file of triangles skips merging them into polygons, unless the take-off
+    # counts the frame's polygons
+    merge = chosen is None or not chosen.triangles_only or output.summary
+    facetizer = _facetizer(settings.mesh, merge=merge)
     frame = facetizer.frame(scene)
     if frame.polygon_count == 0:
         result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
@@ -121,7 +128,8 @@ def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
     elif chosen is not None:
         from castor.formats import output as destination
 
-        pieces, result.companions = destination.encode_pieces(frame, output.format,
+        written = frame if output.model_scale == 1 else _scaled(frame, output.model_scale)
+        pieces, result.companions = destination.encode_pieces(written, output.format,
                                                               output.target)
         if output.pieces:
             result.data = pieces  # made as they are written
@@ -141,6 +149,49 @@ def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
             result.summary = summary_record(frame)
 
 
+def _scaled(frame, factor: float):
+    """The frame's polygons times ``factor``: a model at its scale (--scale 1:N)."""
+    from dataclasses import replace
+
+    return replace(frame, objects=[replace(obj, vertices=obj.vertices * factor)
+                                   for obj in frame.objects])
+
+
+def _draws_nothing(scene: tree.Frame, mesh: MeshSettings) -> bool:
+    """Whether the frame's objects have no volume, as its polygons would say, for a
+    picture, which is traced from the solids and never facetized: rays along each
+    axis through a grid over the frame's box find something in almost every frame
+    at once; only when they all miss is the frame facetized to be sure."""
+    import numpy as np
+
+    from castor.pictures.trace import compile_frame
+
+    compiled = compile_frame(scene)
+    if compiled.root is None:
+        return True
+    low, high = (np.asarray(corner, float) for corner in compiled.box)
+    if not np.all(high > low):
+        return True
+    steps = (np.arange(PROBES) + 0.5) / PROBES
+    for axis in range(3):
+        u, v = (a for a in range(3) if a != axis)
+        grid_u, grid_v = np.meshgrid(low[u] + steps * (high[u] - low[u]),
+                                     low[v] + steps * (high[v] - low[v]))
+        origins = np.empty((grid_u.size, 3))
+        origins[:, u], origins[:, v] = grid_u.ravel(), grid_v.ravel()
+        origins[:, axis] = low[axis] - 1.0
+        directions = np.zeros_like(origins)
+        directions[:, axis] = 1.0
+        t = compiled.spans(origins, directions)[0]
+        with np.errstate(invalid="ignore"):
+            if np.any(t[:, 1::2] - t[:, 0::2] > 0):
+                return False
+    return _facetizer(mesh, merge=True).frame(scene).polygon_count == 0
+
+
+PROBES = 32  # rays on a side of the grid that looks for something in a picture's frame
+
+
 def _spooled(pieces, frame, output: OutputSettings):
     """The frame's bytes written a piece at a time to a file in ``output.spool``
     (hidden, beside the output where it can be renamed into place); as bytes
@@ -151,7 +202,8 @@ def _spooled(pieces, frame, output: OutputSettings):
     from castor.formats import output as destination
 
     try:
-        fd, path = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=output.spool)
+        fd, path = tempfile.mkstemp(prefix=f".castor-{output.spool_owner}-", suffix=".tmp",
+                                    dir=output.spool)
     except OSError:
         return b"".join(pieces)
     try:
@@ -167,6 +219,25 @@ def _spooled(pieces, frame, output: OutputSettings):
         os.unlink(path)  # the driver was stopped: nobody will write or remove the file
         return b""
     return destination.Spooled(path)
+
+
+def worker_started() -> None:
+    """A worker process's first step: Ctrl-C is for the driver, which stops the
+    workers itself (a worker would print a traceback otherwise), and a worker
+    ends when its parent, the forkserver, does (it ends with castor), even if
+    castor was killed outright."""
+    import signal
+    import sys
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            pass
 
 
 def _alive(pid: int) -> bool:

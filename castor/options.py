@@ -171,3 +171,43 @@ def negative_values(argv: list[str], options: tuple[str, ...]) -> list[str]:
             out[i:i + 2] = [f"{out[i]}={out[i + 1]}"]
         i += 1
     return out
+
+
+# The options that act on some outputs only, and the outputs each acts on: kinds
+# of output (castor.formats KINDS) or formats by name. The one table that says
+# which option matters for which output: one given for an output not listed
+# here is warned about (CLI.md), and only the outputs listed here are given it.
+OPTION_OUTPUTS: dict[str, tuple[str, ...]] = {
+    "--size": ("picture",),
+    "--view": ("picture", "drawing"),
+    "--eye": ("picture",),
+    "--look": ("picture",),
+    "--sun": ("picture",),
+    "--samples": ("picture",),
+    "--edges": ("picture",),
+    "--section": ("drawing",),
+    "--scale": ("drawing", "3mf"),
+    "--sheet": ("drawing",),
+    "--title": ("drawing", "bim"),
+    "--ifc-class": ("bim",),
+}
+
+
+def acts_on(option: str, format_name: str, kind: str) -> bool:
+    """Whether ``option`` (of OPTION_OUTPUTS) has an effect on this output."""
+    outputs = OPTION_OUTPUTS.get(option)
+    return outputs is None or kind in outputs or format_name in outputs
+
+
+def without_effect(given: list[str], format_name: str, kind: str) -> list[str]:
+    """A warning for each option of ``given`` that has no effect on the output."""
+    return [f"{option} has no effect on {format_name} output (it acts on "
+            f"{' and '.join(_outputs(OPTION_OUTPUTS[option]))}); it is ignored"
+            for option in given if not acts_on(option, format_name, kind)]
+
+
+def _outputs(names: tuple[str, ...]) -> list[str]:
+    plural = {"picture": "pictures", "drawing": "drawings", "mesh": "mesh files",
+              "stream": "the polygon stream", "bim": "building models"}
+    return [plural.get(name, name) for name in names]
+

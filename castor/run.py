@@ -33,6 +33,7 @@ class Sequencer:
         self.settings = settings
         self.executor = executor
         self.window = window  # frames in flight at most
+        self.scheduled = executor is not None and hasattr(executor, "castor_client")
         self.stderr = reporter.stream
         self.pending: deque = deque()  # message text, or a future of a Result
         self.in_flight = 0
@@ -89,7 +90,10 @@ class Sequencer:
             while self.in_flight >= self.window:
                 self.ready.wait()
             self.in_flight += 1
-            future = self.executor.submit(make, job)
+            if isinstance(self.executor, _process_pools()) or self.scheduled:
+                future = self.executor.submit(make, job)
+            else:  # this process's thread: a long frame shows its progress
+                future = self.executor.submit(_make_showing_progress, job, self.stderr)
             future.castor_scene = scene
             self.pending.append(future)
         future.add_done_callback(self._done)
@@ -185,6 +189,13 @@ class Sequencer:
             self.pending.clear()
 
 
+def _make_showing_progress(job: Job, stream) -> Result:
+    from castor.progress import Progress
+
+    with Progress(f"frame {job.scene.number} {job.scene.where}", stream):
+        return make(job)
+
+
 def _discard(data) -> None:
     if data is not None and not isinstance(data, bytes):
         from castor.formats.output import discard
@@ -224,7 +235,12 @@ def executor_for(jobs: int, scheduler: str | None):
     if jobs == 0:
         jobs = os.cpu_count() or 1
     if jobs <= 1:
-        return None, 1
+        # one thread that makes and writes the frames while this one evaluates the
+        # next: the engine's booleans and the writing need no lock of Python's, so an
+        # animation overlaps its stages even on one core's worth of jobs
+        from concurrent.futures import ThreadPoolExecutor
+
+        return ThreadPoolExecutor(max_workers=1, thread_name_prefix="castor-frames"), 1
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
@@ -234,7 +250,76 @@ def executor_for(jobs: int, scheduler: str | None):
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     context = multiprocessing.get_context("forkserver")
     context.set_forkserver_preload(["castor.jobs", "castor.mesh.facetize"])
-    return ProcessPoolExecutor(max_workers=jobs, mp_context=context), jobs
+    from castor.jobs import worker_started
+
+    executor = ProcessPoolExecutor(max_workers=jobs, mp_context=context,
+                                   initializer=worker_started)
+    _started.append(executor)
+    return executor, jobs
+
+
+# the process pools this run started, and the directories their workers spool
+# frames into: what ``end_processes`` stops and cleans when the run is stopped
+_started: list = []
+_spools: list[str] = []
+
+
+def end_processes() -> None:
+    """Stop at once every process this run started, and remove what they were
+    writing: castor was interrupted (Ctrl-C, SIGTERM) and is about to exit.
+
+    The workers are killed (they may be deep in the engine, deaf to anything
+    gentler), then the forkserver they came from; the multiprocessing
+    semaphores are released so that the resource tracker, which ends when the
+    last of us has, has nothing to report."""
+    import glob
+    import signal
+
+    pids = []
+    for executor in _started:
+        pids.extend(process.pid for process in list((getattr(executor, "_processes", None)
+                                                       or {}).values()))
+    try:
+        from multiprocessing import forkserver
+
+        pids.append(forkserver._forkserver._forkserver_pid)
+    except (ImportError, AttributeError):
+        pass
+    for pid in pids:
+        if pid:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except OSError:
+                pass
+    for pid in pids:  # gone before their half-written spooled frames are removed
+        if pid:
+            try:
+                os.waitpid(pid, 0)
+            except OSError:
+                pass
+    for directory in _spools:
+        for path in glob.glob(os.path.join(glob.escape(directory), f".castor-{os.getpid()}-*")):
+            try:
+                os.unlink(path)
+            except OSError:
+                pass
+    release_processes()
+
+
+def release_processes() -> None:
+    """Release what multiprocessing still holds (its named semaphores), as its
+    exit handler would: castor ends with os._exit or by SIGPIPE, which skip it,
+    and the resource tracker would then warn of \"leaked semaphore objects\"."""
+    import sys as _sys
+
+    if "multiprocessing" not in _sys.modules:
+        return
+    from multiprocessing import util
+
+    try:
+        util._run_finalizers(0)
+    except Exception:
+        pass
 
 
 def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSettings(),
@@ -248,8 +333,9 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
 
     evaluation = evaluation or EvaluationSettings()
     for name in source.files:
-        if name != "-" and not os.access(name, os.R_OK):
-            reason = "no such file" if not os.path.exists(name) else "permission denied"
+        if name != "-" and (not os.access(name, os.R_OK) or os.path.isdir(name)):
+            reason = "no such file" if not os.path.exists(name) else \
+                "it is a directory" if os.path.isdir(name) else "permission denied"
             raise UsageError(f"error: cannot read '{name}': {reason}")
     out = settings.output
     chosen = FORMATS[out.format]
@@ -257,12 +343,13 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
     if not how.check and not (chosen.kind == "picture" and not chosen.one_frame):
         output = Output(out.target, out.format)
     executor, workers = (None, 1) if how.check else executor_for(how.jobs, how.scheduler)
-    if executor is None:
+    if executor is None or (how.scheduler is None and not isinstance(executor, _process_pools())):
         # made as they are written: one piece in memory
         settings = replace(settings, output=replace(out, pieces=True))
     elif how.scheduler is None:
-        settings = replace(settings, output=replace(out, spool=_spool_directory(out.target),
-                                                    spool_owner=os.getpid()))
+        spool = _spool_directory(out.target)
+        _spools.append(spool)
+        settings = replace(settings, output=replace(out, spool=spool, spool_owner=os.getpid()))
     sequencer = Sequencer(reporter, output, settings, executor, window=2 * max(1, workers or 1))
     if output is not None:
         output.start()
@@ -277,14 +364,6 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
         if interpreter.frames_attempted == 0 and not how.check and not reporter.errors:
             reporter.warning("the scene has no '>' command, so nothing was written; "
                              "'> OBJECT;' writes an object's polygons")
-        if chosen.kind != "drawing":
-            *rest, last = [f"NAME{f.suffix}" for f in of_kind("drawing")]
-            drawings = f"{', '.join(rest)} or {last}" if rest else last
-            for option, value, what in (("--section", settings.drawing.section, "makes"),
-                                        ("--sheet", settings.drawing.sheet, "lays out")):
-                if value is not None:
-                    reporter.warning(f"{option} {what} a drawing (-o {drawings}); it is "
-                                     f"ignored for {out.format}")
     except BaseException:
         if output is not None:
             output.abandon()  # a single stream file half made stays out of place
@@ -298,13 +377,20 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
         sequencer.discard_pending()
     try:
         _finish_collected(out, how, settings, sequencer)
-        if output is not None and not output.finish(reporter.errors > 0):
+        if output is not None and not output.finish(reporter.errors > 0,
+                                                    interpreter.frames_attempted):
             reporter.note(f"castor: {out.target} not written: there were errors and no frame")
     except BaseException:
         if output is not None:
             output.abandon()
         raise
     return 1 if reporter.errors else 0
+
+
+def _process_pools() -> type:
+    from concurrent.futures import ProcessPoolExecutor
+
+    return ProcessPoolExecutor
 
 
 def _spool_directory(target: str | None) -> str:

@@ -99,6 +99,7 @@ class OutputSettings:
     summary: bool = False  # a quantity take-off record per frame
     title: str | None = None  # --title: a drawing's, an IFC project's (None: its default)
     keep_mesh: bool = False  # hand the mesh frame back (the live preview wants it)
+    model_scale: float = 1.0  # --scale 1:N of a model (3MF): its polygons times 1/N
     # how a frame's bytes are handed on: made a piece at a time as they are
     # written (``pieces``, in the process that writes them), written by a worker
     # into a file in ``spool`` when the frame is large, or else as bytes

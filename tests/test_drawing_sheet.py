@@ -332,4 +332,4 @@ def test_an_opening_with_no_glass_shows_what_lies_behind(tmp_path):
 
 def test_sheet_is_warned_about_off_a_drawing(tmp_path):
     out, err = _draw(tmp_path, "--sheet", "A3", name="d.stl")
-    assert "--sheet lays out a drawing" in err and "ignored for stl" in err
+    assert "--sheet has no effect on stl output (it acts on drawings); it is ignored" in err

@@ -28,7 +28,11 @@ def write(tmp_path, name, text):
 
 
 def last_line(err):
-    return err.strip().splitlines()[-1]
+    """The last message, less the one-line hint that may follow a usage error."""
+    lines = err.strip().splitlines()
+    if len(lines) > 1 and lines[-1].startswith("try '"):
+        lines.pop()
+    return lines[-1]
 
 
 def run_briefly(*args, stdin=None, cwd=None, seconds=30):

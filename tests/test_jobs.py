@@ -80,3 +80,13 @@ def test_an_unreachable_scheduler_is_a_usage_error():
     status, out, err = run("--scheduler", "tcp://127.0.0.1:9", str(ROOT / "examples" / "car.cas"))
     assert status == 2
     assert "castor: error: cannot reach the Dask scheduler at 'tcp://127.0.0.1:9'" in err
+
+
+def test_a_closed_pipe_ends_two_jobs_quietly():
+    """`castor --jobs 2 door.cas | head -1`: no word from multiprocessing's resource
+    tracker (leaked semaphores) once castor has gone (CLI.md: a closed pipe ends quietly)."""
+    door = ROOT / "examples" / "door.cas"
+    result = subprocess.run(f"'{sys.executable}' -m castor --jobs 2 '{door}' | head -1",
+                            shell=True, capture_output=True, text=True, timeout=120, cwd=ROOT.parent)
+    assert result.stdout == "castor-polygons 1\n"
+    assert result.stderr == ""

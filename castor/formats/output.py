@@ -324,7 +324,14 @@ class Output:
         self.suffix = chosen.suffix
 
     def start(self) -> None:
-        if self.path is None and self.streamed:
+        """Standard output's stream begins with its first frame (or at the end of a
+        run that made frames and wrote none): a scene that cannot be read, or that
+        has no '>' command, writes nothing at all."""
+        self.header_due = self.path is None and self.streamed
+
+    def _begin(self) -> None:
+        if getattr(self, "header_due", False):
+            self.header_due = False
             sys.stdout.write(self.header.decode("utf-8"))
             sys.stdout.flush()
 
@@ -339,6 +346,7 @@ class Output:
     def _put(self, number: int, data: Data, companions: dict[str, bytes],
              location: Location) -> None:
         self.frames += 1
+        self._begin()
         patterned = bool(self.path and has_pattern(self.path))
         if self.streamed and not patterned:
             if self.path is None:
@@ -377,8 +385,11 @@ class Output:
             f"give a pattern such as -o {stem}-%03d{suffix} for one file per frame (the frames "
             f"after it are not made)", location)
 
-    def finish(self, had_errors: bool) -> bool:
-        """Put a single stream file in place; False when it was left out."""
+    def finish(self, had_errors: bool, frames_made: int = 1) -> bool:
+        """Put a single stream file in place; False when it was left out.
+        ``frames_made``: the '>' commands met (none: standard output stays empty)."""
+        if frames_made:
+            self._begin()  # frames that all failed: still a stream, with no frame
         if self.path is None or not self.streamed or has_pattern(self.path):
             return True
         if self.stream is None:

@@ -4,7 +4,8 @@ One named object per '>' object, a base material per colour (named after what
 it colours), triangles counter-clockwise seen from outside. Units are
 millimetres with one scene unit = one metre, so a 9 m house is 9000 mm: a
 slicer shows it at its true size and scales it to the model's scale (1:100)
-in one step. The package is written with fixed dates, so that the same frame
+in one step, or `--scale 1:N` writes it at that scale (1 unit = 1000/N mm,
+castor.jobs scales the frame). The package is written with fixed dates, so that the same frame
 gives the same bytes.
 """
 

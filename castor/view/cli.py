@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import sys
 
@@ -12,9 +13,10 @@ _PATTERN = re.compile(r"%0?\d*d")
 
 
 class _Parser(argparse.ArgumentParser):
+    """A usage error is its one line and a hint, never the usage text (CLI.md)."""
+
     def error(self, message):
-        self.print_usage(sys.stderr)
-        sys.stderr.write(f"castor-view: error: {message}\n")
+        sys.stderr.write(f"castor-view: error: {message}\ntry 'castor-view --help'\n")
         sys.exit(USAGE_ERROR)
 
 
@@ -98,6 +100,12 @@ def _pictures(args):
     if args.file == "-":
         yield from read_stream(iter(sys.stdin.readline, ""), "<stdin>")
         return
+    if not os.path.exists(args.file) or os.path.isdir(args.file) \
+            or not os.access(args.file, os.R_OK):  # a usage error, as castor's (exit 2)
+        reason = "no such file" if not os.path.exists(args.file) else \
+            "it is a directory" if os.path.isdir(args.file) else "permission denied"
+        sys.stderr.write(f"castor-view: error: cannot read '{args.file}': {reason}\n")
+        sys.exit(USAGE_ERROR)
     chosen = reader_for(args.file)
     if chosen is not None and chosen.kind != "stream":
         yield from chosen.read(args.file)
@@ -111,7 +119,8 @@ def _pictures(args):
     try:
         handle = open(args.file, encoding="utf-8", errors="replace")
     except OSError as exc:
-        sys.stderr.write(f"castor-view: cannot read '{args.file}': {exc.strerror}\n")
+        sys.stderr.write(f"castor-view: error: cannot read '{args.file}': "
+                         f"{(exc.strerror or str(exc)).lower()}\n")
         sys.exit(USAGE_ERROR)
     with handle:
         yield from read_stream(handle, args.file)
