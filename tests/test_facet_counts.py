@@ -184,7 +184,7 @@ def test_no_point_of_a_stretched_surface_is_farther_than_the_tolerance(kind):
     frames = frames_of("\n".join(lines) + "\n")
     assert len(frames) == len(cases)
     for frame, (affine, tolerance) in zip(frames, cases):
-        unit = _surface(kind, 48, rng)
+        unit = _surface(kind, 16, rng)
         points = unit @ affine[:, :3].T + affine[:, 3]
         worst = _closest_distances(points, _triangles(frame)).max()
         assert worst <= tolerance * (1 + 1e-6), (kind, affine, tolerance, worst)

@@ -253,8 +253,9 @@ class Evaluator:
         colour = tuple(values[:3])
         for name, c, arg in zip(("red", "green", "blue"), colour, node.args):
             if not 0.0 <= c <= 1.0:
+                # a whole number up to 255 looks like a byte; 1.8 is a slip of its own
                 hint = (f"; if it is a 0..255 value, write {format_number(c)}/255"
-                        if 1 < c <= 255 else "")
+                        if 1 < c <= 255 and c == int(c) else "")
                 raise GeometryError(f"colour component {name} = {format_number(c)} of {here} is "
                                     f"outside 0..1{hint}", arg.location)
         shape = tuple(values[3:])

@@ -32,6 +32,11 @@ def _layer_names(names: list[str]) -> list[str]:
     return out
 
 
+def _tidy(value: float) -> float:
+    """A coordinate of the extents, rounded to 1e-9 m (-0.0 written as 0)."""
+    return round(float(value), 9) + 0.0
+
+
 def export_drawing(drawing) -> bytes:
     """The drawing as a DXF (R2010) document's bytes."""
     import ezdxf
@@ -53,6 +58,11 @@ def export_drawing(drawing) -> bytes:
                                    dxfattribs={"layer": name, "lineweight": CUT_WEIGHT})
         for (x0, y0), (x1, y1) in layer.lines.tolist():
             msp.add_line((x0, y0), (x1, y1), dxfattribs={"layer": name, "lineweight": SEEN_WEIGHT})
+    low, high = drawing.box()
+    if (high > low).any():
+        # the header's extents from castor's own box, to the nanometre: the
+        # coordinates' last bits of rounding (-6.999999999999999) are no size
+        msp.reset_extents((_tidy(low[0]), _tidy(low[1]), 0.0), (_tidy(high[0]), _tidy(high[1]), 0.0))
     stream = io.StringIO()
     doc.write(stream)
     return stream.getvalue().encode("utf-8")
