@@ -31,12 +31,24 @@ def facet_counts(leaf) -> tuple[int, ...]:
     return declared.facets(leaf.shape, linear, leaf.tolerance)
 
 
-def estimate_triangles(kind: str, shape: tuple, facets: tuple) -> int:
+def _counts(kind: str, shape: tuple, facets) -> tuple:
+    """Facet counts as given, or those of the unit primitive for a tolerance
+    (a number: how tests and tools ask for a mesh of its own)."""
+    if isinstance(facets, tuple):
+        return facets
+    return PRIMITIVES[kind].facet_counts(shape, _UNSTRETCHED, float(facets))
+
+
+_UNSTRETCHED = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
+
+
+def estimate_triangles(kind: str, shape: tuple, facets) -> int:
     """Triangles a primitive will have, computed before building it."""
-    return PRIMITIVES[kind].triangles(shape, facets)
+    return PRIMITIVES[kind].triangles(shape, _counts(kind, shape, facets))
 
 
-def build(kind: str, shape: tuple, facets: tuple) -> Mesh:
+def build(kind: str, shape: tuple, facets) -> Mesh:
     """The mesh of primitive ``kind`` with its non-colour arguments ``shape``,
-    already checked (castor.primitives) by the evaluator, and its facet counts."""
-    return PRIMITIVES[kind].mesh(shape, facets)
+    already checked (castor.primitives) by the evaluator, and its facet counts
+    (or a tolerance, for the primitive unstretched)."""
+    return PRIMITIVES[kind].mesh(shape, _counts(kind, shape, facets))
