@@ -22,6 +22,7 @@ from castor.language.expressions import evaluate, format_number
 from castor.language.scene import Boolean, Named, Node, Primitive, Repeat, Transformed
 from castor.options import DEFAULT_TOLERANCE
 from castor.primitives import PRIMITIVES
+from castor.primitives.facets import linear_part, product, quantize, stretch_above
 from castor.transformations import step_matrix
 
 MAX_REPEAT = 1_000_000
@@ -73,15 +74,6 @@ def restored(env, name: str):
             env[name] = saved
 
 
-def quantize(tolerance: float) -> float:
-    """Round a tolerance down to a power of 2^(1/4), so that near-equal scales
-    share one shared subtree and one facetization."""
-    if tolerance <= 0 or not math.isfinite(tolerance):
-        return tolerance
-    # the slack makes it idempotent: a quantized tolerance quantizes to itself
-    return 2.0 ** (math.floor(math.log2(tolerance) * 4 + 1e-9) / 4)
-
-
 def _matrix(m) -> tree.Matrix:
     return tuple(float(x) for x in m[:3, :].ravel())
 
@@ -90,8 +82,9 @@ class Evaluator:
     """Walks the scene graph into evaluated trees, frame after frame.
 
     Shared subtrees are remembered by (named node, values of the parameters it
-    reads, tolerance), so a named object that reads nothing that changed is the
-    same subtree, with the same key, in the next frame too.
+    reads, tolerance, shape of the stretch above it), so a named object that
+    reads nothing that changed is the same subtree, with the same key, in the
+    next frame too.
     """
 
     def __init__(self):
@@ -117,7 +110,7 @@ class Evaluator:
                 name = node.name
             else:
                 name = f"object{k}"
-            root = self._node(node, env, tree.IDENTITY, 1.0, tolerance, ROOT, ROOT)
+            root = self._node(node, env, tree.IDENTITY, None, tolerance, ROOT, ROOT)
             made.append(tree.Object(name, root, f"{node.location.file}:{node.location.line}"))
         if self.errors:
             raise FrameErrors(self.errors)
@@ -141,8 +134,11 @@ class Evaluator:
                 failed = True
         return None if failed else values
 
-    # --- one node: its tree, or None when it is empty or failed
-    def _node(self, node: Node, env, matrix: tree.Matrix, stretch: float, tolerance: float,
+    # --- one node: its tree, or None when it is empty or failed. ``matrix``
+    # places it in the nearest shared subtree (or the scene), whose units the
+    # ``tolerance`` is in; ``stretch``, the shape of the stretch of those units
+    # above (facets.stretch_above), or None.
+    def _node(self, node: Node, env, matrix: tree.Matrix, stretch, tolerance: float,
               trail: Trail, rel: Trail):
         kind = type(node)
         try:
@@ -161,14 +157,20 @@ class Evaluator:
         return None
 
     def _named(self, node: Named, env, matrix, stretch, tolerance, trail, rel):
-        local = quantize(tolerance / stretch)
-        key = (id(node), tuple(env.get(p, _MISSING) for p in sorted(node.params)), local)
+        linear = linear_part(matrix)
+        if stretch is not None:
+            linear = product(stretch, linear)
+        largest, stretch = stretch_above(linear)
+        # rounded so that near-equal scales share the subtree; under a
+        # non-uniform stretch its primitives round once, with their own stretch
+        local = quantize(tolerance / largest) if stretch is None else tolerance / largest
+        key = (id(node), tuple(env.get(p, _MISSING) for p in sorted(node.params)), local, stretch)
         remembered = self.memo.get(key)
         if remembered is not None and remembered[0] is node:
             shared = remembered[1]
         else:
             before = len(self.errors)
-            child = self._node(node.child, env, tree.IDENTITY, 1.0, local,
+            child = self._node(node.child, env, tree.IDENTITY, stretch, local,
                                trail.down(f"({node.name})"), ROOT)
             if len(self.errors) > before:
                 shared = None
@@ -196,14 +198,14 @@ class Evaluator:
                                         f"{format_number(values[0])}", step.location)
                 # in scene units; inside a named object used at a scale, in its units
                 tolerance = values[0]
+                stretch = None
                 continue
             if step.kind == "t":  # the commonest step, without numpy
                 x, y, z = values
                 m = (1.0, 0.0, 0.0, x, 0.0, 1.0, 0.0, y, 0.0, 0.0, 1.0, z)
             else:
-                full, factor = step_matrix(step.kind, values, step.location, trail)
+                full, _ = step_matrix(step.kind, values, step.location, trail)
                 m = _matrix(full)
-                stretch *= factor
             local = tree.compose(local, m)
         if failed:
             return None
@@ -252,8 +254,9 @@ class Evaluator:
         colour = tuple(values[:3])
         for name, c, arg in zip(("red", "green", "blue"), colour, node.args):
             if not 0.0 <= c <= 1.0:
+                # a whole number up to 255 looks like a byte; 1.8 is a slip of its own
                 hint = (f"; if it is a 0..255 value, write {format_number(c)}/255"
-                        if 1 < c <= 255 else "")
+                        if 1 < c <= 255 and c == int(c) else "")
                 raise GeometryError(f"colour component {name} = {format_number(c)} of {here} is "
                                     f"outside 0..1{hint}", arg.location)
         shape = tuple(values[3:])
@@ -262,8 +265,8 @@ class Evaluator:
             declared.check(shape, node.location, here)
         _check_reach(matrix, declared.extent(shape), node, here)
         path = rel.down(f"!{node.kind}").steps()
-        return tree.Primitive(node.kind, shape, colour, matrix, quantize(tolerance / stretch),
-                              path, node.location)
+        return tree.Primitive(node.kind, shape, colour, matrix, tolerance, stretch, path,
+                              node.location)
 
 
 def _check_reach(matrix: tree.Matrix, extent: float, node: Primitive, here: Trail) -> None:

@@ -7,7 +7,9 @@ objects, each the root of a tree of
 - ``Primitive`` leaves: the kind, the evaluated shape arguments, the colour,
   the affine matrix from the primitive's unit space (the product of the
   transformations above it, up to the nearest shared subtree), the facet
-  tolerance in the primitive's own units, and its path;
+  tolerance in the units of that subtree, the shape of the stretch above the
+  subtree (the facet counts depend on it: castor.primitives.facets), and its
+  path;
 - ``Boolean`` nodes: the operator and the operands;
 - ``Shared`` nodes: the subtree of a named object, made once for each set of
   parameter values and tolerance it reads and referenced from every place that
@@ -42,7 +44,11 @@ class Primitive:
     shape: tuple[float, ...]  # the arguments after the colour
     colour: tuple[float, float, float]
     matrix: Matrix
-    tolerance: float  # facet tolerance in the primitive's own units
+    tolerance: float  # facet tolerance in the units its matrix maps into
+    # how those units are stretched on the way to the scene's, up to a uniform
+    # scale (folded into the tolerance) and a rotation: a 3x3 matrix row by row
+    # (facets.stretch_above), None when not at all
+    metric: tuple[float, ...] | None
     path: str  # from the nearest shared subtree down: "U2!cy"
     location: Location = field(compare=False)
 
@@ -181,6 +187,8 @@ def _feed(digest, node: Node) -> None:
             update(struct.pack(f"<{len(node.shape) + 4}d", *node.shape, *node.colour,
                                node.tolerance))
             update(_PACK(*node.matrix))
+            if node.metric is not None:
+                update(b"M" + struct.pack("<9d", *node.metric))
         elif kind is Boolean:
             update(f"B{node.op}{len(node.operands)}".encode())
             stack.extend(reversed(node.operands))
@@ -204,7 +212,9 @@ def dump(frame: Frame) -> str:
             m = "" if node.matrix == IDENTITY else " @m(" + ", ".join(map(number, node.matrix)) + ")"
             shape = "" if not node.shape else ", " + ", ".join(map(number, node.shape))
             colour = ", ".join(map(number, node.colour))
-            lines.append(f"{pad}{label}{node.path}{m} !{node.kind}({colour}{shape}) t={node.tolerance:g}")
+            stretch = "" if node.metric is None else " s=(" + ", ".join(map(number, node.metric)) + ")"
+            lines.append(f"{pad}{label}{node.path}{m} !{node.kind}({colour}{shape}) "
+                         f"t={node.tolerance:g}{stretch}")
         elif isinstance(node, Boolean):
             lines.append(f"{pad}{label}${node.op}")
             for operand in node.operands:

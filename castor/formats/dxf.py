@@ -87,6 +87,11 @@ def _sheet_items(msp, sheet, items, layer):
             text.set_placement((x, y), align=align)
 
 
+def _tidy(value: float) -> float:
+    """A coordinate of the extents, rounded to 1e-9 m (-0.0 written as 0)."""
+    return round(float(value), 9) + 0.0
+
+
 def export_drawing(sheet) -> bytes:
     """The sheet as a DXF (R2010) document's bytes."""
     import ezdxf
@@ -137,6 +142,11 @@ def export_drawing(sheet) -> bytes:
             continue  # the DIMENSION entities stand for them
         doc.layers.add(group.name)
         _sheet_items(msp, sheet, group.items, group.name)
+    # the header's extents: the sheet's paper, in metres, to the nanometre (the
+    # coordinates' last bits of rounding, -6.999999999999999, are no size)
+    (x0, y0), (x1, y1) = sheet.to_metres(np.array([[0.0, 0.0], [sheet.width, sheet.height]])).tolist()
+    msp.reset_extents((_tidy(min(x0, x1)), _tidy(min(y0, y1)), 0.0),
+                      (_tidy(max(x0, x1)), _tidy(max(y0, y1)), 0.0))
     stream = io.StringIO()
     doc.write(stream)
     return stream.getvalue().encode("utf-8")

@@ -379,6 +379,10 @@ class Parser:
             except UnexpectedInput as exc:
                 error, head, rest = _syntax_error(exc, chunk, self.builder.tables)
                 yield error
+                defined = _DEFINED.match(chunk.text)
+                if head is None and defined is not None:
+                    # its uses say why it is missing, as after any faulty definition
+                    self.builder.tables.broken.add(defined.group(1))
                 if head is not None and id(chunk) not in patched:
                     patched.add(id(head))
                     rest = [head] + rest
@@ -511,6 +515,8 @@ def _describe_found(token: Token) -> str:
 
 
 _COMMENT = re.compile(r"/\*(?:.|\n)*?\*/|//[^\n]*")
+# an object definition (its name is lower case), after any comments
+_DEFINED = re.compile(r"(?:\s|/\*(?:.|\n)*?\*/|//[^\n]*)*([a-z][A-Za-z0-9_]*)\s*=(?!=)")
 
 
 def _code_before(text: str, pos: int) -> str:

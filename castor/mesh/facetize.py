@@ -1,7 +1,8 @@
 """Facetize an evaluated CSG tree (castor.csg.tree) into closed polygon meshes:
 the stage's entry point.
 
-Each primitive's mesh is built once per kind, shape and facet tolerance and
+Each primitive's mesh is built once per kind, shape and facet counts (which
+the primitive chooses from its transformation and the tolerance) and
 instanced (instances); a shared subtree is built once per key and reused by
 moving it, in this process (the key is its content, so every process
 agrees). Booleans go to the engine (booleans); the triangles that come back,
@@ -18,7 +19,6 @@ from dataclasses import dataclass
 from castor.csg import tree
 from castor.csg.paths import Path
 from castor.diagnostics import GeometryError, LimitError
-from castor.language.vocabulary import PRIMITIVES
 from castor.mesh import adapter, booleans, instances, memory, merge, primitives, provenance
 from castor.mesh.caches import PROCESS
 from castor.mesh.frame import (FaceSurfaces, Frame, Origin, compact, curved_origins,
@@ -147,12 +147,13 @@ class Facetizer:
         return result
 
     def _primitive(self, leaf: tree.Primitive) -> Solid:
-        key = (leaf.kind, leaf.shape, leaf.tolerance if PRIMITIVES[leaf.kind].curved else None)
+        facets = primitives.facet_counts(leaf)
+        key = (leaf.kind, leaf.shape, facets)
         cached = self.caches.templates.get(key)
         if cached is None:
-            estimate = primitives.estimate_triangles(leaf.kind, leaf.shape, leaf.tolerance)
+            estimate = primitives.estimate_triangles(leaf.kind, leaf.shape, facets)
             self._check_count(estimate, leaf)
-            mesh = primitives.build(leaf.kind, leaf.shape, leaf.tolerance)
+            mesh = primitives.build(leaf.kind, leaf.shape, facets)
             try:
                 template = instances.template(mesh)
             except adapter.EngineError as exc:
@@ -184,7 +185,8 @@ def tree_figures(scene: tree.Frame) -> tuple[int, int]:
         nonlocal booleans
         kind = type(node)
         if kind is tree.Primitive:
-            return primitives.estimate_triangles(node.kind, node.shape, node.tolerance)
+            return primitives.estimate_triangles(node.kind, node.shape,
+                                                 primitives.facet_counts(node))
         if kind is tree.Boolean:
             booleans += 1
             total = sum(count(o) for o in node.operands)

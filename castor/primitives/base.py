@@ -4,7 +4,8 @@ One ``Primitive`` holds everything a stage needs to know about one kind of
 solid (LANGUAGE.md §4.1): how it is written (name, arguments, coordinate
 pairs), how its values are checked, its unit box (the evaluator's reach
 check, the ray tracer's boxes), whether its facets depend on the tolerance,
-how it becomes triangles (and which of its faces are flat, which facets of a
+how many facets it needs under a given transformation and tolerance, how it
+becomes triangles (and which of its faces are flat, which facets of a
 curved surface), how many triangles that will be, and how a ray meets it.
 The parser, the evaluator, the facetizer, the ray tracer and the editor files
 read it; none keeps a list of its own.
@@ -44,7 +45,8 @@ class Primitive(NamedTuple):
     """One kind of primitive, as every stage reads it.
 
     ``shape`` below is the tuple of its evaluated arguments after the colour,
-    already checked; ``tolerance`` the facet tolerance in its own units."""
+    already checked; ``facets`` the tuple of facet counts ``facets(...)``
+    chose (empty for a primitive without curved faces)."""
 
     place: int  # its row in LANGUAGE.md's table of primitives (§4.1), to list them in order
     name: str  # as written after '!'
@@ -55,10 +57,19 @@ class Primitive(NamedTuple):
     curved: bool  # it has curved faces, so its facets depend on the tolerance
     check: Callable | None  # check(shape, location, path): raise GeometryError
     box: Callable[[tuple], Box]  # box(shape): the unit primitive's (low, high)
-    mesh: Callable[[tuple, float], Mesh]  # mesh(shape, tolerance)
-    triangles: Callable[[tuple, float], int]  # triangles(shape, tolerance), before building
+    mesh: Callable[[tuple, tuple], Mesh]  # mesh(shape, facets)
+    triangles: Callable[[tuple, tuple], int]  # triangles(shape, facets), before building
     spans: Callable  # spans(shape, o, d) -> (t, face): pictures/trace.py's spans of rays
     normal: Callable  # normal(shape, p, face) -> (n, 3) outward normals, unnormalised
+    # facets(shape, linear, tolerance) -> tuple of ints: the facet counts that
+    # keep every point of the surface within ``tolerance`` of the facets after
+    # the linear map ``linear`` (3x3, row by row: facets.Linear) from its unit
+    # space to the tolerance's units; None for a primitive without curved faces
+    facets: Callable[[tuple, tuple, float], tuple[int, ...]] | None = None
+
+    def facet_counts(self, shape: tuple, linear: tuple, tolerance: float) -> tuple[int, ...]:
+        """The facet counts its mesh is built with (what its template is keyed by)."""
+        return () if self.facets is None else self.facets(shape, linear, tolerance)
 
     @property
     def pairs(self) -> bool:

@@ -7,8 +7,8 @@ import numpy as np
 
 from castor.primitives import rays
 from castor.primitives.base import Primitive
-from castor.primitives.cylinder import ROUND
-from castor.primitives.facets import circle_segments, spire
+from castor.primitives.cylinder import ROUND, facets
+from castor.primitives.facets import spire
 
 INF = np.inf
 
@@ -63,6 +63,7 @@ def normal(shape, p, face):
 PRIMITIVE = Primitive(
     place=40, name="co", title="cone", solid="base of radius 1 in z = 0, apex (0, 0, 1)",
     arguments=(), pair_names=None, curved=True, check=None, box=lambda shape: ROUND,
-    mesh=lambda shape, tolerance: spire(circle_segments(1.0, tolerance), surface=0),
-    triangles=lambda shape, tolerance: 4 * circle_segments(1.0, tolerance),
-    spans=spans, normal=normal)
+    mesh=lambda shape, facets: spire(facets[0], surface=0),
+    triangles=lambda shape, facets: 4 * facets[0],
+    # as a cylinder's: each circle of the side shrinks towards the apex, in its xy plane
+    spans=spans, normal=normal, facets=facets)

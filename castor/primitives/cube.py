@@ -13,7 +13,7 @@ _PLANES = (np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [
 _UNIT = ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))
 
 
-def mesh(shape: tuple, tolerance: float) -> Mesh:
+def mesh(shape: tuple, facets: tuple) -> Mesh:
     vertices = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
                          [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], dtype=np.float64)
     corners = np.array([[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4],
@@ -28,5 +28,5 @@ def spans(shape, o, d):
 PRIMITIVE = Primitive(
     place=10, name="cu", title="cube", solid="the unit cube [0,1]^3", arguments=(), pair_names=None,
     curved=False, check=None, box=lambda shape: _UNIT, mesh=mesh,
-    triangles=lambda shape, tolerance: 12, spans=spans,
+    triangles=lambda shape, facets: 12, spans=spans,
     normal=rays.halfspace_normal(_PLANES[0]))

@@ -7,7 +7,7 @@ import numpy as np
 
 from castor.primitives import rays
 from castor.primitives.base import Primitive
-from castor.primitives.facets import circle_segments, column
+from castor.primitives.facets import circle_segments, column, plane_stretch, quantize
 
 INF = np.inf
 ROUND = ((-1.0, -1.0, 0.0), (1.0, 1.0, 1.0))  # the box of a unit disc swept or coned up
@@ -30,6 +30,13 @@ def spans(shape, o, d):
                        np.where(s1 < t2, f1 + 1, 0))
 
 
+def facets(shape, linear, tolerance) -> tuple[int]:
+    """(segments,): those of its circles, as stretched in their xy plane. A
+    point of the side and the facet beside it differ across, in the plane of
+    the circle through the point, so a stretch along the axis changes no gap."""
+    return (circle_segments(1.0, quantize(tolerance / plane_stretch(linear))),)
+
+
 def normal(shape, p, face):
     n = np.zeros_like(p)
     side = face == 0
@@ -42,6 +49,6 @@ def normal(shape, p, face):
 PRIMITIVE = Primitive(
     place=30, name="cy", title="cylinder", solid="radius 1 about the z axis, from z = 0 to z = 1",
     arguments=(), pair_names=None, curved=True, check=None, box=lambda shape: ROUND,
-    mesh=lambda shape, tolerance: column(circle_segments(1.0, tolerance), surface=0),
-    triangles=lambda shape, tolerance: 4 * circle_segments(1.0, tolerance),
-    spans=spans, normal=normal)
+    mesh=lambda shape, facets: column(facets[0], surface=0),
+    triangles=lambda shape, facets: 4 * facets[0],
+    spans=spans, normal=normal, facets=facets)

@@ -140,6 +140,6 @@ def normal(shape, p, face):
 PRIMITIVE = Primitive(
     place=90, name="ex", title="extrusion", solid="a simple polygon in z = 0 swept to z = 1",
     arguments=(), pair_names=("x", "y"), curved=False, check=check, box=box,
-    mesh=lambda shape, tolerance: extrusion(shape),
-    triangles=lambda shape, tolerance: 4 * (len(shape) // 2),
+    mesh=lambda shape, facets: extrusion(shape),
+    triangles=lambda shape, facets: 4 * (len(shape) // 2),
     spans=spans, normal=normal)

@@ -33,6 +33,6 @@ def spans(shape, o, d):
 PRIMITIVE = Primitive(
     place=60, name="pr", title="prism", solid="a regular N-gon of circumradius 1 swept from z = 0 to 1",
     arguments=(SIDES,), pair_names=None, curved=False, check=check_sides,
-    box=lambda shape: ROUND, mesh=lambda shape, tolerance: column(int(shape[0])),
-    triangles=lambda shape, tolerance: 4 * int(shape[0]),
+    box=lambda shape: ROUND, mesh=lambda shape, facets: column(int(shape[0])),
+    triangles=lambda shape, facets: 4 * int(shape[0]),
     spans=spans, normal=rays.polygon_normal(False))

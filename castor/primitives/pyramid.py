@@ -20,6 +20,6 @@ def spans(shape, o, d):
 PRIMITIVE = Primitive(
     place=70, name="py", title="pyramid", solid="a regular N-gon base of circumradius 1, apex (0, 0, 1)",
     arguments=(SIDES,), pair_names=None, curved=False, check=check_sides,
-    box=lambda shape: ROUND, mesh=lambda shape, tolerance: spire(int(shape[0])),
-    triangles=lambda shape, tolerance: 4 * int(shape[0]),
+    box=lambda shape: ROUND, mesh=lambda shape, facets: spire(int(shape[0])),
+    triangles=lambda shape, facets: 4 * int(shape[0]),
     spans=spans, normal=rays.polygon_normal(True))

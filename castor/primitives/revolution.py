@@ -11,7 +11,7 @@ import numpy as np
 from castor.diagnostics import Location
 from castor.primitives import rays
 from castor.primitives.base import FLAT, Mesh, Primitive
-from castor.primitives.facets import circle_segments, joined, signed_volume
+from castor.primitives.facets import circle_segments, joined, plane_stretch, quantize, signed_volume
 
 INF = np.inf
 
@@ -78,8 +78,13 @@ def revolution(values: tuple, segments: int) -> Mesh:
     return mesh
 
 
-def _segments(shape: tuple, tolerance: float) -> int:
-    return circle_segments(max(shape[0::2]) if shape else 0.0, tolerance)
+def facets(shape: tuple, linear, tolerance: float) -> tuple[int]:
+    """(segments,): those of its largest ring, as stretched in its xy plane.
+    The profile is straight segments, kept as they are: between two rings a
+    facet differs from the surface only across, along a ring's chord, which
+    lies in an xy plane whatever the map does along z."""
+    radius = max(shape[0::2]) if shape else 0.0
+    return (circle_segments(radius, quantize(tolerance / plane_stretch(linear))),)
 
 
 def box(shape: tuple):
@@ -145,6 +150,6 @@ def normal(shape, p, face):
 PRIMITIVE = Primitive(
     place=95, name="rv", title="revolution", solid="a simple profile (r, z), r >= 0, turned about z",
     arguments=(), pair_names=("r", "z"), curved=True, check=check, box=box,
-    mesh=lambda shape, tolerance: revolution(shape, _segments(shape, tolerance)),
-    triangles=lambda shape, tolerance: 2 * (len(shape) // 2) * _segments(shape, tolerance),
-    spans=spans, normal=normal)
+    mesh=lambda shape, facets: revolution(shape, facets[0]),
+    triangles=lambda shape, facets: 2 * (len(shape) // 2) * facets[0],
+    spans=spans, normal=normal, facets=facets)

@@ -9,7 +9,8 @@ import numpy as np
 
 from castor.primitives import rays
 from castor.primitives.base import Mesh, Primitive
-from castor.primitives.facets import joined, quads, ring, sphere_segments
+from castor.primitives.facets import (joined, largest_stretch, plane_stretch, quads, quantize,
+                                     ring, sphere_segments)
 
 INF = np.inf
 
@@ -39,6 +40,17 @@ def sphere(around: int, rings: int) -> Mesh:
                   np.zeros(len(side.surfaces), np.int64))
 
 
+def facets(shape, linear, tolerance) -> tuple[int, int]:
+    """(around, rings): the rings of latitude as many as the largest stretch
+    needs (a meridian of an ellipsoid is stretched by up to that), the
+    segments around as many as the largest circle of latitude, the equator
+    stretched in its xy plane, needs (facets.sphere_segments: the bound)."""
+    largest = largest_stretch(linear)
+    flat = plane_stretch(linear)
+    return sphere_segments(quantize(tolerance / largest), quantize(tolerance / flat),
+                           flat / largest)
+
+
 def spans(shape, o, d):
     a = np.einsum("ij,ij->i", d, d)
     b = 2 * np.einsum("ij,ij->i", o, d)
@@ -56,6 +68,6 @@ PRIMITIVE = Primitive(
     place=20, name="sp", title="sphere", solid="the sphere of radius 1 centred at the origin",
     arguments=(), pair_names=None, curved=True, check=None,
     box=lambda shape: ((-1.0,) * 3, (1.0,) * 3),
-    mesh=lambda shape, tolerance: sphere(*sphere_segments(tolerance)),
-    triangles=lambda shape, tolerance: 2 * math.prod(sphere_segments(tolerance)),
-    spans=spans, normal=normal)
+    mesh=lambda shape, facets: sphere(*facets),
+    triangles=lambda shape, facets: 2 * math.prod(facets),
+    spans=spans, normal=normal, facets=facets)

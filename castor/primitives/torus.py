@@ -9,7 +9,8 @@ import numpy as np
 
 from castor.diagnostics import GeometryError, Location
 from castor.primitives.base import Argument, Mesh, Primitive
-from castor.primitives.facets import circle_segments, quads
+from castor.primitives.facets import (circle_segments, largest_stretch, plane_stretch, quads,
+                                     quantize)
 
 INF = np.inf
 
@@ -21,9 +22,17 @@ def check(shape: tuple, location: Location, path: object) -> None:
                             f"not {k:g}", location)
 
 
-def segments(k: float, tolerance: float) -> tuple[int, int]:
-    """(around the axis, around the tube)."""
-    return circle_segments(1.0 + k, tolerance / 2), circle_segments(k, tolerance / 2)
+def facets(shape, linear, tolerance) -> tuple[int, int]:
+    """(around the axis, around the tube), each circle within half the
+    tolerance: the circles about the axis (radius up to 1 + K) as stretched in
+    the xy plane, the tube's circles (radius K, each in an upright plane
+    through the axis) by the largest stretch of any such plane, which is the
+    largest stretch of all (every direction lies in one of them). A point of
+    the torus and the point of its quad at the same angles differ by a gap of
+    the first circle plus a gap of the second, so the two halves add up."""
+    k = shape[0]
+    return (circle_segments(1.0 + k, quantize(tolerance / plane_stretch(linear)) / 2),
+            circle_segments(k, quantize(tolerance / largest_stretch(linear)) / 2))
 
 
 def torus(k: float, around: int, tube: int) -> Mesh:
@@ -93,6 +102,6 @@ PRIMITIVE = Primitive(
     check=check,
     box=lambda shape: ((-1 - shape[0], -1 - shape[0], -shape[0]),
                        (1 + shape[0], 1 + shape[0], shape[0])),
-    mesh=lambda shape, tolerance: torus(shape[0], *segments(shape[0], tolerance)),
-    triangles=lambda shape, tolerance: 2 * math.prod(segments(shape[0], tolerance)),
-    spans=spans, normal=normal)
+    mesh=lambda shape, facets: torus(shape[0], *facets),
+    triangles=lambda shape, facets: 2 * math.prod(facets),
+    spans=spans, normal=normal, facets=facets)

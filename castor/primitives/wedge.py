@@ -16,7 +16,7 @@ _PLANES = (np.array([[0, 0, -1], [-1, 0, 0], [0, -1, 0], [0, 1, 0], [1, 0, 1]],
 _UNIT = ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))
 
 
-def mesh(shape: tuple, tolerance: float) -> Mesh:
+def mesh(shape: tuple, facets: tuple) -> Mesh:
     vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 0, 1],  # the triangle at y = 0
                          [0, 1, 0], [1, 1, 0], [0, 1, 1]], dtype=np.float64)  # at y = 1
     # faces, counter-clockwise from outside, numbered as the planes above
@@ -37,5 +37,5 @@ PRIMITIVE = Primitive(
     place=75, name="we", title="wedge",
     solid="the triangle (0, 0), (1, 0), (0, 1) of the xz plane swept along y from 0 to 1",
     arguments=(), pair_names=None, curved=False, check=None, box=lambda shape: _UNIT,
-    mesh=mesh, triangles=lambda shape, tolerance: 8, spans=spans,
+    mesh=mesh, triangles=lambda shape, facets: 8, spans=spans,
     normal=rays.halfspace_normal(_PLANES[0]))
