@@ -1,0 +1,46 @@
+"""Coincident twins (issue 18, item 4; LANGUAGE.md §8): one primitive at one
+place in two operands of a boolean, both inside results of the engine. The
+engine gives both the same ID and placement, so castor must tell them apart
+itself, or a cut face is named after (and coloured as) the wrong operand."""
+
+import numpy as np
+
+from meshcheck import _newell, frames_of, regularity_defects
+
+
+def _on_plane(frame, axis: int, value: float, normal_sign: float):
+    """Polygons lying on the plane ``x[axis] = value`` whose normal points
+    along ``normal_sign`` of that axis."""
+    found = []
+    for p in frame.polygons:
+        n = _newell(p.points)
+        if (np.allclose(p.points[:, axis], value, atol=1e-9)
+                and n[axis] * normal_sign > 0.5 * np.linalg.norm(n)):
+            found.append(p)
+    return found
+
+
+def test_a_cut_face_of_a_twin_inside_an_engine_result_has_the_cutters_path():
+    """The unit cube of D2.D1 stands where the unit cube D1.U3 stands, each
+    inside a result of the engine; the faces the cutter leaves inside the big
+    cube (on x, y, z = 1, facing the cavity) are D2.D1's."""
+    (frame,) = frames_of("C = 0.083; > $D($U[I = 2, 0, -1](@h(1 + abs(I) * 0.25) "
+                         "!cu(C, 0.2, 1 - C)), $D(!cu(0.3, 0.5, 0.9), @rz(15) "
+                         "!cu(0.9, 0.9, 0.85)));\n")
+    cut = [p for axis in range(3) for p in _on_plane(frame, axis, 1.0, -1.0)]
+    assert cut
+    assert {(p.path, p.colour) for p in cut} == {("D2.D1!cu", (0.3, 0.5, 0.9))}
+    assert regularity_defects(frame) == []
+
+
+def test_twins_in_a_union_cut_from_a_union_name_the_cutter():
+    """The subtrahend's cube turned by 90° and moved (x from -1 to 0, y from
+    0.6 to 1.6) stands where the minuend's D1.U2.U1 stands, and only touches
+    the first cube: what is left is the first cube, whose face on x = 0 comes
+    from it or from the cutter's faces, never from the cube cut away."""
+    (frame,) = frames_of("x = $D($U(!cu(0.6, 0.2, 0.1), $U[I = 1, 1, 0.5](@rz(I * 90) "
+                         "@t(0.6, 0, 0.) !cu(0, 0.5, 1))), $U[I = 3, 3, 1](@rz(I * 30) "
+                         "@t(6.0e-1, 0, 0.) $U(!cu(0.6, 0.2, 0.1), !cu(0.6, 0.2, 0.1)))); > x;\n")
+    assert abs(frame.volume() - 1.0) < 1e-12
+    assert not any("D1.U2" in p.path for p in frame.polygons)
+    assert frame.colours() == {(0.6, 0.2, 0.1)}
