@@ -347,3 +347,21 @@ def test_no_inner_sheet_among_thin_shells():
              "!ex(0, 0.5, 0, 0,0, 1,0, 0.5,0.8)));\n> p;\n")
     (frame,) = frames_of(scene)
     assert regularity_defects(frame) == []
+
+
+@pytest.mark.parametrize("scene", [
+    # issue 18 item 5: rotated cubes cut again and again leave vertices a few
+    # 1e-12 apart (more than the old weld, less than anything real)
+    "ANGLE = 0.289; z = $U[J = 0, 0.6000000000000001, 0.1](@rz(J * 30) @rx(30) "
+    "@rx(ANGLE * 45 + 45.) !cu(0.2, 0.8, 0.2)); > z;",
+    # a row of touching cubes, mirrored and turned about a slanted axis: a run
+    # of flat triangles along one edge, whose flips made flat twins
+    "X1 = 0.75; T = 0.3; z = @r(1, 1e0, 1, 356.731) @h(-1, 1, X1 ^ 2 * 0.25 + 0.4) "
+    "@t(-0.5, 0, -0.039) @t(0.226, .6 / (abs(T) + 1), -0.5) $U[K = 0., 1, 0.1]"
+    "(@t(K * 1, 0, 0) !cu(0.2, 0.8, 0.2)); > z;",
+])
+def test_no_polygon_of_zero_area_among_rotated_and_mirrored_cubes(scene):
+    (frame,) = frames_of(scene + "\n")
+    assert [d for p in frame.polygons for d in polygon_defects(p)] == []
+    assert regularity_defects(frame) == []
+    check_closed(frame)
