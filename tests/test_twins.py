@@ -44,3 +44,30 @@ def test_twins_in_a_union_cut_from_a_union_name_the_cutter():
     assert abs(frame.volume() - 1.0) < 1e-12
     assert not any("D1.U2" in p.path for p in frame.polygons)
     assert frame.colours() == {(0.6, 0.2, 0.1)}
+
+
+def test_the_oracle_sees_a_cut_face_named_after_its_twin():
+    """The oracle judges which way a polygon faces: a face of a use cut away
+    an odd number of times faces inward. A polygon of the cutter's face named
+    after the minuend's twin (the fault above) faces the other way."""
+    import oracle
+
+    cube = oracle.Prim("cu", (0.1, 0.2, 0.9), ())
+    twin = oracle.Prim("cu", (0.3, 0.5, 0.9), ())
+    scene = oracle.Scene([("frame", [oracle.Bool("D", (
+        oracle.Bool("U", (oracle.Tf((("h", (1.5,)),), cube), cube)),
+        oracle.Bool("D", (twin, oracle.Tf((("rz", (15.0,)),), twin)))))])])
+    ((solids, uses),) = oracle.Oracle(scene).frames()
+    by_path = {u.path: u for u in uses}
+    assert set(by_path) == {"D1.U1!cu", "D1.U2!cu", "D2.D1!cu", "D2.D2!cu"}
+    # the cut face on x = 1, facing -x (into the cavity)
+    points = np.array([[1.0, 0, 0], [1, 0, 1], [1, 1, 1], [1, 1, 0]])
+    assert oracle.lies_on_face(points, by_path["D1.U2!cu"], 1e-9)
+    assert not oracle.faces_the_right_way(points, by_path["D1.U2!cu"], 1e-9, 0)
+    assert oracle.faces_the_right_way(points, by_path["D2.D1!cu"], 1e-9,
+                                      oracle.cut_parity("D2.D1!cu"))
+    assert oracle.cut_parity("(x).D2.U1(a).D2!cu") == 0
+    assert oracle.cut_parity("(x).D1.U3!cu") == 0 and oracle.cut_parity("D2!cu") == 1
+    # and castor names it after the cutter
+    (frame,) = oracle.castor_frames(oracle.scene_text(scene))[0]
+    assert oracle.judge(frame, solids, uses) == []
