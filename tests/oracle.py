@@ -867,15 +867,16 @@ def main() -> None:
         batch = scenes(min(args.batch, args.cases - start), args.seed * 1_000_003 + start,
                        args.wide)
         frames += sum(s.frames() for s in batch)
-        failures += check_scenes(batch, sheets=not args.no_sheets, exact=args.exact)
+        found = check_scenes(batch, sheets=not args.no_sheets, exact=args.exact)
+        if args.save:  # as they are found: a long run stopped early keeps them
+            os.makedirs(args.save, exist_ok=True)
+            for k, (scene, number, problems) in enumerate(found, len(failures)):
+                with open(os.path.join(args.save, f"failure-{k:03d}.cas"), "w") as f:
+                    f.write("".join(f"// frame {number}: {p}\n" for p in problems))
+                    f.write(scene_text(scene))
+        failures += found
         print(f"{start + len(batch)} scenes, {frames} frames, {len(failures)} failing frames, "
               f"{time.time() - started:.0f} s", file=sys.stderr)
-    if args.save:
-        os.makedirs(args.save, exist_ok=True)
-        for k, (scene, number, problems) in enumerate(failures):
-            with open(os.path.join(args.save, f"failure-{k:03d}.cas"), "w") as f:
-                f.write("".join(f"// frame {number}: {p}\n" for p in problems))
-                f.write(scene_text(scene))
     kinds: dict[str, list] = {}
     for scene, number, problems in failures:
         for p in problems:
