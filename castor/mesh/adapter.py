@@ -53,11 +53,12 @@ def reserve_ids(count: int) -> int:
     return int(manifold3d.Manifold.reserve_ids(count))
 
 
-def with_run_ids(manifold: Manifold, run_ids: np.ndarray) -> Manifold:
+def with_run_ids(manifold: Manifold, run_ids: np.ndarray) -> Manifold | None:
     """The same solid, triangle for triangle, whose runs carry the engine IDs
     ``run_ids`` (one per run of ``to_arrays(manifold)``); each run keeps its
     transformation and face numbers. (The engine keeps a mesh's runs when it
-    is given them: a round trip through its mesh.)"""
+    is given them: a round trip through its mesh.) None if the engine would
+    not keep the mesh as it is."""
     gl = manifold.to_mesh64()
     merge_from = np.array(gl.merge_from_vert, dtype=np.uint64)
     copy = manifold3d.Manifold(manifold3d.Mesh64(
@@ -70,8 +71,11 @@ def with_run_ids(manifold: Manifold, run_ids: np.ndarray) -> Manifold:
         run_transform=np.array(gl.run_transform, dtype=np.float64),
         run_flags=np.array(gl.run_flags, dtype=np.uint8),
         face_id=np.array(gl.face_id, dtype=np.uint64)))
-    if copy.status() != manifold3d.Error.NoError:
-        raise EngineError(str(copy.status()))
+    if (copy.status() != manifold3d.Error.NoError or copy.num_tri() != manifold.num_tri()
+            or copy.num_vert() != manifold.num_vert()):
+        # the engine tidies a mesh it is given (it was seen to collapse an
+        # edge of a result and lose volume): then there is no such copy
+        return None
     return copy
 
 

@@ -88,7 +88,12 @@ def _renamed_runs(solid: Solid, wanted: set) -> Solid:
                     if key in new_ids:
                         ids[r] = new_ids[key]
                 if np.any(ids != mesh.run_ids):
-                    part = adapter.with_run_ids(part, ids)
+                    renamed = adapter.with_run_ids(part, ids)
+                    if renamed is None:
+                        # the engine would change the part: it keeps its IDs
+                        # (and either twin's name may be given to both)
+                        return solid
+                    part = renamed
         parts.append(part)
     return Solid(tuple(parts), solid.origins.renamed(new_ids))
 
