@@ -86,3 +86,17 @@ def test_twins_whose_result_the_engine_would_tidy_keep_their_volume():
         "> $U($U(!cu(0.5, 0.5, 1.0), !cu(0.0, 1.0, 0.5)), $U(!cu(0.5, 1.0, 0.0), s));\n")
     assert abs(frame.volume() - 2.887949297595628) < 1e-9
     assert regularity_defects(frame) == []
+
+
+def test_twins_whose_result_the_engine_would_move_keep_their_volume():
+    """Found by the oracle's wide generator (seed 18): given this result
+    back, the engine kept its counts but moved vertices (volume 1.01055 to
+    1.01057); the copy is compared corner for corner, and refused."""
+    (frame,) = frames_of(
+        "s = $U($U(@rx(113.23) !py(0.5, 0.0, 0.0, 3.0), @h(1.5) !cu(0.0, 0.0, 0.0)), "
+        "$U(@rx(113.23) !py(0.0, 0.0, 1.0, 3.0), $D($U(@r(1.0, 1.0, 0.3, 356.731) "
+        "!cu(0.5, 1.0, 0.0), @r(1.0, 1.0, 0.0, 60.0) !cu(0.0, 0.0, 0.5)), "
+        "@r(1.0, 1.0, 0.3, 356.731) !cu(0.5, 0.0, 0.0))));\n> s;\n")
+    assert abs(frame.volume() - 4.198071062911453) < 1e-9
+    assert abs(frame.area() - 18.832862745191008) < 1e-9  # the oracle's
+    assert regularity_defects(frame) == []

@@ -72,11 +72,25 @@ def with_run_ids(manifold: Manifold, run_ids: np.ndarray) -> Manifold | None:
         run_flags=np.array(gl.run_flags, dtype=np.uint8),
         face_id=np.array(gl.face_id, dtype=np.uint64)))
     if (copy.status() != manifold3d.Error.NoError or copy.num_tri() != manifold.num_tri()
-            or copy.num_vert() != manifold.num_vert()):
+            or copy.num_vert() != manifold.num_vert()
+            or abs(copy.volume() - manifold.volume()) > 1e-12 * max(1.0, abs(manifold.volume()))
+            or not np.array_equal(_corner_rows(gl), _corner_rows(copy.to_mesh64()))):
         # the engine tidies a mesh it is given (it was seen to collapse an
-        # edge of a result and lose volume): then there is no such copy
+        # edge of a result and lose volume, and to move vertices): then
+        # there is no such copy
         return None
     return copy
+
+
+def _corner_rows(gl) -> np.ndarray:
+    """A mesh's triangles as rows of their corners' coordinates (corners in
+    order within a row, rows sorted): equal for the same triangles in any
+    order and numbering. (Which way each turns is left to the volume.)"""
+    corners = np.asarray(gl.vert_properties, dtype=np.float64)[:, :3][
+        np.asarray(gl.tri_verts, dtype=np.int64)]  # (T, 3, 3)
+    rows = np.sort(corners.view([("", np.float64)] * 3).reshape(len(corners), 3), axis=1)
+    rows = rows.view(np.float64).reshape(len(corners), 9)
+    return rows[np.lexsort(rows.T[::-1])]
 
 
 # --- out of the engine
