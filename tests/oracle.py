@@ -11,9 +11,16 @@ order. Each frame is then judged: volume, box and area against the oracle;
 closed and outward; every polygon planar, convex, of positive area, winding
 once; no shell of zero volume, no sheet (a polygon with the same side on both
 faces); every path names a primitive of the frame, every polygon lies on a
-face of that primitive and has its colour.
+face of that primitive, faces as that face does (outward, or inward where
+the path cuts the primitive away an odd number of times) and has its colour.
 
-    python tests/oracle.py --cases 3000 [--seed S] [--batch 40]
+    python tests/oracle.py --cases 3000 [--seed S] [--batch 40] [--wide] [--exact]
+
+``--wide`` mixes in what the random choices above almost never make
+(``WideGenerator``): coincident twins (one primitive at one place in two
+operands, each inside a boolean of its own, in colours of their own) and
+rows of touching cubes turned about slanted axes by angles that are not
+multiples of 90°, mirrored, with a pyramid or an extrusion beside them.
 
 prints the figures and the smallest reproduction of each kind of failure.
 """
