@@ -11,9 +11,16 @@ order. Each frame is then judged: volume, box and area against the oracle;
 closed and outward; every polygon planar, convex, of positive area, winding
 once; no shell of zero volume, no sheet (a polygon with the same side on both
 faces); every path names a primitive of the frame, every polygon lies on a
-face of that primitive and has its colour.
+face of that primitive, faces as that face does (outward, or inward where
+the path cuts the primitive away an odd number of times) and has its colour.
 
-    python tests/oracle.py --cases 3000 [--seed S] [--batch 40]
+    python tests/oracle.py --cases 3000 [--seed S] [--batch 40] [--wide] [--exact]
+
+``--wide`` mixes in what the random choices above almost never make
+(``WideGenerator``): coincident twins (one primitive at one place in two
+operands, each inside a boolean of its own, in colours of their own) and
+rows of touching cubes turned about slanted axes by angles that are not
+multiples of 90°, mirrored, with a pyramid or an extrusion beside them.
 
 prints the figures and the smallest reproduction of each kind of failure.
 """
@@ -24,6 +31,7 @@ import argparse
 import math
 import os
 import random
+import re
 import subprocess
 import sys
 import time
@@ -268,17 +276,55 @@ class Use:
 
 
 def _use(path: str, prim: Prim, matrix: np.ndarray) -> Use:
+    """The use's faces in place, each with its outward normal (moved by the
+    inverse transpose of the matrix, so a mirror keeps it outward)."""
     faces = []
-    for loop in primitive_faces(prim):
+    normals = np.linalg.inv(matrix[:3, :3]).T
+    for loop, outward in zip(primitive_faces(prim), outward_normals(prim)):
         points = loop @ matrix[:3, :3].T + matrix[:3, 3]
-        normal = np.cross(points[1] - points[0], points[2] - points[0])
-        for k in range(2, len(points) - 1):  # a non-degenerate triple
-            if np.linalg.norm(normal) > 1e-9 * np.ptp(points, axis=0).max() ** 2:
-                break
-            normal = np.cross(points[1] - points[0], points[k + 1] - points[0])
+        normal = normals @ outward
         normal /= np.linalg.norm(normal)
         faces.append((normal, float(normal @ points[0]), points))
     return Use(path, tuple(prim.colour), faces)
+
+
+def outward_normals(prim: Prim) -> list[np.ndarray]:
+    """The outward normal of each face of ``primitive_faces(prim)``, in the
+    primitive's own coordinates (its base may turn either way)."""
+    faces = primitive_faces(prim)
+    base = faces[0][:, :2]
+    turn = 1.0 if float(np.sum(base[:, 0] * np.roll(base[:, 1], -1)
+                               - np.roll(base[:, 0], -1) * base[:, 1])) > 0 else -1.0
+    normals = [np.array([0.0, 0.0, -1.0])]
+    if prim.kind == "py":
+        for loop in faces[1:]:
+            normals.append(turn * np.cross(loop[1] - loop[0], loop[2] - loop[0]))
+        return normals
+    normals.append(np.array([0.0, 0.0, 1.0]))
+    for loop in faces[2:]:
+        d = loop[1] - loop[0]
+        normals.append(turn * np.array([d[1], -d[0], 0.0]))
+    return normals
+
+
+def cut_parity(path: str) -> int:
+    """How many times a use is cut away on its path (the second or a later
+    operand of a difference): each turns its faces inside out."""
+    return sum(1 for k in re.findall(r"(?:^|[.)])D(\d+)", path) if int(k) >= 2) % 2
+
+
+def faces_the_right_way(points: np.ndarray, use: Use, tol: float, parity: int) -> bool:
+    """Whether a polygon lying on a face of ``use`` faces as that face does
+    in the result: outward, or inward where the use was cut away."""
+    normal = meshcheck._newell(points)
+    want = -1.0 if parity else 1.0
+    for face_normal, offset, loop in use.faces:
+        if np.abs(points @ face_normal - offset).max() > tol:
+            continue
+        if want * float(normal @ face_normal) > 0 and lies_on_face(points, Use(
+                use.path, use.colour, [(face_normal, offset, loop)]), tol):
+            return True
+    return False
 
 
 def frame_commands(scene: Scene):
@@ -467,6 +513,85 @@ class Generator:
         return scene
 
 
+# --- wider scenes (issue 18): what the generator above almost never made ----
+#
+# Coincident twins: one primitive at one place in two operands of a boolean,
+# each inside a boolean of its own (so both reach the engine inside results
+# whose IDs castor cannot change), in colours of their own. Rows of touching
+# or overlapping solids turned by angles that are not multiples of 90° about
+# slanted axes, mirrored, with a pyramid or an extrusion beside a cube. The
+# generator above picks each primitive, colour and placement at random, so
+# two operands almost never hold the same primitive at one place; its
+# repetitions are rows of 2 or 3; its turns are mostly by 90°, 45°, 30°.
+
+
+class WideGenerator(Generator):
+    """The generator above, with twins and turned rows mixed in."""
+
+    def node(self, depth: int, rep_param: str | None = None):
+        r = self.rng
+        if depth >= 1 and rep_param is None:
+            choice = r.random()
+            if choice < 0.12:
+                return self.coincident_twins(depth)
+            if choice < 0.22:
+                return self.turned_row()
+        return super().node(depth, rep_param)
+
+    def coincident_twins(self, depth: int):
+        """$op($U(P, A), $op2(P', B)): P and P' the same primitive at the same
+        place (colours apart), each beside something else."""
+        r = self.rng
+        twin = self.primitive()
+        steps = self.slanted_steps() if r.random() < 0.5 else self.steps()
+        again = Prim(twin.kind, self.colour(), twin.args)
+        first = Bool("U", (Tf(steps, twin), self.node(depth - 1)))
+        inner = r.choice(["U", "D", "U", "I"])
+        others = self.node(depth - 1)
+        if inner == "I":
+            second = Bool("I", (Tf(steps, again), Tf(steps, Prim("cu", self.colour(), ()))))
+        else:
+            second = Bool(inner, (Tf(steps, again), others))
+        return Bool(r.choice(["U", "D", "D", "I"]), (first, second) if r.random() < 0.7
+                    else (second, first))
+
+    def slanted_steps(self) -> tuple:
+        """A turn about a slanted axis by an angle that is not a multiple of
+        90°, after a mirror or a scale now and then."""
+        r = self.rng
+        steps = []
+        if r.random() < 0.5:
+            steps.append(("h", (r.choice([-1.0, 1.0]), 1.0, r.choice([1.0, 0.5, 0.4 + 0.25 * 0.5625]))))
+        if r.random() < 0.5:
+            steps.append(("t", (self.coordinate(), round(r.uniform(0, 0.6), 3), self.coordinate())))
+        axis = (r.choice([1.0, 0.5, -1.0]), 1.0, r.choice([1.0, 0.3, -1.0]))
+        angle = r.choice([round(r.uniform(-180, 180), 3), 356.731, 13.0, 75.0 + 0.289 * 45])
+        steps.append(("r", axis + (angle,)))
+        return tuple(steps)
+
+    def turned_row(self):
+        """A row of cubes, touching or overlapping, turned about a slanted
+        axis; now and then a pyramid or an extrusion beside it."""
+        r = self.rng
+        param = f"{self.prefix.upper()}W{r.randrange(1000)}"
+        step = r.choice([1.0, 1.0, 0.5, 0.1, 0.25])
+        count = r.choice([3, 4, 6, 11])
+        cube = Prim("cu", self.colour(), ())
+        if r.random() < 0.3:  # each turned about z a little more, then about x
+            member = Tf((("rz", (Param(param, 30.0, 0.0),)), ("rx", (30.0,)),
+                         ("rx", (round(r.uniform(0, 1) * 45 + 45, 3),))), cube)
+        else:
+            member = Tf((("t", (Param(param, step, 0.0), 0.0, 0.0)),), cube)
+        row = Rep("U", param, count, member)
+        if r.random() < 0.4:
+            beside = Prim(r.choice(["py", "ex"]), self.colour(), ())
+            beside = self.primitive() if beside.kind == "ex" else Prim(
+                "py", beside.colour, (float(r.choice([3, 4, 6, 10])),))
+            row = Bool("U", (row, Tf((("t", (r.choice([-1.0, step * count, 0.5]), 0.0, 0.0)),),
+                                     beside)))
+        return Tf(self.slanted_steps(), row)
+
+
 # --- judging a frame --------------------------------------------------------
 
 def lies_on_face(points: np.ndarray, use: Use, tol: float) -> bool:
@@ -609,6 +734,9 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None) -> list[str]:
                             f"{candidates[0].colour}")
         if not any(lies_on_face(p.points, u, tol) for u in candidates):
             problems.append(f"polygon {i} of {p.path} lies on no face of that primitive")
+        elif not any(faces_the_right_way(p.points, u, tol, cut_parity(p.path)) for u in candidates):
+            problems.append(f"polygon {i} of {p.path} faces the other way from that primitive's "
+                            "face: it comes from another use")
     return problems
 
 
@@ -656,9 +784,10 @@ def check_scenes(scenes: list[Scene], sheets: bool = True,
     return failures
 
 
-def scenes(count: int, seed: int) -> list[Scene]:
+def scenes(count: int, seed: int, wide: bool = False) -> list[Scene]:
     rng = random.Random(seed)
-    return [Generator(rng, f"s{k}").scene() for k in range(count)]
+    kind = WideGenerator if wide else Generator
+    return [kind(rng, f"s{k}").scene() for k in range(count)]
 
 
 def kind_of(problem: str) -> str:
@@ -744,23 +873,27 @@ def main() -> None:
     parser.add_argument("--no-shrink", action="store_true")
     parser.add_argument("--exact", action="store_true",
                         help="decide volume disagreements with exact booleans (needs pymeshlab)")
+    parser.add_argument("--wide", action="store_true",
+                        help="mix in coincident twins and turned rows (WideGenerator)")
     parser.add_argument("--save", metavar="DIR", help="write each failing scene and its problems there")
     args = parser.parse_args()
     started = time.time()
     failures = []
     frames = 0
     for start in range(0, args.cases, args.batch):
-        batch = scenes(min(args.batch, args.cases - start), args.seed * 1_000_003 + start)
+        batch = scenes(min(args.batch, args.cases - start), args.seed * 1_000_003 + start,
+                       args.wide)
         frames += sum(s.frames() for s in batch)
-        failures += check_scenes(batch, sheets=not args.no_sheets, exact=args.exact)
+        found = check_scenes(batch, sheets=not args.no_sheets, exact=args.exact)
+        if args.save:  # as they are found: a long run stopped early keeps them
+            os.makedirs(args.save, exist_ok=True)
+            for k, (scene, number, problems) in enumerate(found, len(failures)):
+                with open(os.path.join(args.save, f"failure-{k:03d}.cas"), "w") as f:
+                    f.write("".join(f"// frame {number}: {p}\n" for p in problems))
+                    f.write(scene_text(scene))
+        failures += found
         print(f"{start + len(batch)} scenes, {frames} frames, {len(failures)} failing frames, "
               f"{time.time() - started:.0f} s", file=sys.stderr)
-    if args.save:
-        os.makedirs(args.save, exist_ok=True)
-        for k, (scene, number, problems) in enumerate(failures):
-            with open(os.path.join(args.save, f"failure-{k:03d}.cas"), "w") as f:
-                f.write("".join(f"// frame {number}: {p}\n" for p in problems))
-                f.write(scene_text(scene))
     kinds: dict[str, list] = {}
     for scene, number, problems in failures:
         for p in problems:

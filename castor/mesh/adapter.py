@@ -48,6 +48,51 @@ def as_original(manifold: Manifold) -> tuple[Manifold, int]:
     return copy, copy.original_id()
 
 
+def reserve_ids(count: int) -> int:
+    """The first of ``count`` new engine IDs, never given to anything else."""
+    return int(manifold3d.Manifold.reserve_ids(count))
+
+
+def with_run_ids(manifold: Manifold, run_ids: np.ndarray) -> Manifold | None:
+    """The same solid, triangle for triangle, whose runs carry the engine IDs
+    ``run_ids`` (one per run of ``to_arrays(manifold)``); each run keeps its
+    transformation and face numbers. (The engine keeps a mesh's runs when it
+    is given them: a round trip through its mesh.) None if the engine would
+    not keep the mesh as it is."""
+    gl = manifold.to_mesh64()
+    merge_from = np.array(gl.merge_from_vert, dtype=np.uint64)
+    copy = manifold3d.Manifold(manifold3d.Mesh64(
+        vert_properties=np.array(gl.vert_properties, dtype=np.float64),
+        tri_verts=np.array(gl.tri_verts, dtype=np.uint64),
+        merge_from_vert=merge_from if len(merge_from) else None,
+        merge_to_vert=np.array(gl.merge_to_vert, dtype=np.uint64) if len(merge_from) else None,
+        run_index=np.array(gl.run_index, dtype=np.uint64),
+        run_original_id=np.array(run_ids, dtype=np.uint32),
+        run_transform=np.array(gl.run_transform, dtype=np.float64),
+        run_flags=np.array(gl.run_flags, dtype=np.uint8),
+        face_id=np.array(gl.face_id, dtype=np.uint64)))
+    if (copy.status() != manifold3d.Error.NoError or copy.num_tri() != manifold.num_tri()
+            or copy.num_vert() != manifold.num_vert()
+            or abs(copy.volume() - manifold.volume()) > 1e-12 * max(1.0, abs(manifold.volume()))
+            or not np.array_equal(_corner_rows(gl), _corner_rows(copy.to_mesh64()))):
+        # the engine tidies a mesh it is given (it was seen to collapse an
+        # edge of a result and lose volume, and to move vertices): then
+        # there is no such copy
+        return None
+    return copy
+
+
+def _corner_rows(gl) -> np.ndarray:
+    """A mesh's triangles as rows of their corners' coordinates (corners in
+    order within a row, rows sorted): equal for the same triangles in any
+    order and numbering. (Which way each turns is left to the volume.)"""
+    corners = np.asarray(gl.vert_properties, dtype=np.float64)[:, :3][
+        np.asarray(gl.tri_verts, dtype=np.int64)]  # (T, 3, 3)
+    rows = np.sort(corners.view([("", np.float64)] * 3).reshape(len(corners), 3), axis=1)
+    rows = rows.view(np.float64).reshape(len(corners), 9)
+    return rows[np.lexsort(rows.T[::-1])]
+
+
 # --- out of the engine
 
 

@@ -14,6 +14,7 @@ import numpy as np
 from castor.mesh import adapter
 from castor.mesh.arrays import row_hash, shared_across
 from castor.mesh.broadphase import apart, overlap_groups
+from castor.mesh.caches import PROCESS
 from castor.mesh.checks import checked, off_faces
 from castor.mesh.instances import Placed, fill_boxes, in_engine
 from castor.mesh.provenance import Origins, merged_origins, place_key
@@ -26,7 +27,9 @@ def _distinguished(solids: list) -> list:
     where a use in an earlier operand stands given an ID of its own (its
     triangles would otherwise be told apart by neither ID nor placement: a
     cube cut away and the same cube added back have different paths and
-    colours). Uses inside a result of the engine keep theirs."""
+    colours). A use not yet in the engine takes a copy of its template under
+    a new ID; a use inside a result of the engine, its runs renamed
+    (``_renamed_runs``) when no use of the clash is still outside it."""
     if len(solids) < 2 or not _may_clash(solids):
         return solids
     keys = [s.origins.keys() for s in solids]
@@ -36,18 +39,19 @@ def _distinguished(solids: list) -> list:
         for key in operand_keys:
             owners.setdefault(key, []).append(k)
     renew: list[set] = [set() for _ in solids]
+    rename: list[set] = [set() for _ in solids]
     for key, where in owners.items():
         if len(where) < 2:
             continue
-        # the use inside a result of the engine keeps the ID (it cannot change);
-        # uses not yet in the engine take new ones
+        # the use inside a result of the engine keeps the ID; uses not yet in
+        # the engine take new ones, and other uses inside results are renamed
         fixed = [k for k in where if key not in placed[k]]
         keep = fixed[0] if fixed else where[0]
         for k in where:
-            if k != keep and key in placed[k]:
-                renew[k].add(key)
+            if k != keep:
+                (renew if key in placed[k] else rename)[k].add(key)
     out = []
-    for solid, wanted in zip(solids, renew):
+    for solid, wanted, renamed in zip(solids, renew, rename):
         if wanted:
             parts, changes = [], {}
             for part in solid.parts:
@@ -56,8 +60,42 @@ def _distinguished(solids: list) -> list:
                     changes[key] = part.id
                 parts.append(part)
             solid = Solid(tuple(parts), solid.origins.renamed(changes))
+        if renamed:
+            solid = _renamed_runs(solid, renamed)
         out.append(solid)
     return out
+
+
+def _renamed_runs(solid: Solid, wanted: set) -> Solid:
+    """The solid whose uses ``wanted`` (keys: ID and rounded placement),
+    inside results of the engine, are under new IDs: the runs of those uses
+    in its engine parts and their entries in its origins."""
+    new_ids = {}
+    for key in sorted(wanted, key=lambda k: (k[0], k[1])):
+        new_ids[key] = adapter.reserve_ids(1)
+        template = PROCESS.engine_ids.get(key[0])
+        if template is not None:
+            PROCESS.engine_ids[new_ids[key]] = template
+    parts = []
+    for part in solid.parts:
+        if type(part) is not Placed:
+            mesh = adapter.to_arrays(part)
+            if len(mesh.run_ids):
+                entries = solid.origins.find(mesh.run_ids, mesh.placements)
+                ids = mesh.run_ids.copy()
+                for r, entry in enumerate(entries.tolist()):
+                    key = (int(solid.origins.ids[entry]), place_key(solid.origins.matrices[entry]))
+                    if key in new_ids:
+                        ids[r] = new_ids[key]
+                if np.any(ids != mesh.run_ids):
+                    renamed = adapter.with_run_ids(part, ids)
+                    if renamed is None:
+                        # the engine would change the part: it keeps its IDs
+                        # (and either twin's name may be given to both)
+                        return solid
+                    part = renamed
+        parts.append(part)
+    return Solid(tuple(parts), solid.origins.renamed(new_ids))
 
 
 def _may_clash(solids: list) -> bool:

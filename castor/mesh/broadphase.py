@@ -17,15 +17,24 @@ def apart(a: np.ndarray, b: np.ndarray) -> bool:
     return bool(np.any(np.maximum(a[0], b[0]) >= np.minimum(a[1], b[1])))
 
 
+# Boxes closer than this, relative to the size of their coordinates, meet:
+# faces that coincide on paper but differ by rounding (1.18 + 1 and 0.18 + 2)
+# are one plane for the sheets' test (castor.mesh.sheets), so the solids
+# must reach it together, or the sheet between them stays.
+TOUCH = 1e-7
+
+
 def overlap_groups(boxes: np.ndarray) -> list[list[int]]:
-    """Groups of operands whose boxes meet (touching counts).
+    """Groups of operands whose boxes meet (touching counts, and so do boxes
+    apart by less than TOUCH of the scene's size).
 
     Boxes go into the cells of a grid twice as large as a typical box; only boxes
     sharing a cell can meet, so a union of 200,000 cubes that do not meet is a
     few array operations, not a sweep in Python. A box over very many cells is
     compared with all the others at once."""
     n = len(boxes)
-    lo, hi = boxes[:, 0, :], boxes[:, 1, :]
+    slack = TOUCH * max(1.0, float(np.abs(boxes).max())) if n else 0.0
+    lo, hi = boxes[:, 0, :] - slack, boxes[:, 1, :] + slack
     extent = hi - lo
     cell = np.maximum(2 * np.median(extent, axis=0), 1e-300)
     cell = np.where(cell > 0, cell, np.maximum(extent.max(axis=0), 1.0))

@@ -56,13 +56,17 @@ def without_flat_triangles(vertices: np.ndarray, triangles: np.ndarray, origin_i
         return triangles, origin_ids, face_ids
     triangles = triangles.copy()
     # weld the vertices of flat triangles that are at one place, or closer
-    # than rounding: needles, and fins of two flat triangles back to back
+    # than rounding: needles, and fins of two flat triangles back to back.
+    # Closer than _FLAT of the scene's size is rounding: a triangle with such
+    # an edge and any other edge up to the scene's size is flat by the test
+    # above (rotated copies of a solid, cut again and again, leave clusters
+    # of vertices a few 1e-12 apart that stand for one point)
     corners = np.unique(triangles[flat])
     points = vertices[corners]
     scale = max(1.0, float(np.abs(points).max()))
     remap = {}
     for i in range(len(corners)):
-        close = np.flatnonzero(np.abs(points[i + 1:] - points[i]).max(axis=1) <= 1e-12 * scale)
+        close = np.flatnonzero(np.abs(points[i + 1:] - points[i]).max(axis=1) <= _FLAT * scale)
         for j in close.tolist():
             u, w = int(corners[i]), int(corners[i + 1 + j])
             ru, rw = remap.get(u, u), remap.get(w, w)
@@ -158,7 +162,33 @@ def _twins(triangles: np.ndarray, corners: np.ndarray) -> np.ndarray:
 
 
 def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
-    """Flip the long edge of each triangle with three vertices in a line."""
+    """Flip the long edge of each triangle with three vertices in a line;
+    where flipping leaves flat twins (two flat triangles on the same three
+    vertices, turned against each other: a closed fin of no area, which the
+    flips of a run of flat triangles along one edge can make), both go and
+    the rest is flipped again."""
+    for _ in range(4):
+        triangles, origin_ids, face_ids = _flipped(vertices, triangles, origin_ids, face_ids, flat)
+        flat = flat_triangles(vertices, triangles)
+        if not flat.any():
+            break
+        twins = _coincident(triangles[flat])
+        if twins is None:
+            break
+        keep = np.ones(len(triangles), bool)
+        keep[np.flatnonzero(flat)[twins]] = False
+        triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
+        flat = flat[keep]
+        if not flat.any():
+            break
+    return triangles, origin_ids, face_ids
+
+
+def _flipped(vertices, triangles, origin_ids, face_ids, flat):
+    """One pass of flips of the long edges of flat triangles. A flat
+    triangle whose neighbour across its long edge is flat too, with another
+    long edge, waits for that neighbour's flip (else the two flips only
+    move the flat triangles along the line)."""
     corners = np.unique(triangles[flat])
     near = np.flatnonzero(np.isin(triangles, corners).any(axis=1))
     tris = {int(i): tuple(triangles[i].tolist()) for i in near}
@@ -169,6 +199,7 @@ def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
     face = face_ids.copy()
     todo = [int(i) for i in np.flatnonzero(flat)]
     point = vertices
+    deferred, waiting = 0, set()
     for _ in range(4 * len(todo) + 16):
         if not todo:
             break
@@ -187,6 +218,15 @@ def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
         x = ({a, b, c} - {u, w}).pop() if len({a, b, c} - {u, w}) == 1 else None
         if x is None or x == m:
             continue
+        if deferred < len(todo) + 16 and n not in waiting and _long_edge_elsewhere(
+                point, tris[n], u, w):
+            # the neighbour is flat with its long edge elsewhere: it goes first
+            deferred += 1
+            waiting.add(i)
+            todo.insert(0, i)
+            todo.append(n)
+            continue
+        waiting.discard(i)
         for tri in (t, tris[n]):
             for e in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
                 owner.pop(e, None)
@@ -202,3 +242,14 @@ def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
     triangles = triangles.copy()
     triangles[rows] = np.array([tris[r] for r in rows.tolist()], np.int64)
     return triangles, origin, face
+
+
+def _long_edge_elsewhere(point, tri, u, w) -> bool:
+    """Whether the triangle ``tri``, which has the edge (w, u), is flat and
+    its longest edge is another."""
+    if not flat_triangles(point, np.array([tri]))[0]:
+        return False
+    p = point[list(tri)]
+    lengths = [float(np.dot(p[(k + 1) % 3] - p[k], p[(k + 1) % 3] - p[k])) for k in range(3)]
+    k = int(np.argmax(lengths))
+    return {tri[k], tri[(k + 1) % 3]} != {u, w}
