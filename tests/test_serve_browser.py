@@ -169,7 +169,10 @@ def test_pointing_at_a_blue_reveal_names_its_primitive(page):
     path = page.inner_text("#pointed-path")
     assert path.startswith("(maison)") and path.endswith("!cu")
     assert page.inner_text("#pointed-colour") == "0.25 0.45 0.85"
-    assert page.inner_text("#pointed-where") == "frame 1 · house.cas:77"
+    with open(os.path.join(ROOT, "examples", "house.cas")) as f:
+        lines = f.read().splitlines()
+    written = 1 + next(i for i, line in enumerate(lines) if line.startswith("> maison"))
+    assert page.inner_text("#pointed-where") == f"frame 1 · house.cas:{written}"
 
 
 def test_a_face_turned_to_the_viewer_shows_its_own_colour(page):
