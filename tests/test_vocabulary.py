@@ -13,7 +13,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def test_every_primitive_is_built_and_every_transformation_has_its_matrix():
     assert set(BUILDERS) == set(PRIMITIVES)
-    assert set(MATRICES) | {"f"} == set(TRANSFORMS)
+    assert set(MATRICES) | {"f", "s"} == set(TRANSFORMS)
 
 
 def test_vim_syntax_knows_exactly_the_vocabulary():

@@ -128,6 +128,9 @@ TRANSFORMS: dict[str, TransformKind] = {t.name: t for t in (
                   "the affine map whose 3x4 matrix has these rows"),
     TransformKind("f", "facet tolerance", (1,), "T",
                   "facet the object with the tolerance T (scene units)"),
+    TransformKind("s", "smooth", (1,), "A",
+                  "make the object a smooth solid, keeping as creases the edges whose "
+                  "faces turn by more than A degrees (0..180)"),
 )}
 
 BOOLEANS = {"U": "union", "I": "intersection", "D": "difference"}

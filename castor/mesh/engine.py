@@ -959,3 +959,29 @@ def _part_triangles(part: manifold3d.Manifold, origins: Origins) -> Triangles:
 def triangulate(outline: np.ndarray) -> np.ndarray:
     """Triangles (T, 3) of a simple polygon (N, 2), counter-clockwise."""
     return np.asarray(manifold3d.triangulate([outline]), dtype=np.int64)
+
+
+def refined(vertices: np.ndarray, triangles: np.ndarray, entries: np.ndarray,
+            faces: np.ndarray, table: tuple) -> Solid:
+    """A solid from a closed triangle mesh castor made itself (a smooth
+    solid's refined facets), each triangle with its entry in ``table`` (its
+    Origin) and the face it belongs to: one engine ID per entry, so that the
+    triangles of each keep their origin through any boolean."""
+    order = np.lexsort((faces, entries))
+    entries, faces, triangles = entries[order], faces[order], triangles[order]
+    starts = np.flatnonzero(np.r_[True, entries[1:] != entries[:-1]])
+    used = entries[starts]
+    first = manifold3d.Manifold.reserve_ids(len(used))
+    ids = np.arange(first, first + len(used), dtype=np.int64)
+    gl = manifold3d.Mesh64(
+        vert_properties=np.ascontiguousarray(vertices, dtype=np.float64),
+        tri_verts=np.ascontiguousarray(triangles, dtype=np.uint64),
+        run_index=(np.r_[starts, len(triangles)] * 3).astype(np.uint64),
+        run_original_id=ids.astype(np.uint32),
+        face_id=faces.astype(np.uint64))
+    manifold = manifold3d.Manifold(gl)
+    if manifold.status() != manifold3d.Error.NoError:
+        raise EngineError(str(manifold.status()))
+    origins = Origins(ids, np.repeat(_IDENTITY[None], len(ids), axis=0),
+                      tuple(table[int(e)] for e in used))
+    return _solid([manifold], origins)

@@ -23,6 +23,8 @@ from __future__ import annotations
 import numpy as np
 
 INF = np.inf
+FACE_BITS = 32  # as castor.pictures.trace numbers faces
+FACE_MASK = (1 << FACE_BITS) - 1
 # a ray passes through at most this many facets (a comb of thin teeth)
 MAX_CROSSINGS = 256
 
@@ -30,7 +32,7 @@ MAX_CROSSINGS = 256
 class MeshRays:
     """A closed, outward-oriented triangle mesh, ready for rays."""
 
-    def __init__(self, vertices: np.ndarray, triangles: np.ndarray):
+    def __init__(self, vertices: np.ndarray, triangles: np.ndarray, groups=None):
         from embreex import rtcore_scene
         from embreex.mesh_construction import TriangleMesh
 
@@ -45,6 +47,10 @@ class MeshRays:
         self.size = float(np.max(self.high - self.low)) if len(self.triangles) else 0.0
         p = self.vertices[self.triangles]
         self.normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+        # a crossing's face is its triangle, with its group (its colour) above
+        # FACE_BITS: the ray tracer reads the group as one leaf of its own
+        self.group_bits = (None if groups is None
+                           else np.asarray(groups, dtype=np.int64) << FACE_BITS)
         self._scene = rtcore_scene.EmbreeScene(robust=True)  # watertight: no ray slips between two triangles
         if len(self.triangles):
             TriangleMesh(scene=self._scene,
@@ -56,7 +62,7 @@ class MeshRays:
 
     def normal(self, points: np.ndarray, face: np.ndarray) -> np.ndarray:
         """The outward (unnormalised) normal of the triangles ``face``."""
-        return self.normals[np.asarray(face, dtype=np.int64)]
+        return self.normals[np.asarray(face, dtype=np.int64) & FACE_MASK]
 
     def crossings(self, origins: np.ndarray, directions: np.ndarray):
         """(t, triangle), each (n, K), sorted along each ray; t = inf past a ray's last.
@@ -141,6 +147,8 @@ class MeshRays:
         keep = opens | closes
         count = keep.sum(axis=1)
         width = max(2, int(count.max()) + int(count.max()) % 2)
+        t, face = _widened(t, width, INF), _widened(face, width, 0)
+        keep, opens = _widened(keep, width, False), _widened(opens, width, False)
         order = np.argsort(~keep, axis=1, kind="stable")[:, :width]
         kept_t = np.take_along_axis(np.where(keep, t, INF), order, axis=1)
         kept_face = np.take_along_axis(face, order, axis=1)
@@ -150,10 +158,46 @@ class MeshRays:
         pairs = kept_open[:, 0::2] & np.isfinite(kept_t[:, 1::2])
         kept_t[:, 0::2] = np.where(pairs, kept_t[:, 0::2], INF)
         kept_t[:, 1::2] = np.where(pairs, kept_t[:, 1::2], INF)
-        if width < 2:
-            kept_t = np.full((n, 2), INF)
-            kept_face = np.zeros((n, 2), np.int64)
+        if self.group_bits is not None:
+            kept_face = kept_face | self.group_bits[kept_face]
         return kept_t, kept_face
+
+
+_FACETIZER = []
+
+
+def smooth_leaf(node, matrix: np.ndarray, leaves: list, make_leaf):
+    """The ray tracer's leaf for a smooth solid (a ``tree.Smooth`` placed by
+    the 4x4 ``matrix``): its refined facets, made by the facetizer (once per
+    key), as ``MeshRays``; one leaf number for each colour of its faces, the
+    first traced, the others naming the colour of a crossing."""
+    from castor.mesh import engine
+    from castor.mesh.facetize import Facetizer
+
+    if abs(np.linalg.det(matrix[:3, :3])) < 1e-300:
+        return None
+    if not _FACETIZER:
+        _FACETIZER.append(Facetizer())
+    solid = _FACETIZER[0].solid(node)  # in the space above the node
+    if solid.empty:
+        return None
+    tri = engine.triangles(solid.parts, solid.origins)
+    colours = np.array([solid.origins[int(i)].colour for i in range(len(solid.origins))])
+    table, group = np.unique(colours[tri.origin_ids], axis=0, return_inverse=True)
+    rays = MeshRays(tri.vertices, tri.triangles, group.ravel())
+    inverse = np.linalg.inv(matrix)[:3, :]
+    low, high = rays.box()
+    corners = np.array([[x, y, z, 1.0] for x in (low[0], high[0]) for y in (low[1], high[1])
+                        for z in (low[2], high[2])])
+    placed = corners @ matrix[:3, :].T
+    pad = 1e-9 * (1 + np.abs(placed).max())
+    first = None
+    for colour in table:
+        leaf = make_leaf(len(leaves), "smooth", rays, tuple(float(c) for c in colour), inverse,
+                         placed.min(axis=0) - pad, placed.max(axis=0) + pad)
+        leaves.append(leaf)
+        first = first or leaf
+    return first
 
 
 def _widened(a: np.ndarray, width: int, fill) -> np.ndarray:

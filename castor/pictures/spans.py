@@ -499,3 +499,8 @@ SPANS: dict[str, Kind] = {
     "ex": Kind(_extrusion_spans, _extrusion_normal, _extrusion_box),
     "rv": Kind(_revolution_spans, _revolution_normal, _revolution_box),
 }
+
+# a smooth solid (LANGUAGE.md §7.1): its shape is its refined facets, ready
+# for rays (castor.pictures.mesh_rays.MeshRays), its box theirs
+SPANS["smooth"] = Kind(lambda rays, o, d: rays.spans(o, d),
+                       lambda rays, p, face: rays.normal(p, face), lambda rays: rays.box())

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from castor.csg import tree
+from castor.pictures.mesh_rays import smooth_leaf
 from castor.pictures.spans import SPANS
 
 INF = np.inf
@@ -229,6 +230,8 @@ def _compile(node, matrix: np.ndarray, leaves: list):
         if node.shared.child is None:
             return None
         return _compile(node.shared.child, matrix @ _matrix(node.matrix), leaves)
+    if isinstance(node, tree.Smooth):  # traced through its refined facets
+        return smooth_leaf(node, matrix, leaves, Leaf)
     operands = [_compile(child, matrix, leaves) for child in node.operands]
     if node.op == "D":
         if not operands or operands[0] is None:
