@@ -219,3 +219,131 @@ def test_a_smooth_cube_within_the_tolerance_measured_with_rays():
         assert np.isfinite(spans[:, 1]).all()
         # the written facets are inside the (convex) limit, by at most the tolerance
         assert radial.min() > -1e-6 and tolerance / 10 < radial.max() <= tolerance
+
+
+# --- @s in the language: meshes, booleans, errors, pictures, drawings ----------------
+
+from meshcheck import frames_of, regularity_defects, run  # noqa: E402
+
+SMOOTH_VOLUME = 0.32747  # the Catmull–Clark limit of the unit cube
+
+
+def test_a_cube_smoothed_at_60_degrees_is_the_cube_and_at_0_nothing_changes():
+    plain, creased, zero = (frames_of(f"> {prefix}!cu(1, 0, 0);")[0]
+                            for prefix in ("", "@s(60) ", "@s(0) "))
+    assert len(creased.polygons) == 6 and creased.volume() == pytest.approx(1.0, abs=1e-12)
+    status, with_zero, _ = run("--no-cpp", stdin="> @s(0) $D(!cy(1, 0, 0), @h(0.5) !sp(0, 1, 0));")
+    status, without, _ = run("--no-cpp", stdin="> $D(!cy(1, 0, 0), @h(0.5) !sp(0, 1, 0));")
+    assert with_zero == without
+    assert [p.points.tolist() for p in zero.polygons] == [p.points.tolist() for p in plain.polygons]
+
+
+def test_a_smooth_cube_is_closed_regular_inside_the_cube_and_converges():
+    volumes = []
+    for tolerance in ("0.01", "0.001"):
+        frame = frames_of("> @s(120) !cu(0.2, 0.4, 0.6);", "--tolerance", tolerance)[0]
+        assert regularity_defects(frame) == []
+        low, high = frame.box()
+        assert np.allclose(low, 13 / 162) and np.allclose(high, 1 - 13 / 162)
+        assert frame.colours() == {(0.2, 0.4, 0.6)} and frame.paths() == {"!cu"}
+        volumes.append(frame.volume())
+    assert volumes[0] < volumes[1] < SMOOTH_VOLUME
+    assert volumes[1] == pytest.approx(SMOOTH_VOLUME, abs=3 * 0.001)
+
+
+def test_a_smooth_solid_cut_and_a_smooth_union():
+    text = """
+        pierre = @s(120) @h(2, 1, 1) !cu(0.8, 0.6, 0.4);
+        trou = @t(1, 0.5, 0.5) @h(0.3, 0.3, 1) !cy(0.2, 0.4, 0.9);
+        > $D(pierre, trou);
+        > @s(150) $U(!cu(1, 0, 0), @t(0.5, 0.5, 0.5) @h(0.3, 0.3, 1) !cy(0, 1, 0));
+        > $U(pierre, @t(3, 0, 0) pierre);
+    """
+    cut, union, twice = frames_of(text)
+    for frame in (cut, union, twice):
+        assert regularity_defects(frame) == []
+    # the cut faces take the cutter's colour and path
+    assert cut.colours() == {(0.8, 0.6, 0.4), (0.2, 0.4, 0.9)}
+    assert cut.area(colour=(0.2, 0.4, 0.9)) > 0 and "D2(trou)!cy" in cut.paths()
+    whole = frames_of("> @s(120) @h(2, 1, 1) !cu(0.8, 0.6, 0.4);")[0]
+    assert 0 < whole.volume() - cut.volume() < np.pi * 0.09
+    # the union's seam is smoothed: each face keeps its operand's colour
+    assert union.colours() == {(1.0, 0.0, 0.0), (0.0, 1.0, 0.0)}
+    assert union.box()[1][2] > 1.0  # the cylinder stands out of the cube, rounded
+    # a named smooth solid used twice is the same solid moved
+    assert twice.volume() == pytest.approx(2 * whole.volume(), rel=1e-9)
+
+
+def test_a_bad_angle_is_reported_where_it_is_written():
+    for angle, shown in (("200", "200"), ("-1", "-1")):
+        status, _, err = run("--no-cpp", "--check", stdin=f"\n> @t(1, 0, 0) @s({angle}) !cu(1, 0, 0);")
+        assert status == 1
+        assert f"<stdin>:2:15: error: the angle of '@s' must lie between 0 and 180 degrees, not {shown}" in err
+    status, _, err = run("--no-cpp", stdin="> @s(1, 2) !cu(1, 0, 0);")
+    assert status == 1 and "'@s' takes 1 argument" in err
+
+
+def test_a_smoothing_too_fine_is_refused_before_it_is_made():
+    status, _, err = run("--no-cpp", "--max-polygons", "20000", "--tolerance", "1e-6",
+                         stdin="> @s(120) @h(10) !cu(1, 0, 0);")
+    assert status == 1
+    assert "<stdin>:1:3: error: '@s(120)': smoothing would need at least" in err
+    assert "GB" in err and "raise the tolerance" in err
+
+
+def test_the_tree_has_a_node_for_it():
+    from castor.csg import tree
+
+    frame = scene_frames("> @t(5, 0, 0) @s(90.5) @h(2) !cu(1, 0, 0);")[0]
+    root = frame.objects[0].root
+    assert isinstance(root, tree.Smooth) and root.angle == 90.5
+    assert root.matrix[3] == 5 and root.operand.matrix[0] == 2
+    assert "@s(90.5) @m(1, 0, 0, 5" in tree.dump(frame)
+
+
+def scene_frames(text):
+    from castor.run import evaluated_frames
+
+    frames, said = evaluated_frames(text, "<scene>")
+    assert "error" not in said, said
+    return frames
+
+
+def test_a_smoothed_box_seen_from_above_is_rounded():
+    from castor.jobs import Spec
+    from castor.options import View
+    from castor.pictures import picture
+
+    def cover(text):
+        spec = Spec(format="png", size=(120, 120), sun=None, view=View("top", 0, 0))
+        image = picture(scene_frames(text)[0], spec)
+        covered = np.any(image != 255, axis=2)
+        rows, columns = np.flatnonzero(covered.any(axis=1)), np.flatnonzero(covered.any(axis=0))
+        square = covered[rows[0]:rows[-1] + 1, columns[0]:columns[-1] + 1]
+        return square.mean(), square
+
+    box_fill, _ = cover("> @h(2, 2, 1) !cu(0.8, 0.6, 0.4);")
+    smooth_fill, square = cover("> @s(120) @h(2, 2, 1) !cu(0.8, 0.6, 0.4);")
+    assert box_fill > 0.99
+    # a rounded square: the corners are empty, the middle of each side full
+    assert 0.8 < smooth_fill < 0.97
+    n = len(square)
+    assert not square[0, 0] and not square[-1, -1] and square[n // 2, 0] and square[0, n // 2]
+
+
+def test_its_front_elevation_has_no_facet_lines():
+    from castor.drawings import draw
+    from castor.mesh.facetize import Facetizer
+    from castor.options import View
+
+    frame = scene_frames("> @s(120) @h(2, 1, 1) !cu(0.8, 0.6, 0.4);")[0]
+    meshes = Facetizer().frame(frame)
+    assert meshes.polygon_count > 500
+    lines = np.concatenate([layer.lines.reshape(-1, 2, 2)
+                            for layer in draw(meshes, view=View("front", 0, 0)).layers])
+    length = np.linalg.norm(lines[:, 1] - lines[:, 0], axis=1).sum()
+    low, high = lines.reshape(-1, 2).min(axis=0), lines.reshape(-1, 2).max(axis=0)
+    # the outline of a convex silhouette is shorter than its box's perimeter
+    # and longer than its inscribed ellipse's: a line between two facets
+    # anywhere would add to it
+    assert np.pi / 2 * (high - low).sum() * 0.9 < length <= 2 * (high - low).sum()
