@@ -9,6 +9,8 @@ cut them and colour their cuts like any other solid's.
 
 from __future__ import annotations
 
+import numpy as np
+
 from castor.csg import tree
 from castor.diagnostics import GeometryError, LimitError
 from castor.mesh import engine, memory, polygons, subdivide
@@ -37,6 +39,28 @@ def triangle_budget(max_polygons: int) -> int:
     return int(budget)
 
 
+def face_numbers(vertices, triangles, control) -> np.ndarray:
+    """A face number for each triangle, as the engine's faces are numbered: one
+    flat face, one number. A control face that stayed flat (between creases)
+    keeps its number for all its triangles, merged into polygons again; the
+    triangles of a curved one have a number each (the passes that look for
+    sheets take a face number for one plane)."""
+    p = vertices[triangles]
+    normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    normal /= np.maximum(np.linalg.norm(normal, axis=1), 1e-300)[:, None]
+    count = int(control.max()) + 1
+    first = np.full(count, len(triangles))
+    np.minimum.at(first, control, np.arange(len(triangles)))
+    reference = first[control]
+    size = max(1.0, float(np.abs(vertices).max()))
+    offset = np.einsum("ij,ij->i", normal[reference], p[reference, 0])
+    apart = np.abs(np.einsum("ij,itj->it", normal[reference], p) - offset[:, None]).max(axis=1)
+    flat = (np.abs(normal - normal[reference]).max(axis=1) < 1e-9) & (apart < 1e-9 * size)
+    face_flat = np.ones(count, bool)
+    face_flat[control[~flat]] = False
+    return np.where(face_flat[control], control, count + np.arange(len(triangles)))
+
+
 def smoothed(operand: engine.Solid, node: tree.Smooth, max_polygons: int) -> engine.Solid:
     """The smooth solid of ``node`` whose operand, facetized, is ``operand``
     (in the node's own space); the operand itself when every edge is a crease."""
@@ -54,7 +78,8 @@ def smoothed(operand: engine.Solid, node: tree.Smooth, max_polygons: int) -> eng
         return operand
     try:
         return engine.refined(result.vertices, result.triangles,
-                              control.origin_of[result.faces], result.faces,
+                              control.origin_of[result.faces],
+                              face_numbers(result.vertices, result.triangles, result.faces),
                               tuple(control.origins))
     except engine.EngineError as exc:
         raise GeometryError(f"'@s({node.angle:g})' gives no valid solid ({exc})",
