@@ -347,3 +347,17 @@ def test_its_front_elevation_has_no_facet_lines():
     # and longer than its inscribed ellipse's: a line between two facets
     # anywhere would add to it
     assert np.pi / 2 * (high - low).sum() * 0.9 < length <= 2 * (high - low).sum()
+
+
+def test_the_oracles_smooth_solids_agree_with_castors():
+    import oracle
+
+    for prim, angle in ((oracle.Prim("cu", (1.0, 0.0, 0.0), ()), 135.0),
+                        (oracle.Prim("pr", (1.0, 0.0, 0.0), (6.0,)), 100.0),
+                        (oracle.Prim("py", (1.0, 0.0, 0.0), (5.0,)), 170.0)):
+        reference = oracle.smooth_solid(prim, np.eye(4), angle).volume()
+        text = f"> @s({angle}) {oracle.text(prim)};"
+        frame = frames_of(text, "--tolerance", "0.001")[0]
+        assert frame.volume() == pytest.approx(reference, rel=0.01)
+    # every edge a crease: the oracle's smooth solid is the primitive itself
+    assert oracle.smooth_solid(oracle.Prim("pr", (1.0, 0.0, 0.0), (6.0,)), np.eye(4), 30.0) is None
