@@ -327,7 +327,7 @@ def test_a_smoothed_box_seen_from_above_is_rounded():
     smooth_fill, square = cover("> @s(120) @h(2, 2, 1) !cu(0.8, 0.6, 0.4);")
     assert box_fill > 0.99
     # a rounded square: the corners are empty, the middle of each side full
-    assert 0.8 < smooth_fill < 0.97
+    assert 0.79 * 0.95 < smooth_fill < 0.95  # 0.79: nearly a disc (pi / 4 = 0.785)
     n = len(square)
     assert not square[0, 0] and not square[-1, -1] and square[n // 2, 0] and square[0, n // 2]
 
