@@ -391,20 +391,23 @@ def smooth_solid(prim: Prim, matrix: np.ndarray, angle: float):
     except ImportError:
         from tests import reference_subdivision as reference
     points, faces, number = [], [], {}
-    loops = [loop @ matrix[:3, :3].T + matrix[:3, 3] for loop in primitive_faces(prim)]
-    centre = np.concatenate(loops).mean(axis=0)
-    for loop in loops:
+    own = primitive_faces(prim)  # welded in the primitive's own coordinates
+    centre = np.concatenate(own).mean(axis=0)
+    mirrored = np.linalg.det(matrix[:3, :3]) < 0
+    for loop in own:
         normal = np.cross(loop[1] - loop[0], loop[2] - loop[0])
-        if normal @ (loop.mean(axis=0) - centre) < 0:
-            loop = loop[::-1]  # counter-clockwise from outside
+        if (normal @ (loop.mean(axis=0) - centre) < 0) != mirrored:
+            loop = loop[::-1]  # counter-clockwise from outside, once placed
         face = []
         for p in loop.tolist():
             key = tuple(round(c, 9) for c in p)
             if key not in number:
                 number[key] = len(points)
-                points.append(tuple(p))
+                points.append(key)
             face.append(number[key])
         faces.append(tuple(face))
+    placed = np.array(points) @ matrix[:3, :3].T + matrix[:3, 3]
+    points = [tuple(p) for p in placed.tolist()]
     sharp = reference.sharp_edges(points, faces, angle)
     if len(sharp) == len({frozenset((f[i], f[(i + 1) % len(f)])) for f in faces
                           for i in range(len(f))}):
