@@ -22,14 +22,14 @@ def stages():
     import pstats
 
     from castor.formats.cps import format_frame
-    from castor.jobs import Spec
+    from castor.settings import MeshSettings
     from castor.mesh.facetize import Facetizer
     from castor.run import evaluated_frames
 
     started = time.perf_counter()
     [scene], said = evaluated_frames(SCENE, "block.cas")
     evaluated = time.perf_counter() - started
-    facetizer = Facetizer(Spec().max_polygons)
+    facetizer = Facetizer(MeshSettings().max_polygons)
     profile = cProfile.Profile()
     started = time.perf_counter()
     profile.enable()
@@ -49,9 +49,10 @@ def stages():
     print(f"polygons {frame.polygon_count:,}; stream {len(text) / 1e6:.0f} MB")
     print(f"evaluate (the tree)          {evaluated:6.2f} s")
     print(f"facetize, of which:          {facetized:6.2f} s (profiled)")
-    print(f"  engine booleans (union)    {cumulative('engine.py:union'):6.2f} s")
-    print(f"  engine triangles back      {cumulative('engine.py:triangles'):6.2f} s")
-    print(f"  polygon merging            {cumulative('polygons.py:merge'):6.2f} s")
+    print(f"  engine booleans (union)    {cumulative('booleans.py:union'):6.2f} s")
+    print(f"  engine triangles back      {cumulative('provenance.py:triangles'):6.2f} s")
+    print(f"  their regularization       {cumulative('regularize.py:regular_triangles'):6.2f} s")
+    print(f"  polygon merging            {cumulative('merge.py:merge'):6.2f} s")
     print(f"write the stream             {written:6.2f} s")
 
 

@@ -14,15 +14,11 @@ import sys
 import threading
 
 from castor import __version__
-from castor.diagnostics import CastorError, Reporter
+from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
 from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
                             DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
                             parse_point, parse_scale, parse_section, parse_size, parse_sun,
-                            parse_view)
-
-USAGE_ERROR = 2
-_STACK_BYTES = 512 * 1024 * 1024
-_RECURSION_LIMIT = 200_000
+                            parse_sheet, parse_view)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -53,6 +49,12 @@ def _arguments(argv):
                    "execute statements as they arrive")
     p.add_argument("-s", "--set", dest="sets", action="append", default=[], metavar="NAME=EXPR",
                    help="give parameter NAME this value; the scene's assignments to it are ignored")
+    p.add_argument("-p", dest="parameter_file", metavar="FILE",
+                   help="take parameter values from FILE (the live preview's JSON), with -P")
+    p.add_argument("-P", dest="parameter_set", metavar="NAME",
+                   help="the parameter set NAME of the -p FILE, as if each were a --set")
+    p.add_argument("--params", action="store_true",
+                   help="write the scene's parameters and annotations as JSON, nothing else")
     p.add_argument("-t", "--tolerance", type=float, metavar="T",
                    help=f"facet tolerance in scene units (default {DEFAULT_TOLERANCE})")
     p.add_argument("--check", action="store_true", help="read and evaluate everything, write nothing")
@@ -66,6 +68,8 @@ def _arguments(argv):
                    help="send frames to a Dask cluster (tcp://host:8786)")
     p.add_argument("--serve", action="store_true",
                    help="live preview in a web browser, evaluated again at each save")
+    p.add_argument("--lsp", action="store_true",
+                   help="run as a language server for editors on standard input and output")
     p.add_argument("--port", default=str(DEFAULT_PORT), metavar="N",
                    help=f"--serve: the port (default {DEFAULT_PORT}, or the next free one)")
     p.add_argument("--bind", default="127.0.0.1", metavar="ADDRESS",
@@ -78,8 +82,9 @@ def _arguments(argv):
                                "left, right (orthographic)")
     pictures.add_argument("--eye", metavar="X,Y,Z", help="camera position (with --look)")
     pictures.add_argument("--look", metavar="X,Y,Z", help="the point the camera looks at")
-    pictures.add_argument("--sun", default="%g,%g" % DEFAULT_SUN, metavar="AZ,EL|none",
-                          help="direction of the sun (default %(default)s), or none")
+    pictures.add_argument("--sun", default=None, metavar="AZ,EL|none",
+                          help="direction of the sun (default: the camera's azimuth + %g, "
+                               "%g high), or none" % DEFAULT_SUN)
     pictures.add_argument("--samples", default=str(DEFAULT_SAMPLES), metavar="N",
                           help="rays per pixel for anti-aliasing (default %(default)s)")
     pictures.add_argument("--edges", action="store_true", help="outline silhouettes and creases")
@@ -87,6 +92,15 @@ def _arguments(argv):
                           help="a drawing cut by the plane z=H (a plan), x=V or y=V")
     pictures.add_argument("--scale", default=f"1:{DEFAULT_SCALE}", metavar="1:N",
                           help="printed scale of a drawing (default %(default)s)")
+    pictures.add_argument("--sheet", metavar="SIZE", help="lay a drawing on A4 ... A0 paper "
+                          "(landscape; A3-portrait for upright), with border and title block")
+    # one title for every document that has one: a drawing's, an IFC project's
+    pictures.add_argument("--title", metavar="TEXT", help="the title of a drawing or an IFC "
+                          "project (default: the '>' object's name, or the file's)")
+    bim = p.add_argument_group("building models (IFC)")
+    bim.add_argument("--ifc-class", dest="ifc_classes", action="append", default=[],
+                     metavar="NAME=CLASS", help="IFC class of the object NAME, such as "
+                     "maison=IfcWall (repeatable; default IfcBuildingElementProxy)")
     p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
     p.add_argument("--version", action="version", version=f"castor {__version__}")
     args = p.parse_args(negative_values(argv, ("--view", "--eye", "--look", "--sun",
@@ -101,9 +115,10 @@ def _arguments(argv):
         args.samples = parse_count(args.samples, "--samples", 1, 256)
         args.size = parse_size(args.size)
         args.view = parse_view(args.view)
-        args.sun = parse_sun(args.sun)
+        args.sun = DEFAULT_SUN if args.sun is None else parse_sun(args.sun)
         args.scale = parse_scale(args.scale)
         args.section = parse_section(args.section) if args.section is not None else None
+        args.sheet = parse_sheet(args.sheet) if args.sheet is not None else None
         args.eye = parse_point(args.eye, "--eye") if args.eye is not None else None
         args.look = parse_point(args.look, "--look") if args.look is not None else None
     except ValueError as exc:
@@ -125,8 +140,7 @@ def _arguments(argv):
         if not re.fullmatch(r"[A-Za-z_]\w*", name.strip()):
             p.error(f"-U takes a macro NAME (letters, digits and _), not {name!r}")
     from castor.formats import format_for_suffix
-    from castor.formats.output import (available, destination_problem, is_device,
-                                       suffix_message)
+    from castor.formats.output import destination_problem, is_device, suffix_message
 
     if args.format is None:
         args.format = format_for_suffix(args.output) if args.output else "cps"
@@ -134,8 +148,15 @@ def _arguments(argv):
             args.format = "cps"  # -o /dev/null, a named pipe: the stream, as to standard output
         if args.format is None:
             p.error(suffix_message(args.output))
-    if not available(args.format):
-        p.error(f"the {args.format} format is not part of this castor yet")
+    if args.format == "ifc" or args.ifc_classes:  # IFC's options, and its optional package
+        from castor.formats.ifc import INSTALL, installed, parse_ifc_classes
+
+        try:
+            args.ifc_classes = tuple(parse_ifc_classes(args.ifc_classes).items())
+        except ValueError as exc:
+            p.error(str(exc))
+        if args.format == "ifc" and not installed():
+            p.error(f"writing IFC needs ifcopenshell, which is not installed; {INSTALL}")
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
         problem = destination_problem(path, option) if path is not None else None
         if problem is not None:
@@ -177,23 +198,65 @@ def _overrides(parser, sets: list[str]) -> dict[str, float]:
 PIPE_CLOSED = 128 + 13
 
 
+def settings_of(args, overrides: dict[str, float]):
+    """The settings of each stage, from the parsed options (castor.settings)."""
+    from castor.settings import (BimSettings, DrawingSettings, EvaluationSettings, FrameSettings,
+                                 MeshSettings, OutputSettings, PictureSettings, ReadSettings,
+                                 RunSettings, Source)
+
+    source = Source(tuple(args.files))
+    reading = ReadSettings(tuple(args.defines), tuple(args.undefines), tuple(args.include_dirs),
+                           args.no_cpp)
+    evaluation = EvaluationSettings(overrides=overrides, tolerance=args.tolerance)
+    frame = FrameSettings(
+        output=OutputSettings(format=args.format, target=args.output, stats=args.stats,
+                              summary=args.summary is not None, title=args.title),
+        mesh=MeshSettings(max_polygons=args.max_polygons),
+        picture=PictureSettings(size=args.size, view=args.view, eye=args.eye, look=args.look,
+                                sun=args.sun, samples=args.samples, edges=args.edges),
+        drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale,
+                                sheet=args.sheet),
+        bim=BimSettings(classes=args.ifc_classes))
+    how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
+                      summary=args.summary)
+    return source, reading, evaluation, frame, how
+
+
 def main(argv=None) -> int:
     parser, args = _arguments(sys.argv[1:] if argv is None else argv)
     reporter = Reporter(quiet=args.quiet)
-    from castor.interpreter import Settings
-    from castor.jobs import Spec
-    from castor.run import UsageError, run
+    from castor.pipeline import RECURSION_LIMIT, STACK_BYTES
+    from castor.run import run
 
-    settings = Settings(overrides=_overrides(parser, args.sets), tolerance=args.tolerance)
-    spec = Spec(format=args.format, target=args.output, max_polygons=args.max_polygons,
-                stats=args.stats, summary=args.summary is not None, size=args.size,
-                view=args.view, eye=args.eye, look=args.look, sun=args.sun,
-                samples=args.samples, edges=args.edges, section=args.section, scale=args.scale)
+    source, reading, evaluation, frame, how = settings_of(args, _overrides(parser, args.sets))
+    if args.lsp:
+        from castor.lsp.server import main as language_server
+
+        return language_server(args)
+    if args.parameter_file is not None or args.parameter_set is not None:
+        from castor.lsp.customizer import SetError, readable, set_overrides
+
+        if args.parameter_file is None:
+            parser.error(f"-P {args.parameter_set} names a set of a parameter file; give the "
+                         f"file with -p FILE")
+        source = readable(source)
+        try:  # an explicit --set wins over the set's value
+            evaluation.overrides = {**set_overrides(args.parameter_file, args.parameter_set,
+                                                    source, reading, evaluation),
+                                    **evaluation.overrides}
+        except SetError as exc:
+            sys.stderr.write(f"castor: error: {exc}\n")
+            return USAGE_ERROR
+    if args.params:
+        from castor.lsp.customizer import params_command
+
+        return params_command(source, reading, evaluation, quiet=args.quiet)
     result: list = []
 
     def work():
         try:
-            result.append(run(args, settings, spec, reporter))
+            result.append(run(source, reporter, reading=reading, evaluation=evaluation,
+                              settings=frame, how=how))
         except UsageError as exc:
             sys.stderr.write(f"castor: {exc}\n")
             result.append(USAGE_ERROR)
@@ -203,12 +266,10 @@ def main(argv=None) -> int:
     # A scene graph is many long-lived objects and few cycles: collect rarely.
     gc.set_threshold(100_000, 50, 100)
     # Deeply nested scenes recurse deeply: run on a thread with a large stack.
-    sys.setrecursionlimit(_RECURSION_LIMIT)
+    sys.setrecursionlimit(RECURSION_LIMIT)
     if args.serve:
-        from castor.serve.server import serve
-
-        return serve(args, settings)
-    threading.stack_size(_STACK_BYTES)
+        return _serve(args, source, reading, evaluation)
+    threading.stack_size(STACK_BYTES)
     thread = threading.Thread(target=work, name="castor", daemon=True)
     thread.start()
     try:
@@ -260,6 +321,26 @@ def main(argv=None) -> int:
         _quiet_stdout()
         return USAGE_ERROR
     return outcome
+
+
+def _serve(args, source, reading, evaluation) -> int:
+    """``castor --serve``: its usage errors, then the preview server until Ctrl-C."""
+    def usage(message: str) -> int:
+        sys.stderr.write(f"castor: error: {message}\n")
+        return USAGE_ERROR
+
+    if not args.files or "-" in args.files:
+        return usage("--serve needs a scene file to watch (not standard input)")
+    if args.output or args.check:
+        return usage("--serve shows the frames in a web browser; it writes nothing "
+                     f"({'-o' if args.output else '--check'} goes without --serve)")
+    from castor.serve.scene import Watched
+    from castor.serve.server import serve
+
+    try:
+        return serve(Watched(source, reading, evaluation, quiet=args.quiet), args.bind, args.port)
+    except UsageError as exc:
+        return usage(str(exc))
 
 
 def entry() -> None:

@@ -12,6 +12,9 @@ import sys
 from typing import NamedTuple
 
 MAX_ERRORS = 50
+# the exit status of a usage error (castor, castor-view, castor --serve): the
+# command was given wrongly, as opposed to 1, errors in the input
+USAGE_ERROR = 2
 
 
 class Location(NamedTuple):
@@ -158,3 +161,63 @@ class Reporter:
             self.stream.flush()
         except (BrokenPipeError, ValueError):
             pass
+
+
+class UsageError(Exception):
+    """A usage error found after the options were parsed (exit status ``USAGE_ERROR``):
+    a file that cannot be read, a cluster that cannot be reached."""
+
+
+class Diagnostic(NamedTuple):
+    """An error or a warning as data, for a page or an editor: ``FILE:LINE:COL: message``."""
+
+    kind: str  # "error" or "warning"
+    message: str
+    location: Location | None = None
+    text: str | None = None  # the source line, for a caret under the column
+
+    def __str__(self) -> str:
+        where = f"{self.location}: " if self.location else "castor: "
+        return f"{where}{self.kind}: {self.message}"
+
+    def as_json(self) -> dict:
+        place = self.location
+        return {"kind": self.kind, "message": self.message, "text": self.text,
+                "file": place.file if place else None, "line": place.line if place else None,
+                "column": place.column if place else None, "shown": str(self)}
+
+
+class CollectingReporter(Reporter):
+    """A reporter that keeps each diagnostic as data, and its usual text in ``stream``
+    (a string buffer): what the live preview and a language server publish."""
+
+    def __init__(self, quiet: bool = False):
+        import io
+
+        super().__init__(stream=io.StringIO(), quiet=quiet)
+        self.diagnostics: list[Diagnostic] = []
+
+    def _keep(self, kind: str, message: str, location: Location | None) -> None:
+        text = self.source_lines.get((location.file, location.line)) if location else None
+        self.diagnostics.append(Diagnostic(kind, message, location,
+                                           text.rstrip("\n") if text is not None else None))
+
+    def error(self, err: CastorError) -> None:
+        self._keep("error", err.message, err.location)
+        super().error(err)
+
+    def warning(self, message: str, location: Location | None = None) -> None:
+        if not self.quiet:
+            self._keep("warning", message, location)
+        super().warning(message, location)
+
+    def unreadable(self, name: str, reason: str) -> None:
+        """A scene file that cannot be read: an error without a place."""
+        self.diagnostics.append(Diagnostic("error", f"cannot read '{name}': {reason}"))
+        self.errors += 1
+        self.note(f"castor: cannot read '{name}': {reason}")
+
+    @property
+    def printed(self) -> str:
+        """The diagnostics as castor prints them on standard error."""
+        return self.stream.getvalue()

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass, field
 from typing import Callable, Iterable
 
 from castor.diagnostics import CastorError, Reporter, TooManyErrors
@@ -21,22 +20,18 @@ from castor.language.parse import Parser, SkippedDefinition
 from castor.language.reader import Chunk
 from castor.language.scene import Facetize, ObjectDef, ParamDef, Tables
 from castor.options import DEFAULT_TOLERANCE
+from castor.settings import EvaluationSettings
 
 
 # statements parsed by one call to the parser when the input is not streamed
 BATCH = 500
 
 
-@dataclass
-class Settings:
-    overrides: dict[str, float] = field(default_factory=dict)  # --set NAME=value
-    tolerance: float | None = None
-
-
 class Interpreter:
     """Holds the symbol tables and runs statements against them."""
 
-    def __init__(self, settings: Settings, reporter: Reporter, submit: Callable | None):
+    def __init__(self, settings: EvaluationSettings, reporter: Reporter,
+                 submit: Callable | None):
         from castor.csg.evaluate import Evaluator
 
         self.settings = settings
@@ -50,6 +45,7 @@ class Interpreter:
         self.parser = Parser(self.tables)
         self.evaluator = Evaluator()
         self.frames_attempted = 0
+        self.annotated: set[str] = set()  # parameters whose annotation was looked at
 
     def run(self, chunks: Iterable[Chunk], streaming: bool = True) -> None:
         """Execute every statement; stops early only after too many errors.
@@ -88,6 +84,9 @@ class Interpreter:
 
     def _define_parameter(self, statement: ParamDef) -> None:
         name = statement.name
+        if name not in self.annotated:
+            self.annotated.add(name)
+            self.check_annotation(statement)
         if name in self.settings.overrides:
             return  # --set wins over the scene's assignments, as openscad -D does
         if name == "TOLERANCE" and self.settings.tolerance is not None:
@@ -100,6 +99,19 @@ class Interpreter:
                             f"value here: write the expression inside the object that uses "
                             f"it, or as a macro (#define {name} (...))")
             raise
+
+    def check_annotation(self, statement: ParamDef) -> None:
+        """A malformed annotation (the comment after a parameter's first definition,
+        LANGUAGE.md §10) is a warning, never an error."""
+        where = statement.location
+        text = self.reporter.source_lines.get((where.file, where.line))
+        if text is None or "//" not in text:
+            return
+        from castor.language.annotations import malformed
+
+        warning = malformed(text, where)
+        if warning is not None:
+            self.reporter.warning(warning.message, warning.location)
 
     def _define_object(self, statement: ObjectDef) -> None:
         name = statement.name
@@ -154,4 +166,4 @@ def frames_text(numbers: list[int]) -> str:
     return "frames " + ", ".join(str(n) for n in numbers)
 
 
-__all__ = ["Interpreter", "Settings", "TooManyErrors", "frames_text"]
+__all__ = ["Interpreter", "TooManyErrors", "frames_text"]

@@ -1,7 +1,7 @@
 """One frame's work, done in this process, another process, or on a Dask cluster.
 
 The interpreter hands each frame's evaluated CSG tree over as a ``Job``: plain,
-picklable data with the output wanted. ``make`` turns it into a ``Result``
+picklable data with the settings of the stages that make it (castor.settings). ``make`` turns it into a ``Result``
 (the bytes to write, the messages to print, the figures of --stats) in
 whatever process runs it; the driver (castor.run) writes results in frame
 order, so the output is the same byte for byte however the frames were made.
@@ -16,41 +16,15 @@ from dataclasses import dataclass, field
 
 from castor.csg import tree
 from castor.diagnostics import CastorError, Location
-from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_SAMPLES, DEFAULT_SCALE, DEFAULT_SIZE,
-                            DEFAULT_SUN)
-
-
-@dataclass(frozen=True)
-class Spec:
-    """What to make of each frame: the format and the options that shape it."""
-
-    format: str | None = "cps"  # None: the mesh frame only, in this process
-    target: str | None = None  # -o PATH (a pattern is filled in per frame)
-    max_polygons: int = DEFAULT_MAX_POLYGONS
-    stats: bool = False
-    summary: bool = False
-    keep_mesh: bool = False  # hand the mesh frame back (the live preview wants it)
-    size: tuple[int, int] = DEFAULT_SIZE
-    view: object = None  # castor.options.View
-    eye: tuple | None = None
-    look: tuple | None = None
-    sun: tuple | None = DEFAULT_SUN
-    samples: int = DEFAULT_SAMPLES
-    edges: bool = False
-    section: object = None  # castor.options.Section
-    scale: float = DEFAULT_SCALE
-    # how a frame's bytes are handed on: made a piece at a time as they are
-    # written (``pieces``, in the process that writes them), written by a worker
-    # into a file in ``spool`` when the frame is large, or else as bytes
-    pieces: bool = False
-    spool: str | None = None
-    spool_owner: int = 0  # the driver's process: a worker left alone removes its file
+from castor.settings import FrameSettings, MeshSettings, OutputSettings
 
 
 @dataclass(frozen=True)
 class Job:
+    """One frame's work: its evaluated CSG tree and what to make of it, by stage."""
+
     scene: tree.Frame
-    spec: Spec
+    settings: FrameSettings
 
 
 @dataclass
@@ -64,34 +38,34 @@ class Result:
     stats: str | None = None
     summary: dict | None = None
     picture: object = None  # an image array, for an animation gathered by the driver
-    mesh: object = None  # the mesh frame, when the spec keeps it
+    mesh: object = None  # the mesh frame, when the output settings keep it
 
 
 # a frame of more polygons than this, made in a worker process, is written to
-# a file in Spec.spool rather than handed back as bytes through a pipe (a
+# a file in OutputSettings.spool rather than handed back as bytes through a pipe (a
 # 5 M-polygon stream is about 700 MB, pickled and held twice on its way)
 SPOOL_POLYGONS = 100_000
 
 _facetizers: dict[tuple, object] = {}
 
 
-def _facetizer(spec: Spec, merge: bool):
+def _facetizer(mesh: MeshSettings, merge: bool):
     from castor.mesh.facetize import Facetizer
 
-    key = (spec.max_polygons, merge)
+    key = (mesh.max_polygons, merge)
     facetizer = _facetizers.get(key)
     if facetizer is None:
-        facetizer = _facetizers[key] = Facetizer(spec.max_polygons, merge)
+        facetizer = _facetizers[key] = Facetizer(mesh.max_polygons, merge)
     return facetizer
 
 
 def make(job: Job) -> Result:
     """The frame's output, and what is to be said about it; never raises for
     an error of the scene (it is in the result)."""
-    scene, spec = job.scene, job.spec
+    scene = job.scene
     result = Result(scene.number, scene.location)
     try:
-        _make(scene, spec, result)
+        _make(scene, job.settings, result)
     except CastorError as exc:
         result.errors.append(exc)
         result.data = None
@@ -105,10 +79,11 @@ def make(job: Job) -> Result:
     return result
 
 
-def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
+def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
     from castor.formats import FORMATS
 
-    chosen = FORMATS.get(spec.format)
+    output = settings.output
+    chosen = FORMATS.get(output.format)
     kind = chosen.kind if chosen is not None else "mesh"
     if kind == "picture":
         from castor.pictures import picture
@@ -117,63 +92,66 @@ def _make(scene: tree.Frame, spec: Spec, result: Result) -> None:
         if all(obj.root is None for obj in scene.objects):
             result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
                                     scene.location))
-        if chosen.all_frames:
+        if not chosen.one_frame:
             # an animation is drawn at the end, with one camera for all its frames
             from castor.pictures.trace import compile_frame
 
             result.picture = compile_frame(scene)
         else:
-            image = picture(scene, spec)
-            from castor.formats.png import export_picture
-
-            result.data = export_picture(image)
-        if spec.stats:
+            result.data = chosen.write(picture(scene, settings.picture))
+        if output.stats:
+            size = settings.picture.size
             result.stats = (f"castor: frame {scene.number} {scene.where}: picture "
-                            f"{spec.size[0]}x{spec.size[1]}, {spec.samples} samples per pixel, "
+                            f"{size[0]}x{size[1]}, {settings.picture.samples} samples per pixel, "
                             f"{time.perf_counter() - started:.3f} s")
         return
-    facetizer = _facetizer(spec, merge=chosen is None or not chosen.triangles_only)
+    facetizer = _facetizer(settings.mesh, merge=chosen is None or not chosen.triangles_only)
     frame = facetizer.frame(scene)
     if frame.polygon_count == 0:
         result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
                                 scene.location))
     if kind == "drawing":
-        from castor.drawings import drawing
+        from castor.drawings import sheet_of
 
-        result.data = drawing(scene, frame, spec)
+        result.data = chosen.write(sheet_of(
+            scene, frame, settings.drawing, output.title,
+            lambda message: result.warnings.append((message, scene.location))))
+    elif kind == "bim":
+        result.data = chosen.write(scene, frame, settings)
     elif chosen is not None:
-        from castor.formats import output
+        from castor.formats import output as destination
 
-        pieces, result.companions = output.encode_pieces(frame, spec.format, spec.target)
-        if spec.pieces:
+        pieces, result.companions = destination.encode_pieces(frame, output.format,
+                                                              output.target)
+        if output.pieces:
             result.data = pieces  # made as they are written
-        elif spec.spool is not None and frame.polygon_count > SPOOL_POLYGONS:
-            result.data = _spooled(pieces, frame, spec)
+        elif output.spool is not None and frame.polygon_count > SPOOL_POLYGONS:
+            result.data = _spooled(pieces, frame, output)
         else:
             result.data = b"".join(pieces)
-    if spec.keep_mesh:
+    if output.keep_mesh:
         result.mesh = frame
-    if spec.stats or spec.summary:
+    if output.stats or output.summary:
         from castor.quantities import stats_line, summary_record
 
         stats = facetizer.stats
-        if spec.stats:
+        if output.stats:
             result.stats = stats_line(frame, stats.primitives, stats.booleans, stats.seconds)
-        if spec.summary:
+        if output.summary:
             result.summary = summary_record(frame)
 
 
-def _spooled(pieces, frame, spec: Spec):
-    """The frame's bytes written a piece at a time to a file in ``spec.spool``
+def _spooled(pieces, frame, output: OutputSettings):
+    """The frame's bytes written a piece at a time to a file in ``output.spool``
     (hidden, beside the output where it can be renamed into place); as bytes
     when that file cannot be written (a full disk)."""
     import os
     import tempfile
 
-    from castor.formats import output
+    from castor.formats import output as destination
 
     try:
-        fd, path = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=spec.spool)
+        fd, path = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=output.spool)
     except OSError:
         return b"".join(pieces)
     try:
@@ -184,11 +162,11 @@ def _spooled(pieces, frame, spec: Spec):
         os.unlink(path)
         if not isinstance(exc, OSError):
             raise
-        return b"".join(output.encode_pieces(frame, spec.format, spec.target)[0])
-    if spec.spool_owner and not _alive(spec.spool_owner):
+        return b"".join(destination.encode_pieces(frame, output.format, output.target)[0])
+    if output.spool_owner and not _alive(output.spool_owner):
         os.unlink(path)  # the driver was stopped: nobody will write or remove the file
         return b""
-    return output.Spooled(path)
+    return destination.Spooled(path)
 
 
 def _alive(pid: int) -> bool:

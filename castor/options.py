@@ -11,11 +11,20 @@ import math
 import re
 from typing import NamedTuple
 
+class CameraSun(NamedTuple):
+    """The default sun: ``turn`` degrees beside the camera's azimuth and
+    ``elevation`` high, so that every face the camera sees is lit
+    (castor.pictures.shade.sun_light turns it into a direction)."""
+
+    turn: float
+    elevation: float
+
+
 DEFAULT_TOLERANCE = 0.01
 DEFAULT_MAX_POLYGONS = 20_000_000
 DEFAULT_SIZE = (800, 600)
 DEFAULT_VIEW = (-60.0, 25.0)
-DEFAULT_SUN = (135.0, 50.0)
+DEFAULT_SUN = CameraSun(20.0, 45.0)  # the camera's azimuth + 20, 45 high (CLI.md)
 DEFAULT_SAMPLES = 4
 DEFAULT_SCALE = 100  # 1:100
 DEFAULT_PORT = 8000
@@ -115,6 +124,31 @@ def parse_scale(text: str) -> float:
     if denominator is None or not (math.isfinite(denominator) and denominator > 0):
         raise ValueError(f"--scale takes 1:N such as 1:100 or 1:50, not '{text}'")
     return denominator
+
+
+class Paper(NamedTuple):
+    """A sheet of the ISO 216 A series as a drawing is laid on it (millimetres)."""
+
+    name: str  # "A3", "A3-portrait"
+    width: float
+    height: float
+
+
+# ISO 216, landscape: width x height in millimetres
+PAPER_SIZES = {"A4": (297, 210), "A3": (420, 297), "A2": (594, 420), "A1": (841, 594),
+               "A0": (1189, 841)}
+
+
+def parse_sheet(text: str) -> Paper:
+    match = re.fullmatch(r"\s*(A[0-4])(-portrait)?\s*", text, re.IGNORECASE)
+    if not match:
+        raise ValueError(f"--sheet takes A4, A3, A2, A1 or A0 (landscape), or A4-portrait ... "
+                         f"A0-portrait (upright), not '{text}'")
+    size = match[1].upper()
+    width, height = PAPER_SIZES[size]
+    if match[2]:
+        return Paper(f"{size}-portrait", height, width)
+    return Paper(size, width, height)
 
 
 def parse_count(text: str, option: str, low: int, high: int) -> int:

@@ -14,7 +14,7 @@ from typing import NamedTuple
 import numpy as np
 
 from castor.mesh.frame import Frame, FrameObject
-from castor.mesh.polygons import components
+from castor.mesh.arrays import components
 
 
 class Figures(NamedTuple):
@@ -34,7 +34,7 @@ def _triangle_figures(obj: FrameObject, centre: np.ndarray) -> tuple[np.ndarray,
     a time, so that no (T, 3, 3) array of corners is held (72 bytes a triangle,
     and as much again for each temporary); each figure is the same number."""
     from castor.formats._mesh import CHUNK
-    from castor.mesh.polygons import fan_triangles
+    from castor.mesh.arrays import fan_triangles
 
     count = int(np.maximum(np.diff(obj.offsets) - 2, 0).sum())
     volumes, areas, origins = np.empty(count), np.empty(count), np.empty(count, np.int64)

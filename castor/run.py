@@ -1,4 +1,5 @@
-"""The driver: read the scene, interpret it, have its frames made, write them in order.
+"""The driver of ``castor``: evaluate the scene (castor.pipeline), have its frames
+made, write them in order.
 
 Frames are made by ``castor.jobs.make`` here (``--jobs 1``), in worker
 processes (``--jobs N``) or on a Dask cluster (``--scheduler``). Whatever
@@ -16,23 +17,20 @@ import threading
 from collections import deque
 from dataclasses import replace
 
-from castor.diagnostics import CastorError, LimitError, Reporter, TooManyErrors
-from castor.jobs import Job, Result, Spec, make
-
-USAGE_ERROR = 2
-
-
-class UsageError(Exception):
-    """A usage error found after the options were parsed (exit status 2)."""
+from castor.diagnostics import CastorError, LimitError, Reporter, TooManyErrors, UsageError
+from castor.jobs import Job, Result, make
+from castor.pipeline import evaluate, evaluated_frames  # noqa: F401 - tests and tools use it here
+from castor.settings import EvaluationSettings, FrameSettings, ReadSettings, RunSettings, Source
 
 
 class Sequencer:
     """Frames and messages out in order, however the frames are made."""
 
-    def __init__(self, reporter: Reporter, output, spec: Spec, executor=None, window: int = 1):
+    def __init__(self, reporter: Reporter, output, settings: FrameSettings, executor=None,
+                 window: int = 1):
         self.reporter = reporter
         self.output = output
-        self.spec = spec
+        self.settings = settings
         self.executor = executor
         self.window = window  # frames in flight at most
         self.stderr = reporter.stream
@@ -48,7 +46,7 @@ class Sequencer:
         self.failure: Exception | None = None
         self.summaries: list[dict] = []
         self.pictures: list = []
-        self.frames: list = []  # mesh frames, when the spec keeps them
+        self.frames: list = []  # mesh frames, when the output settings keep them
         reporter.stream = self  # the interpreter's messages queue behind pending frames
 
     # --- the reporter writes here
@@ -78,7 +76,7 @@ class Sequencer:
                 self.refused = True
                 self.reporter.error(refusal)
             return
-        job = Job(scene, self.spec)
+        job = Job(scene, self.settings)
         if self.executor is None:
             from castor.progress import Progress
 
@@ -239,59 +237,54 @@ def executor_for(jobs: int, scheduler: str | None):
     return ProcessPoolExecutor(max_workers=jobs, mp_context=context), jobs
 
 
-def run(args, settings, spec: Spec, reporter: Reporter) -> int:
-    """Read, interpret and write: the whole run after the options were parsed."""
-    from castor.formats import FORMATS
+def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSettings(),
+        evaluation: EvaluationSettings | None = None, settings: FrameSettings = FrameSettings(),
+        how: RunSettings = RunSettings()) -> int:
+    """Read, interpret and write: the whole run of ``castor``, its exit status
+    (0, or 1 when the input had errors). A usage error found on the way (a file
+    that cannot be read) raises UsageError."""
+    from castor.formats import FORMATS, of_kind
     from castor.formats.output import Output
-    from castor.interpreter import Interpreter
-    from castor.language.reader import Reader
 
-    for name in args.files:
+    evaluation = evaluation or EvaluationSettings()
+    for name in source.files:
         if name != "-" and not os.access(name, os.R_OK):
             reason = "no such file" if not os.path.exists(name) else "permission denied"
             raise UsageError(f"error: cannot read '{name}': {reason}")
-    chosen = FORMATS[spec.format]
+    out = settings.output
+    chosen = FORMATS[out.format]
     output = None  # --check writes nothing; an animation is written once, at the end
-    if not args.check and not (chosen.kind == "picture" and chosen.all_frames):
-        output = Output(args.output, spec.format)
-    executor, workers = (None, 1) if args.check else executor_for(args.jobs, args.scheduler)
+    if not how.check and not (chosen.kind == "picture" and not chosen.one_frame):
+        output = Output(out.target, out.format)
+    executor, workers = (None, 1) if how.check else executor_for(how.jobs, how.scheduler)
     if executor is None:
-        spec = replace(spec, pieces=True)  # made as they are written: one piece in memory
-    elif args.scheduler is None:
-        spec = replace(spec, spool=_spool_directory(args.output), spool_owner=os.getpid())
-    sequencer = Sequencer(reporter, output, spec, executor, window=2 * max(1, workers or 1))
-    interpreter = Interpreter(settings, reporter, None if args.check else sequencer.submit)
+        # made as they are written: one piece in memory
+        settings = replace(settings, output=replace(out, pieces=True))
+    elif how.scheduler is None:
+        settings = replace(settings, output=replace(out, spool=_spool_directory(out.target),
+                                                    spool_owner=os.getpid()))
+    sequencer = Sequencer(reporter, output, settings, executor, window=2 * max(1, workers or 1))
     if output is not None:
         output.start()
     try:
-        try:
-            if args.no_cpp:
-                reader = Reader(reporter, directives_allowed=False)
-                # statements run as they arrive from a pipe or a terminal; files are
-                # all there, and are parsed in batches
-                streaming = not args.files or any(f == "-" for f in args.files)
-                interpreter.run(reader.chunks(_streamed_lines(args.files, reader)),
-                                streaming=streaming)
-            else:
-                from castor.language.preprocess import preprocess
-
-                text = preprocess(_read_inputs(args.files), args.defines, args.undefines,
-                                  args.include_dirs, reporter)
-                reader = Reader(reporter, directives_allowed=True)
-                interpreter.run(reader.chunks(text.splitlines()), streaming=False)
-        except TooManyErrors:
-            pass
+        interpreter = evaluate(source, reporter, None if how.check else sequencer.submit,
+                               reading=reading, evaluation=evaluation)
         try:
             sequencer.finish()
         except TooManyErrors:
             pass
-        _warn_unused_overrides(settings.overrides, interpreter, reporter)
-        if interpreter.frames_attempted == 0 and not args.check and not reporter.errors:
+        _warn_unused_overrides(evaluation.overrides, interpreter, reporter)
+        if interpreter.frames_attempted == 0 and not how.check and not reporter.errors:
             reporter.warning("the scene has no '>' command, so nothing was written; "
                              "'> OBJECT;' writes an object's polygons")
-        if args.section is not None and chosen.kind != "drawing":
-            reporter.warning(f"--section makes a drawing (-o NAME.svg or NAME.dxf); it is "
-                             f"ignored for {spec.format}")
+        if chosen.kind != "drawing":
+            *rest, last = [f"NAME{f.suffix}" for f in of_kind("drawing")]
+            drawings = f"{', '.join(rest)} or {last}" if rest else last
+            for option, value, what in (("--section", settings.drawing.section, "makes"),
+                                        ("--sheet", settings.drawing.sheet, "lays out")):
+                if value is not None:
+                    reporter.warning(f"{option} {what} a drawing (-o {drawings}); it is "
+                                     f"ignored for {out.format}")
     except BaseException:
         if output is not None:
             output.abandon()  # a single stream file half made stays out of place
@@ -304,9 +297,9 @@ def run(args, settings, spec: Spec, reporter: Reporter) -> int:
                 client.close()
         sequencer.discard_pending()
     try:
-        _finish_collected(args, spec, sequencer, reporter)
+        _finish_collected(out, how, settings, sequencer)
         if output is not None and not output.finish(reporter.errors > 0):
-            reporter.note(f"castor: {args.output} not written: there were errors and no frame")
+            reporter.note(f"castor: {out.target} not written: there were errors and no frame")
     except BaseException:
         if output is not None:
             output.abandon()
@@ -340,78 +333,25 @@ def _warn_unused_overrides(overrides, interpreter, reporter) -> None:
                              f"'{name}'{suggestion(name, names - set(overrides))}")
 
 
-def _finish_collected(args, spec: Spec, sequencer: Sequencer, reporter: Reporter) -> None:
+def _finish_collected(out, how: RunSettings, settings: FrameSettings,
+                      sequencer: Sequencer) -> None:
     """What is written once for the whole run: an animation, the take-off."""
     from castor.formats import FORMATS
     from castor.formats.output import write_atomically
 
-    if sequencer.pictures and FORMATS[spec.format].all_frames:
-        from castor.formats.gif import export_animation
-
+    chosen = FORMATS[out.format]
+    if sequencer.pictures and not chosen.one_frame:
         from castor.pictures import animation
 
-        data = export_animation(animation(sequencer.pictures, spec))
-        if args.output is None:
+        data = chosen.write(animation(sequencer.pictures, settings.picture))
+        if out.target is None:
             sys.stdout.buffer.write(data)
             sys.stdout.buffer.flush()
         else:
-            write_atomically(args.output, data)
-    if args.summary is not None and not args.check:
+            write_atomically(out.target, data)
+    if how.summary is not None and not how.check:
         from castor.quantities import Summary
 
         summary = Summary()
         summary.frames.extend(sequencer.summaries)
-        write_atomically(args.summary, summary.text().encode("utf-8"))
-
-
-def _read_inputs(files: list[str]) -> list[tuple[str, str]]:
-    sources = []
-    for name in files or ["-"]:
-        if name == "-":
-            sources.append(("<stdin>", sys.stdin.read()))
-            continue
-        try:
-            with open(name, encoding="utf-8", errors="replace") as handle:
-                sources.append((name, handle.read()))
-        except OSError as exc:
-            raise UsageError(f"error: cannot read '{name}': {exc.strerror}") from None
-    return sources
-
-
-def _streamed_lines(files: list[str], reader):
-    """Lines of the inputs as they arrive (for --no-cpp)."""
-    for name in files or ["-"]:
-        if name == "-":
-            reader.start_file("<stdin>")
-            while True:
-                line = sys.stdin.readline()
-                if not line:
-                    break
-                yield line
-        else:
-            reader.start_file(name)
-            with open(name, encoding="utf-8", errors="replace") as handle:
-                yield from handle
-
-
-def evaluated_frames(text: str, name: str = "<scene>", settings=None,
-                     defines: tuple[str, ...] = ()) -> tuple[list, str]:
-    """The evaluated CSG trees of a scene's frames, and what castor said (the
-    diagnostics' text): the scene as data, for tests and for tools."""
-    import io
-
-    from castor.interpreter import Interpreter, Settings
-    from castor.language.preprocess import preprocess
-    from castor.language.reader import Reader
-
-    stream = io.StringIO()
-    reporter = Reporter(stream=stream)
-    trees: list = []
-    interpreter = Interpreter(settings or Settings(), reporter, trees.append)
-    try:
-        source = preprocess([(name, text)], list(defines), [], [], reporter)
-        interpreter.run(Reader(reporter, directives_allowed=True).chunks(source.splitlines()),
-                        streaming=False)
-    except TooManyErrors:
-        pass
-    return trees, stream.getvalue()
+        write_atomically(how.summary, summary.text().encode("utf-8"))

@@ -1,18 +1,19 @@
 #!/usr/bin/env sh
 # Draw the README's pictures from the examples, so that they stay true: the
-# exact solids ray traced by castor (with the sun over the viewer's right
-# shoulder, so that the facades seen are lit and cast their shadows), and
+# exact solids ray traced by castor with the default sun (20 degrees beside the
+# camera's azimuth, 45 high: every face seen is lit and casts its shadow), and
 # castor-view's wireframe of the polygons.
 # Usage: scripts/pictures.sh   (from the repository, with castor installed)
 set -eu
 cd "$(dirname "$0")/.."
 out=docs/pictures
 mkdir -p "$out"
-castor --sun -20,40 --edges -o "$out/car.png" examples/car.cas
+castor --edges -o "$out/car.png" examples/car.cas
 castor examples/car.cas | castor-view --wire -o "$out/car-wire.png"
-castor --sun -20,40 --edges -o "$out/house.png" examples/house.cas
-castor --view -30,20 --sun 10,45 --edges -o "$out/staircase.png" examples/staircase.cas
-castor --view -70,20 --sun -30,45 --size 480x360 -o "$out/door.gif" examples/door.cas
-castor -D ONE_FRAME --set PHASE=2 --view -60,30 --sun -20,45 --size 1000x700 \
+castor --edges -o "$out/house.png" examples/house.cas
+castor --view -30,20 --edges -o "$out/staircase.png" examples/staircase.cas
+castor --view -70,20 --size 480x360 -o "$out/door.gif" examples/door.cas
+castor -D ONE_FRAME --set PHASE=2 --view -60,30 --size 1000x700 \
     -o "$out/bus-shelter.png" examples/bus_shelter.cas
+castor --view -35,25 -o "$out/bench.png" examples/bench.cas
 echo "pictures written to $out"

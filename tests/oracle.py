@@ -3,7 +3,7 @@
 It generates random valid scenes as Python structures (parameters, a DAG of
 named objects, nested transformations with mirrors and ``@m``, nested
 ``$U/$I/$D``, repetitions, several ``>`` with late binding) over the
-primitives whose geometry is known exactly (``!cu !pr !py !ex``), prints each
+primitives whose geometry is known exactly (``!cu !pr !py !we !ex``), prints each
 as Castor text for castor, and evaluates the same structure itself, written
 apart from castor's modules: its own matrices, its own paths, its own
 primitive meshes, manifold3d called directly with the booleans in another
@@ -51,7 +51,7 @@ class Param:
 
 @dataclass(frozen=True)
 class Prim:
-    kind: str  # cu pr py ex
+    kind: str  # cu pr py we ex
     colour: tuple
     args: tuple  # N for pr/py; x1, y1, ... for ex
 
@@ -181,8 +181,16 @@ def polygon_points(n: int) -> np.ndarray:
     return np.column_stack([np.cos(a), np.sin(a)])
 
 
+# the wedge (LANGUAGE.md §4.1): the triangle (0, 0), (1, 0), (0, 1) of the xz
+# plane at y = 0 and at y = 1
+_WEDGE = np.array([[0, 0, 0], [1, 0, 0], [0, 0, 1], [0, 1, 0], [1, 1, 0], [0, 1, 1]], float)
+
+
 def primitive_faces(prim: Prim) -> list[np.ndarray]:
     """The flat faces of a primitive in its own coordinates, each an (n, 3) loop."""
+    if prim.kind == "we":
+        return [_WEDGE[list(loop)] for loop in
+                ((0, 1, 2), (3, 5, 4), (0, 3, 4, 1), (0, 2, 5, 3), (1, 4, 5, 2))]
     if prim.kind == "cu":
         base = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
         return _prism_faces(base)
@@ -215,6 +223,8 @@ def primitive_solid(prim: Prim) -> manifold3d.Manifold:
         base = polygon_points(int(prim.args[0]))
         points = np.vstack([np.column_stack([base, np.zeros(len(base))]), [[0, 0, 1]]])
         return manifold3d.Manifold.hull_points(points)
+    if prim.kind == "we":
+        return manifold3d.Manifold.hull_points(_WEDGE)
     if prim.kind == "cu":
         base = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
     elif prim.kind == "pr":
@@ -461,7 +471,7 @@ class Generator:
 
     def primitive(self):
         r = self.rng
-        kind = r.choice(["cu", "cu", "pr", "py", "ex"])
+        kind = r.choice(["cu", "cu", "pr", "py", "we", "ex"])
         if kind in ("pr", "py"):
             return Prim(kind, self.colour(), (float(r.choice([3, 4, 5, 6, 8])),))
         if kind == "ex":

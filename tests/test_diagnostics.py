@@ -40,7 +40,7 @@ def test_error_between_two_good_frames(tmp_path):
     ("a = !cu(1, 1, 1) !cu(1, 1, 1);", "<stdin>:1:18: error: expected ';', found '!cu'"),
     ("> ! cu(1,1,1);", "<stdin>:1:3: error: '!' must be followed directly by a primitive name, such as !cu"),
     ("X = 3 ? 4;", "<stdin>:1:7: error: unexpected character '?'"),
-    ("> !cube(1, 1, 1);", "<stdin>:1:3: error: unknown primitive '!cube'; did you mean '!cu'? (known: !cu, !sp, !cy, !co, !to, !pr, !py, !ex, !rv)"),
+    ("> !cube(1, 1, 1);", "<stdin>:1:3: error: unknown primitive '!cube'; did you mean '!cu'? (known: !cu, !sp, !cy, !co, !to, !pr, !py, !we, !ex, !rv)"),
     ("> @tr(1, 0, 0) !cu(1, 1, 1);", "<stdin>:1:3: error: unknown transformation '@tr'; did you mean '@t'? (known: @t, @rx, @ry, @rz, @r, @h, @m, @f)"),
     ("> !cu(1, 1);", "<stdin>:1:3: error: '!cu' takes 3 arguments (R, G, B), but 2 were given"),
     ("> @t(1, 1) !cu(1, 1, 1);", "<stdin>:1:3: error: '@t' takes 3 arguments (X, Y, Z), but 2 were given"),
@@ -78,13 +78,14 @@ def test_error_limit_stops_at_fifty():
 
 
 def test_missing_include(tmp_path):
-    # as gcc: a missing include stops the run (what follows would only cascade)
+    # reported at its place, and the run goes on (issue 18): the errors after it
+    # are seen too, as an external cpp reports them
     scene = write(tmp_path, "s.cas", f"a = {CUBE};\n#include \"nowhere.cas\"\n> a;\n")
     status, out, err = run(str(scene), cwd=tmp_path)
     assert status == 1
     assert err.splitlines()[0] == ("s.cas:2:10: error: cannot find include file 'nowhere.cas' "
                                    "(searched: .); give the directory that holds it with -I DIR")
-    assert len(parse_stream(out)) == 0
+    assert len(parse_stream(out)) == 1
 
 
 def test_error_in_included_file_names_it(tmp_path):

@@ -49,30 +49,41 @@ def _path_points(d: str) -> list[list[tuple[float, float]]]:
 
 
 class Drawn:
-    """An SVG drawing read back: its cut loops and seen segments per group, in
-    scene metres on the page (x right, y up), knowing the scale and the
-    drawing's lower-left corner in metres."""
+    """An SVG drawing read back: its cut loops and seen segments per object's
+    group, in scene metres on the page (x right, y up), through the paper
+    origin and scale the drawing's group declares (which must be the scale
+    asked for); also the sheet's texts, and the pens of each kind of line."""
 
-    def __init__(self, svg: bytes, scale: float, corner: tuple[float, float]):
+    def __init__(self, svg: bytes, scale: float):
         root = ET.fromstring(svg)
+        self.root = root
         self.width_mm = float(root.get("width").removesuffix("mm"))
         self.height_mm = float(root.get("height").removesuffix("mm"))
         assert root.get("viewBox") == f"0 0 {root.get('width')[:-2]} {root.get('height')[:-2]}"
-        metres = scale / 1000
-        x0, y0 = corner
-        self.cuts, self.lines = {}, {}
-        for group in root.iter(SVG + "g"):
+        drawing = root.find(f"{SVG}g[@id='drawing']")
+        ox, oy = (float(v) for v in drawing.get("data-origin").split())
+        mm = float(drawing.get("data-mm-per-metre"))
+        assert mm == pytest.approx(1000 / scale)
+        self.cuts, self.lines, self.pens = {}, {}, {}
+        for group in drawing.findall(SVG + "g"):
             name = group.get("id")
             self.cuts[name], self.lines[name] = [], []
             for path in group.iter(SVG + "path"):
+                self.pens.setdefault(path.get("class"), set()).add(float(path.get("stroke-width")))
                 for sub in _path_points(path.get("d")):
                     p = np.array(sub)
-                    p = np.column_stack([(p[:, 0] - 10) * metres + x0,
-                                         (self.height_mm - 10 - p[:, 1]) * metres + y0])
+                    p = np.column_stack([(p[:, 0] - ox) / mm, (oy - p[:, 1]) / mm])
                     if path.get("class") == "cut":
                         self.cuts[name].append(p)
                     else:
                         self.lines[name].append(p)
+        self.texts = {group.get("id"): ["".join(t.itertext()) for t in group.iter(SVG + "text")]
+                      for group in root.findall(SVG + "g")}
+
+    def extent(self, name: str) -> np.ndarray:
+        """(2, 2): the corners of what the group draws, in metres."""
+        points = np.concatenate(self.lines[name] + self.cuts[name])
+        return np.array([points.min(axis=0), points.max(axis=0)])
 
     def cut_area(self, name: str) -> float:
         total = 0.0
@@ -131,9 +142,9 @@ def _draw(tmp_path, scene: str, *options, name="d.svg") -> bytes:
 
 def test_plan_of_a_room_with_a_door(tmp_path):
     svg = _draw(tmp_path, ROOM, "--section", "z=1.2")
-    drawn = Drawn(svg, 100, (-0.5, -0.5))  # the floor slab is the drawing's extent
-    # printed size: 5 x 4 m at 1:100 is 50 x 40 mm, plus 10 mm margins
-    assert (drawn.width_mm, drawn.height_mm) == (70, 60)
+    drawn = Drawn(svg, 100)
+    # the floor slab is the drawing's extent
+    assert drawn.extent("piece") == pytest.approx(np.array([[-0.5, -0.5], [4.5, 3.5]]))
     walls = 4 * 3 - 3.6 * 2.6 - 0.9 * 0.2
     assert drawn.cut_area("piece") == pytest.approx(walls, abs=1e-4)
     assert drawn.in_poche("piece", 0.5, 0.1)  # the south wall
@@ -151,7 +162,7 @@ def test_plan_of_a_room_with_a_door(tmp_path):
 def test_vertical_section_cuts_the_floor_and_the_walls(tmp_path):
     # x = 1.5 through the door, seen looking towards +x: y goes to the left
     svg = _draw(tmp_path, ROOM, "--section", "x=1.5")
-    drawn = Drawn(svg, 100, (-3.5, -0.1))  # page x is -y: the slab spans -3.5 .. 0.5
+    drawn = Drawn(svg, 100)  # page x is -y: the slab spans -3.5 .. 0.5
     section = 4 * 0.1 + 2 * 0.2 * 2.5 - 0.2 * 2.1  # floor, north and south walls, less the door
     assert drawn.cut_area("piece") == pytest.approx(section, abs=1e-4)
     assert not drawn.in_poche("piece", -0.1, 1.0)  # through the door
@@ -160,7 +171,7 @@ def test_vertical_section_cuts_the_floor_and_the_walls(tmp_path):
 
 def test_elevation_hides_what_is_behind(tmp_path):
     svg = _draw(tmp_path, TWO_BOXES, "--view", "front")
-    drawn = Drawn(svg, 100, (0, 0))
+    drawn = Drawn(svg, 100)
     assert not drawn.cuts["devant"] and not drawn.cuts["derriere"]
     # the front box: its outline, whole
     assert drawn.covered("devant", (0, 0), (2, 0)) == pytest.approx(2)
@@ -179,7 +190,7 @@ def test_elevation_hides_what_is_behind(tmp_path):
 
 def test_curved_surfaces_are_drawn_by_their_silhouettes(tmp_path):
     svg = _draw(tmp_path, "tube = @h(0.5, 0.5, 2) !cy(0.5, 0.5, 0.5);\n> tube;\n", "--view", "front")
-    drawn = Drawn(svg, 100, (-0.5, 0))
+    drawn = Drawn(svg, 100)
     # a cylinder seen from the side: a rectangle, not a line per facet
     vertical = [s for s in drawn.lines["tube"] if abs(s[0, 0] - s[-1, 0]) < 1e-6]
     assert len(vertical) == 2
@@ -192,8 +203,10 @@ def test_curved_surfaces_are_drawn_by_their_silhouettes(tmp_path):
 
 def test_scale_sets_the_printed_size(tmp_path):
     svg = _draw(tmp_path, TWO_BOXES, "--view", "front", "--scale", "1:50")
-    drawn = Drawn(svg, 50, (0, 0))
-    assert (drawn.width_mm, drawn.height_mm) == (3 * 20 + 20, 2 * 20 + 20)
+    drawn = Drawn(svg, 50)  # 20 mm of paper a metre
+    assert drawn.extent("devant") == pytest.approx(np.array([[0, 0], [2, 1]]))
+    # the sheet holds the drawing (3 x 2 m, 60 x 40 mm) and its title block below it
+    assert drawn.width_mm >= 60 + 20 and drawn.height_mm >= 40 + 30 + 20
 
 
 def test_dxf_in_metres_with_a_layer_per_object(tmp_path):
@@ -206,7 +219,7 @@ def test_dxf_in_metres_with_a_layer_per_object(tmp_path):
     layers = {layer.dxf.name for layer in doc.layers}
     assert {"piece"} <= layers
     hatches = doc.modelspace().query("HATCH")
-    assert {h.dxf.layer for h in hatches} == {"piece"}
+    assert {h.dxf.layer for h in hatches} - {"sheet"} == {"piece"}  # (the scale bar's blocks)
     outline = [p for p in doc.modelspace().query("LWPOLYLINE") if p.dxf.layer == "piece"]
     area = 0.0
     for polyline in outline:
@@ -214,11 +227,12 @@ def test_dxf_in_metres_with_a_layer_per_object(tmp_path):
         x, y = points[:, 0], points[:, 1]
         area += np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) / 2
     assert area == pytest.approx(4 * 3 - 3.6 * 2.6 - 0.9 * 0.2, abs=1e-6)
-    xs = [c for line in doc.modelspace().query("LINE") for c in (line.dxf.start.x, line.dxf.end.x)]
+    xs = [c for line in doc.modelspace().query("LINE") if line.dxf.layer == "piece"
+          for c in (line.dxf.start.x, line.dxf.end.x)]
     assert min(xs) == pytest.approx(-0.5) and max(xs) == pytest.approx(4.5)  # metres
     # the second frame's object, another file
     doc2 = ezdxf.readfile(tmp_path / "p2.dxf")
-    assert {h.dxf.layer for h in doc2.modelspace().query("HATCH")} == {"lampe"}
+    assert {h.dxf.layer for h in doc2.modelspace().query("HATCH")} - {"sheet"} == {"lampe"}
 
 
 EXAMPLE_DRAWINGS = [

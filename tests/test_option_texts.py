@@ -23,7 +23,7 @@ PIECES = st.sampled_from([
 TEXT = st.one_of(st.text(max_size=30), st.lists(PIECES, max_size=12).map("".join))
 OPTIONS = ["--set", "-D", "-U", "-I", "-o", "--size", "--view", "--eye", "--look", "--sun",
            "--samples", "--section", "--scale", "--jobs", "--port", "--tolerance",
-           "--max-polygons", "--summary", "-f"]
+           "--max-polygons", "--summary", "-f", "--sheet", "--title"]
 
 
 def _within(seconds, function, *args):

@@ -49,7 +49,7 @@ def _cube_faces(size):
 
 def test_sheets_left_by_the_engine_are_taken_out():
     """Where faces only touch, manifold3d can leave a fold or an inner sheet;
-    castor takes the overlap out of both faces (polygons.without_sheets)."""
+    castor takes the overlap out of both faces (sheets.without_sheets)."""
     from meshcheck import check_convex_planar, frames_of, regularity_defects
     (frame,) = frames_of("x = $U(!py(1,0,0,4), @ry(45) !cu(1,0,0), @t(-0.5,-0.9,-0.1) "
                          "!cu(1,0,0), @t(-0.6,0,-1) !cu(1,0,0)); > x;\n")
@@ -77,7 +77,7 @@ def test_a_union_the_engine_gets_wrong_is_computed_the_other_way_round():
     operands, whose faces coincide exactly, moved three vertices off their
     faces and lost 0.0516 of volume (40.6975627); the other way round it is
     right. Exact booleans (tests/exact.py) give 40.7491591. castor checks
-    every result's triangles against their faces (engine.off_faces)."""
+    every result's triangles against their faces (checks.off_faces)."""
     from meshcheck import frames_of, regularity_defects
     (frame,) = frames_of(
         "a = !ex(0.25, 1, 1, 0,0, 0,2, 1,2, 1,1, 2,1, 2,0);\n"

@@ -10,7 +10,7 @@ import sys
 import numpy as np
 import pytest
 
-from castor.jobs import Spec
+from castor.settings import PictureSettings
 from castor.language.vocabulary import PRIMITIVES
 from castor.options import View
 from castor.pictures import picture
@@ -30,12 +30,12 @@ def scene_frames(text, name="<scene>", defines=()):
 
 
 def draw(text: str, **options) -> np.ndarray:
-    spec = Spec(format="png", **{"size": (160, 120), "sun": None, **options})
+    spec = PictureSettings(**{"size": (160, 120), "sun": None, **options})
     return picture(scene_frames(text)[0], spec)
 
 
 def camera_of(text: str, **options):
-    spec = Spec(format="png", **{"size": (160, 120), **options})
+    spec = PictureSettings(**{"size": (160, 120), **options})
     low, high = compile_frame(scene_frames(text)[0]).box
     return make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)
 

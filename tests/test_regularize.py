@@ -123,8 +123,7 @@ def _fresh_frames(path, monkeypatch):
     made = facetize.Facetizer.frame
 
     def fresh(self, *args, **kwargs):
-        self.cache.clear()
-        self.cache_triangles = 0
+        self.caches.solids.clear()
         return made(self, *args, **kwargs)
 
     monkeypatch.setattr(facetize.Facetizer, "frame", fresh)
@@ -229,13 +228,13 @@ def test_a_cavity_survives_when_a_sheet_beside_it_is_dropped():
 def test_regular_keeps_a_cavity():
     import manifold3d
 
-    from castor.mesh import engine
+    from castor.mesh import regularize
 
     box = manifold3d.Manifold.cube([2, 2, 2]) - manifold3d.Manifold.cube([0.5] * 3).translate([0.5] * 3)
     touching = (manifold3d.Manifold.cube([1, 1, 1]).translate([3, 0, 0])
                 ^ manifold3d.Manifold.cube([1, 1, 1]).translate([4, 0, 0]))
     both = manifold3d.Manifold.compose([box, touching])
-    assert engine.regular(both).volume() == pytest.approx(7.875, abs=1e-12)
+    assert regularize.regular(both).volume() == pytest.approx(7.875, abs=1e-12)
 
 
 def test_a_sheet_after_a_general_affine_map_is_taken_out():
@@ -300,15 +299,15 @@ def test_a_fin_between_two_uses_of_one_face_is_taken_out():
 
 
 def test_a_result_off_its_faces_is_seen():
-    """engine.off_faces, the check of every boolean's result: nothing off on a
+    """checks.off_faces, the check of every boolean's result: nothing off on a
     right union; a cube whose corner the engine had moved is seen."""
     import manifold3d
 
-    from castor.mesh import engine, primitives
+    from castor.mesh import checks, instances, primitives
 
-    cube = engine.template(primitives.build("cu", (), 0.01))
+    cube = instances.template(primitives.build("cu", (), 0.01))
     right = cube.manifold + cube.manifold.translate([0.5, 0.25, 0.0])
-    assert engine.off_faces(right) == 0
+    assert checks.off_faces(right) == 0
     vertices = cube.vertices.copy()
     corner = int(np.argmax(vertices.sum(axis=1)))  # (1, 1, 1)
     vertices[corner] += 0.01
@@ -319,7 +318,7 @@ def test_a_result_off_its_faces_is_seen():
         run_original_id=np.array([cube.id], np.uint32),
         face_id=cube.face_ids.astype(np.uint64)))
     # the three faces that meet at the corner, two triangles each at most
-    assert 3 <= engine.off_faces(moved) <= 6
+    assert 3 <= checks.off_faces(moved) <= 6
 
 
 def test_a_sheet_whose_normal_has_two_components_as_large_is_found():

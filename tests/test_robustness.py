@@ -14,11 +14,12 @@ from pathlib import Path
 
 from hypothesis import HealthCheck, example, given, settings, strategies as st
 
-from castor.cli import _RECURSION_LIMIT, main
+from castor.cli import main
+from castor.pipeline import RECURSION_LIMIT
 
 # castor raises the recursion limit for deep scenes; raise it before hypothesis
 # looks, so that running castor in-process does not change it under its feet.
-sys.setrecursionlimit(_RECURSION_LIMIT)
+sys.setrecursionlimit(RECURSION_LIMIT)
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 SEED_SCENES = [
@@ -120,6 +121,36 @@ def test_mutated_scenes_never_crash(text):
 @given(st.lists(st.sampled_from(TOKENS), max_size=40))
 def test_token_soup_never_crashes(tokens):
     check(" ".join(tokens), "--no-cpp")
+
+
+DIRECTIVES = ["#include", "#define", "#undef", "#ifdef", "#ifndef", "#if", "#elif", "#else",
+              "#endif", "#error", "#warning", "#pragma", "#line", "#", "#bogus"]
+NAME_CHARS = st.sampled_from(["\0", "\x01", "\x7f", "\udcff", "\u00e9", "/", "\\", '"', "<",
+                              ">", "..", ".", " ", "\t", "a", "b.cas", "%", "*", "?", "\r"])
+
+
+@st.composite
+def directive_lines(draw):
+    """A directive with a name made of odd characters (NUL bytes, quotes, slashes,
+    control characters), quoted, bracketed or bare, before a statement that works."""
+    lines = []
+    for _ in range(draw(st.integers(1, 3))):
+        name = "".join(draw(st.lists(NAME_CHARS, max_size=6)))
+        opening, closing = draw(st.sampled_from([('"', '"'), ("<", ">"), ("", ""), ('"', "")]))
+        lines.append(f"{draw(st.sampled_from(DIRECTIVES))} {opening}{name}{closing}")
+    return "\n".join(lines) + "\n> !cu(1, 0, 0);\n"
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=list(HealthCheck))
+@given(directive_lines())
+@example('#include "a\0b.cas"\n> !cu(1, 0, 0);\n')
+@example('#include <a\0b>\n> !cu(1, 0, 0);\n')
+@example('#include "/"\n> !cu(1, 0, 0);\n')
+@example('#include ""\n> !cu(1, 0, 0);\n')
+@example('#define A "a\0b"\n#include A\n> !cu(1, 0, 0);\n')
+@example('#line 1 "a\0b"\n> !cu(1, 0, 0);\n')
+def test_odd_names_in_directives_never_crash(text):
+    check(text)
 
 
 def test_deep_expression_nesting():

@@ -17,9 +17,9 @@ import time
 import numpy as np
 import pytest
 
-from castor.interpreter import Settings
+from castor.settings import Source
 from castor.serve import server as server_module
-from castor.serve.scene import Job, Overtaken, evaluate
+from castor.serve.scene import Overtaken, Watched, evaluate
 from castor.serve.server import PreviewServer
 
 BOX = "boite = @h({x}, 3, 4) !cu(0.25, 0.45, 0.85);\n> boite;\n"
@@ -45,7 +45,7 @@ def scene(tmp_path, monkeypatch):
 
 @pytest.fixture
 def preview(scene):
-    server = PreviewServer(Job(("scene.cas",), Settings()), "127.0.0.1", 0).start()
+    server = PreviewServer(Watched(Source(("scene.cas",))), "127.0.0.1", 0).start()
     port = server.httpd.server_address[1]
     wait_for(lambda: get(port, "/scene.json")[2].get("evaluated"))
     yield server
@@ -113,7 +113,8 @@ def test_the_frames_as_triangles(preview):
     assert status == 200 and scene["diagnostics"] == [] and not scene["stale"]
     [frame] = scene["frames"]
     assert frame["where"] == "scene.cas:2"
-    assert frame["origins"] == [{"path": "(boite)!cu", "colour": [0.25, 0.45, 0.85]}]
+    assert frame["origins"] == [{"path": "(boite)!cu", "colour": [0.25, 0.45, 0.85],
+                                 "source": "scene.cas:1:21: !cu"}]
     assert frame["box"] == [[0, 0, 0], [2, 3, 4]]
     status, kind, data = get(port, frame["url"])
     assert status == 200 and kind == "application/octet-stream"
@@ -215,7 +216,7 @@ def test_an_included_file_is_watched(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     save(tmp_path / "part.cas", "boite = @h(2, 3, 4) !cu(0.25, 0.45, 0.85);\n")
     save(tmp_path / "main.cas", '#include "part.cas"\n> boite;\n')
-    server = PreviewServer(Job(("main.cas",), Settings()), "127.0.0.1", 0).start()
+    server = PreviewServer(Watched(Source(("main.cas",))), "127.0.0.1", 0).start()
     port = port_of(server)
     try:
         first = wait_for(lambda: (a := get(port, "/scene.json")[2])["evaluated"] and a)
@@ -243,7 +244,7 @@ def test_the_last_of_quick_saves_wins(preview, scene):
 
 
 def test_an_overtaken_evaluation_stops(scene):
-    job = Job(("scene.cas",), Settings())
+    job = Watched(Source(("scene.cas",)))
     assert len(evaluate(job).frames) == 1
     with pytest.raises(Overtaken):
         evaluate(job, cancelled=lambda: True)

@@ -13,8 +13,8 @@ import shutil
 import numpy as np
 import pytest
 
-from castor.interpreter import Settings
-from castor.serve.scene import Job
+from castor.serve.scene import Watched
+from castor.settings import Source
 from castor.serve.server import PreviewServer
 
 CHROMIUM = "/usr/bin/chromium"
@@ -44,7 +44,7 @@ def browser():
 def house(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     shutil.copy(os.path.join(ROOT, "examples", "house.cas"), tmp_path / "house.cas")
-    server = PreviewServer(Job(("house.cas",), Settings()), "127.0.0.1", 0).start()
+    server = PreviewServer(Watched(Source(("house.cas",))), "127.0.0.1", 0).start()
     yield tmp_path / "house.cas", server.url
     server.close()
 

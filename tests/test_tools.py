@@ -184,7 +184,8 @@ def test_meshlab_shows_the_ply_colours_and_a_closed_surface(tmp_path):
     meshes.meshing_merge_close_vertices(threshold=pymeshlab.PercentageValue(0.0001))
     topology = meshes.get_topological_measures()
     assert topology["boundary_edges"] == 0 and topology["non_two_manifold_edges"] == 0
-    assert meshes.get_geometric_measures()["mesh_volume"] == pytest.approx(64.64939, rel=1e-6)
+    # (two south windows since issue 18: the third ran into the door, 0.108 m3 of wall more)
+    assert meshes.get_geometric_measures()["mesh_volume"] == pytest.approx(64.75739, rel=1e-6)
 
 
 @pytest.mark.skipif(shutil.which("openscad") is None,

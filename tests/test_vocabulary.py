@@ -3,21 +3,50 @@
 import re
 from pathlib import Path
 
-from castor.csg.transforms import MATRICES
-from castor.language.vocabulary import PRIMITIVES, TRANSFORMS
-from castor.mesh.primitives import BUILDERS
+from castor.language.vocabulary import PRIMITIVES, TRANSFORMS, vim_syntax
+from castor.mesh.primitives import build
+from castor.pictures.spans import SPANS
 from meshcheck import run
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
-def test_every_primitive_is_built_and_every_transformation_has_its_matrix():
-    assert set(BUILDERS) == set(PRIMITIVES)
-    assert set(MATRICES) | {"f", "s"} == set(TRANSFORMS)
+def test_every_primitive_comes_from_its_own_module():
+    import castor.primitives as package
+
+    for name, primitive in PRIMITIVES.items():
+        assert SPANS[name] is primitive
+        module = primitive.mesh.__module__
+        assert module.startswith(package.__name__ + "."), module
+    places = [p.place for p in PRIMITIVES.values()]
+    assert places == sorted(places) and len(set(places)) == len(places)
+
+
+def test_every_transformation_but_the_tolerance_and_smoothing_has_its_matrix():
+    assert {name for name, t in TRANSFORMS.items() if t.matrix is None} == {"f", "s"}
+
+
+def test_each_mesh_says_which_faces_are_flat():
+    sizes = {"to": (0.3,), "pr": (6,), "py": (5,), "ex": (0, 0, 1, 0, 0, 1),
+             "rv": (0, 0, 1, 0, 1, 1, 0, 1)}
+    for name in PRIMITIVES:
+        mesh = build(name, sizes.get(name, ()), 0.1)
+        assert len(mesh.surfaces) == mesh.faces.max() + 1, name
+        curved = set(mesh.surfaces.tolist()) - {-1}
+        assert bool(curved) == PRIMITIVES[name].curved, name
+        low, high = PRIMITIVES[name].box(sizes.get(name, ()))
+        assert (mesh.vertices.min(axis=0) >= low).all() and (mesh.vertices.max(axis=0) <= high).all()
+    assert build("cy", (), 0.1).surfaces[:2].tolist() == [-1, -1]
+    assert set(build("cy", (), 0.1).surfaces[2:].tolist()) == {0}
+    # !rv: the level segments sweep flat rings, the others one surface each
+    assert sorted(set(build("rv", sizes["rv"], 0.1).surfaces.tolist())) == [-1, 1]
 
 
 def test_vim_syntax_knows_exactly_the_vocabulary():
     syntax = (ROOT / "vim" / "syntax" / "castor.vim").read_text()
+    # written by scripts/vim_syntax.py from the declarations
+    for line in vim_syntax():
+        assert line in syntax.splitlines()
     primitives = re.search(r'castorPrimitive "!\\\((.*?)\\\)', syntax).group(1).split("\\|")
     transforms = re.search(r'castorTransform "@\\\((.*?)\\\)', syntax).group(1).split("\\|")
     assert sorted(primitives) == sorted(PRIMITIVES)

@@ -7,7 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from castor.formats import FORMATS, module
+from castor.formats import FORMATS
+from castor.settings import FrameSettings, OutputSettings
 from castor.formats.output import Output, Spooled, encode, encode_pieces, write_atomically
 
 # several objects, colours, polygons of more than four vertices (a box less a
@@ -21,7 +22,8 @@ boite = $D(@t(-1, -1, -1) @h(2, 2, 2) !cu(0.2, 0.8, 0.2),
   @t(0, 4, 0) @rx(30) @h(1, 2, 1) !sp(0.5, 0.5, 0.5), @t(0, -4, 0) !pr(1, 1, 1, 6);
 """
 
-CHUNKED = ["cps", "off", "obj", "stl", "stl-ascii", "ply"]
+# the formats written a piece at a time (GLB is made per object: few, large pieces)
+CHUNKED = [f.name for f in FORMATS.values() if f.write_pieces is not None and f.name != "glb"]
 
 
 @pytest.fixture(scope="module")
@@ -48,10 +50,8 @@ def test_the_scene_has_what_the_writers_must_cut(frame):
 @pytest.mark.parametrize("name", CHUNKED)
 @pytest.mark.parametrize("size", [1, 7, 1000])
 def test_pieces_join_to_the_whole_frame(frame, name, size):
-    writer = module(name)
-    exporter = FORMATS[name].exporter
-    whole = getattr(writer, exporter)(frame, "scene.obj")
-    pieces = list(getattr(writer, exporter + "_chunks")(frame, "scene.obj", size=size))
+    whole = FORMATS[name].write(frame, "scene.obj")
+    pieces = list(FORMATS[name].write_pieces(frame, "scene.obj", size=size))
     assert b"".join(pieces) == whole
     if size == 7:  # many pieces, each small
         assert len(pieces) > 50
@@ -121,8 +121,8 @@ def _spooled_job(monkeypatch, directory, name, target):
 
     monkeypatch.setattr(jobs, "SPOOL_POLYGONS", 0)
     (scene,), _ = evaluated_frames(SCENE)
-    result = jobs.make(jobs.Job(scene, jobs.Spec(format=name, target=target,
-                                                 spool=str(directory))))
+    result = jobs.make(jobs.Job(scene, FrameSettings(OutputSettings(
+        format=name, target=target, spool=str(directory)))))
     assert isinstance(result.data, Spooled)
     assert os.path.dirname(result.data.path) == str(directory)
     return result
@@ -135,7 +135,8 @@ def test_a_spooled_frame_is_written_as_the_bytes_are(tmp_path, monkeypatch, name
 
     suffix = FORMATS[name].suffix
     (scene,), _ = evaluated_frames(SCENE)
-    expected = jobs.make(jobs.Job(scene, jobs.Spec(format=name, target=str(tmp_path / f"a{suffix}"))))
+    expected = jobs.make(jobs.Job(scene, FrameSettings(OutputSettings(
+        format=name, target=str(tmp_path / f"a{suffix}")))))
     assert isinstance(expected.data, bytes)
     # beside the output: renamed into place (a stream file's frames are copied)
     result = _spooled_job(monkeypatch, tmp_path, name, str(tmp_path / f"b{suffix}"))
@@ -171,7 +172,7 @@ def test_a_worker_whose_driver_has_gone_leaves_no_spooled_file(tmp_path, monkeyp
                           capture_output=True, text=True, check=True)
     monkeypatch.setattr(jobs, "SPOOL_POLYGONS", 0)
     (scene,), _ = evaluated_frames(SCENE)
-    result = jobs.make(jobs.Job(scene, jobs.Spec(format="stl", spool=str(tmp_path),
-                                                 spool_owner=int(gone.stdout))))
+    result = jobs.make(jobs.Job(scene, FrameSettings(OutputSettings(
+        format="stl", spool=str(tmp_path), spool_owner=int(gone.stdout)))))
     assert result.data == b""
     assert list(tmp_path.iterdir()) == []

@@ -17,12 +17,12 @@ from typing import MutableMapping
 
 from castor.csg import tree
 from castor.csg.paths import ROOT, Trail
-from castor.csg.transforms import step_matrix
 from castor.diagnostics import CastorError, EvaluationError, GeometryError, LimitError, Location
 from castor.language.expressions import evaluate, format_number
 from castor.language.scene import Boolean, Named, Node, Primitive, Repeat, Transformed
-from castor.language.vocabulary import PRIMITIVES
 from castor.options import DEFAULT_TOLERANCE
+from castor.primitives import PRIMITIVES
+from castor.transformations import step_matrix
 
 MAX_REPEAT = 1_000_000
 # Beyond this, double precision leaves too few digits for exact booleans.
@@ -118,10 +118,11 @@ class Evaluator:
             else:
                 name = f"object{k}"
             root = self._node(node, env, tree.IDENTITY, 1.0, tolerance, ROOT, ROOT)
-            made.append(tree.Object(name, root))
+            made.append(tree.Object(name, root, f"{node.location.file}:{node.location.line}"))
         if self.errors:
             raise FrameErrors(self.errors)
-        return tree.Frame(number, where, location, tuple(made))
+        parameters = tuple((k, v) for k, v in env.items() if k != "PI")
+        return tree.Frame(number, where, location, tuple(made), parameters)
 
     def _fail(self, error: CastorError) -> None:
         key = (error.message, error.location)
@@ -280,17 +281,15 @@ class Evaluator:
         declared = PRIMITIVES[node.kind]
         if declared.check is not None:
             declared.check(shape, node.location, here)
-        _check_reach(matrix, shape, node, here)
+        _check_reach(matrix, declared.extent(shape), node, here)
         path = rel.down(f"!{node.kind}").steps()
         return tree.Primitive(node.kind, shape, colour, matrix, quantize(tolerance / stretch),
                               path, node.location)
 
 
-def _check_reach(matrix: tree.Matrix, shape: tuple, node: Primitive, here: Trail) -> None:
-    """Refuse a primitive whose corners reach beyond MAX_COORDINATE."""
-    extent = 2.0
-    if node.kind in ("ex", "rv") and shape:
-        extent = max(extent, max(abs(v) for v in shape))
+def _check_reach(matrix: tree.Matrix, extent: float, node: Primitive, here: Trail) -> None:
+    """Refuse a primitive whose corners reach beyond MAX_COORDINATE (``extent``:
+    the largest coordinate of its unit box, declared with the primitive)."""
     for row in range(3):
         a, b, c, t = matrix[4 * row: 4 * row + 4]
         if (abs(a) + abs(b) + abs(c)) * extent + abs(t) > MAX_COORDINATE:

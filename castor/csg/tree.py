@@ -103,6 +103,7 @@ class Object:
 
     name: str
     root: Node | None
+    where: str = ""  # FILE:LINE of its definition (a named object's) or of the '>' command
 
 
 @dataclass(frozen=True, slots=True)
@@ -113,6 +114,7 @@ class Frame:
     where: str  # FILE:LINE of the '>' command
     location: Location
     objects: tuple[Object, ...]
+    parameters: tuple[tuple[str, float], ...] = ()  # the values in force at the '>' (not PI)
 
     def shared(self) -> dict[str, Shared]:
         """Every shared subtree of the frame, by key."""

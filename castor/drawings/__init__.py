@@ -4,16 +4,21 @@ A frame's solids are seen along one of the six orthographic directions;
 with a section plane, everything between the viewer and the plane is taken
 away, the cut regions become poché and what lies beyond is drawn with its
 hidden parts removed. The result is a ``Drawing`` of plain arrays in
-metres, which castor.formats.svg and castor.formats.dxf write out.
+metres; castor.drawings.sheet lays it on paper with its dimensions, levels
+and title block (a ``Sheet``), which the drawing formats of castor.formats
+(svg, pdf, dxf) write out.
 """
 
 from __future__ import annotations
+
+import os
+import unicodedata
 
 from castor.drawings.model import Drawing, Layer, View, view_for
 from castor.drawings.cut import cut_loops, section_area
 from castor.drawings.hidden import seen_lines
 
-__all__ = ["Drawing", "Layer", "View", "draw", "drawing", "section_area"]
+__all__ = ["Drawing", "Layer", "View", "draw", "section_area", "sheet_of", "title_of"]
 
 
 def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
@@ -24,16 +29,33 @@ def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
     objects = [o for o in frame.objects if o.polygon_count]
     cuts = [cut_loops(o, seen, depth) if section is not None else [] for o in objects]
     lines = seen_lines(objects, seen, depth)
-    layers = [Layer(o.name or f"object{k + 1}", c, l)
-              for k, (o, c, l) in enumerate(zip(objects, cuts, lines))]
-    return Drawing(layers, seen, scale)
+    layers = [Layer(o.name or f"object{k + 1}", c, l, p)
+              for k, (o, c, (l, p)) in enumerate(zip(objects, cuts, lines))]
+    return Drawing(layers, seen, scale, section)
 
 
-def drawing(scene, frame, spec) -> bytes:
-    """The frame drawn and written in the spec's format (svg or dxf)."""
-    result = draw(frame, spec.section, spec.view, spec.scale)
-    if spec.format == "dxf":
-        from castor.formats.dxf import export_drawing
-    else:
-        from castor.formats.svg import export_drawing
-    return export_drawing(result)
+def title_of(scene, title: str | None) -> str:
+    """The sheet's title: --title, else the name of the '>' object, else the file's."""
+    if title:
+        # control characters have no place on a sheet (and XML refuses most)
+        title = "".join(" " if unicodedata.category(c) in ("Cc", "Cs") else c for c in title)
+        return title.strip() or "castor"
+    if len(scene.objects) == 1 and scene.objects[0].name:
+        return scene.objects[0].name
+    return os.path.basename(scene.location.file) or "castor"
+
+
+def sheet_of(scene, frame, settings, title: str | None = None, warn=None):
+    """The frame drawn and laid on its sheet (castor.drawings.sheet.Sheet), as
+    ``settings`` (castor.settings.DrawingSettings) ask, titled ``title``
+    (--title); what a drawing format writes. ``warn(message)`` hears of
+    dimensions left out; a drawing larger than its paper is a CastorError at
+    the '>' command."""
+    from castor.diagnostics import CastorError
+    from castor.drawings.sheet import DoesNotFit, layout
+
+    result = draw(frame, settings.section, settings.view, settings.scale)
+    try:
+        return layout(result, settings.sheet, title_of(scene, title), scene.where, warn)
+    except DoesNotFit as exc:
+        raise CastorError(str(exc), scene.location) from None

@@ -1,9 +1,9 @@
 """Hidden-line removal: the edges a viewer sees, each cut where it passes
 behind a face.
 
-The edges drawn are the true edges of the solids: between polygons that are
-not coplanar, unless they are neighbouring facets of one curved primitive
-(a small angle between polygons of one origin), and the silhouettes, where a
+The edges drawn are the true edges of the solids, the creases
+(castor.mesh.creases: between polygons that are not coplanar, unless they
+are facets of one curved surface of one primitive), and the silhouettes, where a
 face turned towards the viewer meets one turned away. Polygons come whole,
 so a flat face is never crossed by the diagonals of its triangles. Each edge
 is then tested against every triangle that could hide it (found through a
@@ -20,11 +20,10 @@ import math
 import numpy as np
 
 from castor.drawings.cut import polygon_edges
-from castor.mesh.polygons import fan_triangles
+from castor.drawings.profile import profile_mask, split_at_junctions
+from castor.mesh.arrays import fan_triangles
+from castor.mesh.creases import creases, curved_kinds, guessed_same_surface, same_surface
 
-# neighbouring polygons of one primitive meeting at less than this are
-# facets of a curved surface: their edge is drawn only as a silhouette
-SMOOTH_ANGLE = math.radians(40)
 PAIRS_PER_CHUNK = 1_000_000
 
 
@@ -60,12 +59,22 @@ def _edges(obj, seen: np.ndarray, normals: np.ndarray, facing: float) -> np.ndar
     q = np.where(has_twin, polygon[np.minimum(twin, len(key) - 1)], p)
     front = normals[:, 2] > facing
     cosine = np.einsum("ij,ij->i", normals[p], normals[q])
-    same_origin = obj.origin_of[p] == obj.origin_of[q]
-    crease = cosine < 1 - 1e-9
-    smooth = same_origin & (cosine > math.cos(SMOOTH_ANGLE))
+    crease = creases(cosine, _same_surface(obj, p, q, cosine))
     silhouette = front[p] != front[q]
-    drawn = np.where(has_twin, (crease & ~smooth & (front[p] | front[q])) | silhouette, front[p])
+    drawn = np.where(has_twin, (crease & (front[p] | front[q])) | silhouette, front[p])
     return np.column_stack([lo[starts], hi[starts]])[drawn]
+
+
+def _same_surface(obj, p: np.ndarray, q: np.ndarray, cosine: np.ndarray) -> np.ndarray:
+    """Whether polygons p and q are facets of one curved surface of one
+    primitive: from the surfaces the frame carries, or guessed from their
+    primitives' kinds where it carries none."""
+    same_origin = obj.origin_of[p] == obj.origin_of[q]
+    if obj.surface_of is not None:
+        return same_surface(obj.origin_of[p], obj.origin_of[q], obj.surface_of[p],
+                            obj.surface_of[q])
+    curved = curved_kinds([o.kind for o in obj.origins])
+    return guessed_same_surface(same_origin, curved[obj.origin_of[p]], cosine)
 
 
 def _grid_cells(lo, hi, origin, cell, size):
@@ -159,9 +168,10 @@ def _visible_pieces(count, edge, t0, t1, tol):
     return np.concatenate(pieces)
 
 
-def seen_lines(objects, view, depth: float | None) -> list[np.ndarray]:
+def seen_lines(objects, view, depth: float | None) -> list[tuple[np.ndarray, np.ndarray]]:
     """For each object, (L, 2, 2): the seen segments of its edges on the page
-    (metres), beyond the section plane at ``depth`` if there is one."""
+    (metres), beyond the section plane at ``depth`` if there is one, and (L,)
+    which of them are profile (castor.drawings.profile)."""
     if not objects:
         return []
     basis = view.basis()
@@ -201,7 +211,7 @@ def seen_lines(objects, view, depth: float | None) -> list[np.ndarray]:
     p0, p1, owner = p0[short], p1[short], owner[short]
     tris, planes = np.concatenate(tris_all), np.concatenate(planes)
     if not len(p0):
-        return [np.zeros((0, 2, 2)) for _ in objects]
+        return [(np.zeros((0, 2, 2)), np.zeros(0, bool)) for _ in objects]
     extent = float(np.ptp(np.concatenate([p0, p1]), axis=0).max()) or 1.0
     eps2d, epsz = extent * 1e-9, extent * 1e-7
     pieces = np.zeros((0, 3))
@@ -233,4 +243,9 @@ def seen_lines(objects, view, depth: float | None) -> list[np.ndarray]:
     segments, e = segments[long_enough], e[long_enough]
     order = np.argsort(e, kind="stable")  # edges in a steady order
     segments, e = segments[order], e[order]
-    return [segments[owner[e] == k] for k in range(len(objects))]
+    segments, by = split_at_junctions(segments, owner[e], extent, _candidate_pairs)
+    tri_owner = np.repeat(np.arange(len(tris_all)), [len(t) for t in tris_all])
+    tri_lo, tri_hi = tris.min(axis=1)[:, :2], tris.max(axis=1)[:, :2]
+    profile = profile_mask(segments, by, tris, tri_owner, planes, depth, extent,
+                           lambda points: _candidate_pairs(points, points, tri_lo, tri_hi))
+    return [(segments[by == k], profile[by == k]) for k in range(len(objects))]

@@ -56,11 +56,13 @@ def view_for(section, view) -> View:
 class Layer:
     """One object of the frame as drawn: its cut regions (closed loops of
     page points, outer boundaries counter-clockwise, holes clockwise) and the
-    segments of its edges that are seen, all in metres on the page."""
+    segments of its edges that are seen, all in metres on the page; ``profile``
+    says which seen segments are its outline against what lies behind."""
 
     name: str
     cuts: list[np.ndarray] = field(default_factory=list)  # each (n, 2)
     lines: np.ndarray = field(default_factory=lambda: np.zeros((0, 2, 2)))  # (L, 2, 2)
+    profile: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))  # (L,)
 
 
 @dataclass
@@ -68,6 +70,18 @@ class Drawing:
     layers: list[Layer]
     view: View
     scale: float  # the N of 1:N
+    section: object = None  # castor.options.Section, None for an elevation
+
+    @property
+    def is_plan(self) -> bool:
+        return self.view.name == "top"
+
+    def description(self) -> str:
+        """What the drawing is, as a title block says it: 'Plan z = 1.20'."""
+        if self.section is None:
+            return f"Elevation {self.view.name}"
+        kind = "Plan" if self.section.axis == "z" else "Section"
+        return f"{kind} {self.section.axis} = {self.section.value:.2f}"
 
     def box(self) -> np.ndarray:
         """(2, 2): the lower-left and upper-right corners of what is drawn, in metres."""

@@ -92,77 +92,79 @@ def object_names(frame: Frame) -> list[str]:
     return names
 
 
-# colours by name, for a material that no named object explains
-_COLOUR_NAMES = {
-    "white": (1, 1, 1), "light_grey": (0.75, 0.75, 0.75), "grey": (0.5, 0.5, 0.5),
-    "dark_grey": (0.25, 0.25, 0.25), "black": (0, 0, 0), "red": (0.85, 0.1, 0.1),
-    "dark_red": (0.5, 0.1, 0.1), "orange": (1, 0.55, 0.1), "yellow": (1, 0.9, 0.1),
-    "beige": (0.93, 0.88, 0.75), "brown": (0.5, 0.3, 0.15), "green": (0.15, 0.65, 0.2),
-    "dark_green": (0.1, 0.35, 0.1), "cyan": (0.1, 0.8, 0.85), "blue": (0.15, 0.3, 0.85),
-    "navy": (0.05, 0.1, 0.4), "purple": (0.5, 0.2, 0.6), "pink": (1, 0.6, 0.75),
-}
 _NAMED_STEP = re.compile(r"\(([^()]*)\)")
+_OPERAND = re.compile(r"[UID](\d+)")
 
 
 def colour_name(colour) -> str:
-    """The nearest of a few colour names a person uses ('beige', 'dark_red')."""
-    c = np.asarray(colour, dtype=np.float64)
-    return min(_COLOUR_NAMES, key=lambda n: float(np.sum((np.array(_COLOUR_NAMES[n]) - c) ** 2)))
+    """A colour by its own values, as a material name: ``rgb-0.9-0.9-0.85``."""
+    def number(c: float) -> str:
+        text = repr(float(c))
+        return text[:-2] if text.endswith(".0") else text
+    return "rgb-" + "-".join(number(c) for c in colour)
+
+
+def _path_order(path: str) -> tuple[int, ...]:
+    """The place of a primitive in the order the scene writes it: the operand
+    numbers along its path (``U1.D2.U10`` before ``U2``), names left out."""
+    return tuple(int(n) for n in _OPERAND.findall(_NAMED_STEP.sub("", path)))
+
+
+def _part_name(path: str) -> tuple[int, str] | None:
+    """What a primitive's path names it part of: its innermost named sub-object
+    (rank 0), else its object's own name (rank 1), else None."""
+    named = _NAMED_STEP.findall(path)
+    if path.startswith("(") and named:
+        own, below = named[0], named[1:]
+        return (0, below[-1]) if below else (1, own)
+    return (0, named[-1]) if named else None
 
 
 def materials(frame: Frame) -> tuple[list[Material], list[np.ndarray]]:
-    """One material per colour of the frame, and for each object the material of
-    each of its polygons.
+    """The frame's materials, and for each object the material of each of its polygons.
 
-    A material is named after the innermost named object whose primitives give
-    most of the area of that colour (``toit``, ``fenetre``), else after the
-    colour ('beige'); names are unique.
+    Within each object, a colour is one material, named (OUTPUT.md) after the
+    named sub-object whose primitives carry that colour there: the innermost
+    named object on their path (``poteau``, ``fenetres_sud``), or the object's
+    own name where its primitives are named by nothing else, or else the colour's
+    values (``rgb-0.9-0.9-0.85``); never after another object. Where several named
+    sub-objects of one object share a colour, the first of them in the order the
+    scene writes them names it (the house's blue is ``fenetres_sud``, though
+    the north windows and the door are cut by it too): the part a reader meets
+    first in the file, and one short name that a Blender user finds in the
+    material list, rather than a list of every part. Objects that name a colour
+    alike share the material; one name for two colours gets a number
+    (``fenetre``, ``fenetre_2``).
     """
-    from castor.mesh.polygons import fan_triangles
-
-    keys: dict[tuple, int] = {}
-    votes: list[dict[str, float]] = []
+    table: list[Material] = []
+    index: dict[tuple[str, tuple], int] = {}  # (base name, colour) -> material
+    taken: set[str] = set()
     per_object = []
     for obj in frame.objects:
-        origin_material = np.zeros(len(obj.origins), np.int64)
-        # votes by area, so that every format (polygons or triangles) names alike;
-        # the fan's triangles are made a piece at a time, their areas added up
-        # in one pass in triangle order
-        fan_sizes = np.maximum(np.diff(obj.offsets) - 2, 0)
-        areas = np.empty(int(fan_sizes.sum()))
-        origin_of_triangle = np.empty(len(areas), np.int64)
-        done = 0
-        for first, offsets, indices in object_pieces(obj):
-            tris, polygon = fan_triangles(offsets, indices)
-            corners = obj.vertices[tris]
-            areas[done:done + len(tris)] = np.linalg.norm(np.cross(
-                corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
-            origin_of_triangle[done:done + len(tris)] = obj.origin_of[first + polygon]
-            done += len(tris)
-        counts = np.bincount(origin_of_triangle, weights=areas, minlength=len(obj.origins))
-        del areas, origin_of_triangle
-        for i, origin in enumerate(obj.origins):
+        chosen: dict[tuple, tuple] = {}  # colour -> (rank, path order, name)
+        colour_of = []
+        for origin in obj.origins:
             key = tuple(float(c) for c in origin.colour)
-            if key not in keys:
-                keys[key] = len(keys)
-                votes.append({})
-            origin_material[i] = keys[key]
-            named = _NAMED_STEP.findall(origin.path)
-            if named:
-                tally = votes[keys[key]]
-                tally[named[-1]] = tally.get(named[-1], 0.0) + float(counts[i])
+            colour_of.append(key)
+            part = _part_name(origin.path)
+            candidate = ((2, (), colour_name(key)) if part is None
+                         else (part[0], _path_order(origin.path), part[1]))
+            if key not in chosen or candidate < chosen[key]:
+                chosen[key] = candidate
+        origin_material = np.zeros(len(obj.origins), np.int64)
+        for i, key in enumerate(colour_of):
+            base = chosen[key][2]
+            if (base, key) not in index:
+                name, n = base, 1
+                while name in taken:
+                    n += 1
+                    name = f"{base}_{n}"
+                taken.add(name)
+                index[(base, key)] = len(table)
+                table.append(Material(name, key))
+            origin_material[i] = index[(base, key)]
         per_object.append(origin_material[obj.origin_of] if len(obj.origin_of)
                           else np.zeros(0, np.int64))
-    table, seen = [], set()
-    for key, number in keys.items():
-        tally = votes[number]
-        base = max(tally, key=lambda n: (tally[n], n)) if tally else colour_name(key)
-        name, n = base, 1
-        while name in seen:
-            n += 1
-            name = f"{base}_{n}"
-        seen.add(name)
-        table.append(Material(name, key))
     return table, per_object
 
 
@@ -207,7 +209,7 @@ def triangles(vertices: np.ndarray, offsets: np.ndarray,
     with an assertion on such faces, and slicers flag them. Those polygons are
     cut by clipping ears at true corners instead.
     """
-    from castor.mesh.polygons import fan_triangles
+    from castor.mesh.arrays import fan_triangles
 
     straight = straight_corners(vertices, offsets, indices)
     if not straight.any():

@@ -12,6 +12,7 @@ from typing import Iterator
 
 import numpy as np
 
+from castor.formats import Format
 from castor.mesh.frame import Frame
 
 HEADER = "castor-polygons 1\n"
@@ -121,6 +122,9 @@ class StreamFrame:
     points: np.ndarray  # (N, 3) float64, polygon after polygon
     offsets: np.ndarray  # (P + 1,)
     colours: np.ndarray  # (P, 3) in 0..1
+    # each polygon's path (an index into paths), where the file gives one
+    path_of: np.ndarray | None = None
+    paths: list[str] | None = None
 
     @property
     def polygon_count(self) -> int:
@@ -128,7 +132,7 @@ class StreamFrame:
 
     def triangles(self) -> tuple[np.ndarray, np.ndarray]:
         """Fan triangles as point numbers, and the polygon of each."""
-        from castor.mesh.polygons import fan_triangles
+        from castor.mesh.arrays import fan_triangles
 
         return fan_triangles(self.offsets, np.arange(len(self.points)))
 
@@ -151,9 +155,11 @@ def load(lines: Iterator[str], name: str = "<stdin>") -> Iterator[StreamFrame]:
         kind = fields[0]
         try:
             if kind == "frame":
-                current = (int(fields[1]), fields[2] if len(fields) > 2 else "", [], [], [0])
+                current = (int(fields[1]), fields[2] if len(fields) > 2 else "", [], [], [0], {},
+                           [])
             elif kind == "poly":
-                _, _, points, colours, offsets = current
+                _, _, points, colours, offsets, paths, path_of = current
+                path_of.append(paths.setdefault(fields[1], len(paths)))
                 n = int(fields[5])
                 values = np.array(fields[6:6 + 3 * n], dtype=np.float64)
                 if len(values) != 3 * n:
@@ -162,11 +168,27 @@ def load(lines: Iterator[str], name: str = "<stdin>") -> Iterator[StreamFrame]:
                 points.append(values.reshape(n, 3))
                 offsets.append(offsets[-1] + n)
             elif kind == "endframe":
-                frame_number, where, points, colours, offsets = current
+                frame_number, where, points, colours, offsets, paths, path_of = current
                 yield StreamFrame(frame_number, where,
                               np.concatenate(points) if points else np.zeros((0, 3)),
                               np.array(offsets, np.int64),
-                              np.array(colours, dtype=np.float64).reshape(-1, 3))
+                              np.array(colours, dtype=np.float64).reshape(-1, 3),
+                              np.array(path_of, np.int64), list(paths))
                 current = None
         except (ValueError, IndexError, TypeError):
             raise StreamError(f"{name}:{number}: malformed '{kind}' record") from None
+
+
+def read(path: str) -> Iterator[StreamFrame]:
+    """A polygon stream file's frames, each as soon as it is read."""
+    try:
+        handle = open(path, encoding="utf-8", errors="replace")
+    except OSError as exc:
+        raise StreamError(f"cannot read '{path}': {exc.strerror}") from None
+    with handle:
+        yield from load(handle, path)
+
+
+FORMATS = (Format("cps", (".cps",), "stream", "the Castor polygon stream", export,
+                  write_pieces=export_chunks, read=read, binary=False, one_frame=False,
+                  header=HEADER.encode("utf-8"), listed=0),)

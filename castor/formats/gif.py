@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import io
 
+from castor.formats import Format
+
 FRAME_TIME = 100  # milliseconds per frame
 
 
@@ -30,3 +32,7 @@ def export_animation(images: list) -> bytes:
         frames[0].save(buffer, format="GIF", save_all=True, append_images=frames[1:],
                        duration=FRAME_TIME, loop=0)
     return buffer.getvalue()
+
+
+FORMATS = (Format("gif", (".gif",), "picture", "every frame ray traced, as an animation",
+                  export_animation, one_frame=False, listed=80),)

@@ -10,15 +10,16 @@ shade flat, which is right for polygons.
 
 from __future__ import annotations
 
-import json
 import struct
 from typing import Iterator
 
 import numpy as np
 
 from castor.mesh.frame import Frame, FrameObject
+from castor.formats import Format
 from castor.formats._mesh import object_names, object_pieces, triangle_counts, triangles, y_up
 from castor.formats._mesh import materials as frame_materials
+from castor.formats._trimesh import read_with_trimesh
 
 
 def _linear(c: float) -> float:
@@ -110,6 +111,8 @@ def export_chunks(frame: Frame, path: str | None = None, size: int | None = None
         for key in ("nodes", "meshes", "materials", "accessors", "bufferViews", "buffers"):
             document.pop(key)
         document["scenes"] = [{}]  # an empty list of nodes is not valid glTF
+    import json  # here: the registry imports this module at every start-up
+
     text = json.dumps(document, separators=(",", ":")).encode("utf-8")
     text += b" " * (-len(text) % 4)
     length = 12 + 8 + len(text) + (8 + offset if offset else 0)
@@ -118,3 +121,13 @@ def export_chunks(frame: Frame, path: str | None = None, size: int | None = None
         yield struct.pack("<II", offset, 0x004E4942)
         for data in blobs:
             yield data.tobytes() + b"\0" * (-data.nbytes % 4)
+
+
+def read(path: str):
+    """A glTF file (.glb, or .gltf with its buffers) as one frame, z up again."""
+    return read_with_trimesh(path, up="y")
+
+
+FORMATS = (Format("glb", (".glb",), "mesh", "binary glTF 2.0, one node per object", export,
+                  write_pieces=export_chunks, read=read, triangles_only=True, up="y",
+                  reads_also=(".gltf",), listed=50),)

@@ -14,8 +14,10 @@ from typing import Iterator
 import numpy as np
 
 from castor.mesh.frame import Frame
+from castor.formats import Format
 from castor.formats._mesh import CHUNK, materials, object_names, y_up
 from castor.formats.cps import number_strings
+from castor.formats._trimesh import read_with_trimesh
 
 
 def export_chunks(frame: Frame, path: str | None = None, size: int | None = None) -> Iterator[bytes]:
@@ -70,3 +72,13 @@ def companions(frame: Frame, path: str) -> dict[str, bytes]:
         lines += [f"newmtl {material.name}", f"Ka {rgb}", f"Kd {rgb}", "Ks 0 0 0", "d 1",
                   "illum 1", ""]
     return {os.path.join(os.path.dirname(path), _mtl_name(path)): "\n".join(lines).encode("utf-8")}
+
+
+def read(path: str):
+    """An OBJ file (its .mtl beside it) as one frame, z up again."""
+    return read_with_trimesh(path, up="y")
+
+
+FORMATS = (Format("obj", (".obj",), "mesh", "Wavefront OBJ with a material per colour", export,
+                  write_pieces=export_chunks, read=read, companions=companions, binary=False,
+                  up="y", listed=20),)

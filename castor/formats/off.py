@@ -19,7 +19,8 @@ import numpy as np
 from castor.mesh.frame import Frame
 from castor.formats._mesh import (CHUNK, byte_colours, pieces, split_large, straight_corners,
                                   triangle_counts, triangles, vertex_bases)
-from castor.formats.cps import number_strings
+from castor.formats import Format
+from castor.formats.cps import StreamError, StreamFrame, number_strings
 
 
 def _axis_aligned(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray) -> np.ndarray:
@@ -127,3 +128,17 @@ def load(text: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         colours.append(rgb)
     return (np.concatenate(points) if points else np.zeros((0, 3)),
             np.array(offsets, np.int64), np.array(colours, dtype=np.float64).reshape(-1, 3))
+
+
+def read(path: str) -> Iterator[StreamFrame]:
+    """An OFF file as one frame, read beside its writer: trimesh drops OFF colours."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as handle:
+            points, offsets, colours = load(handle.read())
+    except (OSError, ValueError, IndexError) as exc:
+        raise StreamError(f"{path}: cannot read this OFF file ({exc})") from None
+    yield StreamFrame(1, path, points, offsets, colours)
+
+
+FORMATS = (Format("off", (".off",), "mesh", "Geomview OFF with a colour per face", export,
+                  write_pieces=export_chunks, read=read, binary=False, listed=10),)

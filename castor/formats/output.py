@@ -10,7 +10,6 @@ run with the same kind of message.
 from __future__ import annotations
 
 import codecs
-import importlib.util
 import itertools
 import os
 import re
@@ -20,7 +19,7 @@ from typing import Iterable, Iterator, NamedTuple, Union
 
 from castor.diagnostics import CastorError, Location
 from castor.mesh.frame import Frame
-from castor.formats import FORMATS, module as writer
+from castor.formats import registry
 
 _PATTERN = re.compile(r"%0?\d*d")
 _PERCENT = re.compile(r"%%|%0?\d*d|%")
@@ -46,16 +45,11 @@ def frame_path(path: str, number: int) -> str:
     return _PERCENT.sub(replace, path)
 
 
-def available(name: str) -> bool:
-    """Whether the module that writes format ``name`` is part of this castor."""
-    return importlib.util.find_spec(f"castor.formats.{FORMATS[name].module}") is not None
-
-
 def suffix_message(path: str) -> str:
     """The usage error for an output whose extension names no format."""
     suffixes = []
-    for f in FORMATS.values():
-        if f.suffix not in suffixes and available(f.name):
+    for f in registry().values():
+        if f.suffix not in suffixes:
             suffixes.append(f.suffix)
     hint = ""
     if path.lower().endswith(".gltf"):
@@ -276,25 +270,23 @@ def encode_pieces(frame: Frame, name: str,
     if patterned:
         target = frame_path(target, frame.number)
     data = render_pieces(frame, name, target)
-    if name == "cps" and patterned:  # a file of its own: it begins with the header
-        from castor.formats.cps import HEADER
-
-        data = itertools.chain([HEADER.encode("utf-8")], data)
-    companions = getattr(writer(name), "companions", None)
+    chosen = registry()[name]
+    if chosen.header and patterned:  # a file of its own: it begins with the header
+        data = itertools.chain([chosen.header], data)
+    companions = chosen.companions
     return data, (companions(frame, target) if companions is not None and target else {})
 
 
 def render(frame: Frame, name: str, path: str | None = None) -> bytes:
     """The bytes of ``frame`` in format ``name`` (``path``: where it is going, for
     formats that name a companion file)."""
-    return getattr(writer(name), FORMATS[name].exporter)(frame, path)
+    return registry()[name].write(frame, path)
 
 
 def render_pieces(frame: Frame, name: str, path: str | None = None) -> Iterator[bytes]:
     """As ``render``, a piece at a time where the format's module writes so
-    (its exporter's name with '_chunks'; GLB and 3MF are made whole)."""
-    module = writer(name)
-    chunked = getattr(module, FORMATS[name].exporter + "_chunks", None)
+    (its ``write_pieces``; 3MF is made whole)."""
+    chunked = registry()[name].write_pieces
     if chunked is None:
         return iter([render(frame, name, path)])
     return chunked(frame, path)
@@ -324,13 +316,16 @@ class Output:
         self.path = path
         self.format = format_name
         self.frames = 0
-        self.stream: AtomicFile | None = None  # the cps stream, for a single -o file
+        self.stream: AtomicFile | None = None  # the stream, for a single -o file
+        chosen = registry()[format_name]
+        self.streamed = chosen.kind == "stream"  # frame after frame into one file
+        self.header = chosen.header
+        self.one_frame = chosen.one_frame
+        self.suffix = chosen.suffix
 
     def start(self) -> None:
-        if self.path is None and self.format == "cps":
-            from castor.formats.cps import HEADER
-
-            sys.stdout.write(HEADER)
+        if self.path is None and self.streamed:
+            sys.stdout.write(self.header.decode("utf-8"))
             sys.stdout.flush()
 
     def put(self, number: int, data: Data, companions: dict[str, bytes],
@@ -345,17 +340,15 @@ class Output:
              location: Location) -> None:
         self.frames += 1
         patterned = bool(self.path and has_pattern(self.path))
-        if self.format == "cps" and not patterned:
+        if self.streamed and not patterned:
             if self.path is None:
                 to_stdout(data)
                 return
             # a single file: frames go into it as they come, renamed into place
             # at the end
             if self.stream is None:
-                from castor.formats.cps import HEADER
-
                 self.stream = AtomicFile(self.path)
-                self.stream.write(HEADER.encode("utf-8"))
+                self.stream.write(self.header)
             try:
                 for piece in pieces_of(data):
                     self.stream.write(piece)
@@ -375,32 +368,30 @@ class Output:
 
     def refusal(self, count: int, number: int, location: Location) -> OutputError | None:
         """Why this output cannot take its ``count``-th frame (frame ``number``), or None."""
-        if count <= 1 or FORMATS[self.format].all_frames or (self.path and has_pattern(self.path)):
+        if count <= 1 or not self.one_frame or (self.path and has_pattern(self.path)):
             return None
         where = self.path or "standard output"
-        stem, suffix = os.path.splitext(self.path or f"scene{FORMATS[self.format].suffix}")
+        stem, suffix = os.path.splitext(self.path or f"scene{self.suffix}")
         return OutputError(
             f"{self.format} output holds one frame, and this is frame {number} for {where}; "
             f"give a pattern such as -o {stem}-%03d{suffix} for one file per frame (the frames "
             f"after it are not made)", location)
 
     def finish(self, had_errors: bool) -> bool:
-        """Put a single cps file in place; False when it was left out."""
-        if self.path is None or self.format != "cps" or has_pattern(self.path):
+        """Put a single stream file in place; False when it was left out."""
+        if self.path is None or not self.streamed or has_pattern(self.path):
             return True
         if self.stream is None:
-            if had_errors:
-                return False
-            from castor.formats.cps import HEADER
-
-            write_atomically(self.path, HEADER.encode("utf-8"))
+            if had_errors and not is_device(self.path):
+                return False  # a device (-o /dev/null) has no old file to keep: as stdout
+            write_atomically(self.path, self.header)
             return True
         stream, self.stream = self.stream, None
         stream.commit()
         return True
 
     def abandon(self) -> None:
-        """A run that stops on an exception: a single cps file being written is
+        """A run that stops on an exception: a single stream file being written is
         left out (the old file stays)."""
         if self.stream is not None:
             self.stream.discard()

@@ -14,7 +14,10 @@ from typing import Iterator
 import numpy as np
 
 from castor.mesh.frame import Frame
-from castor.formats._mesh import CHUNK, Piece, byte_colours, pieces, triangles, vertex_bases
+from castor.formats import Format
+from castor.formats._mesh import (CHUNK, Piece, byte_colours, pieces, triangles,
+                                  vertex_bases)
+from castor.formats._trimesh import read_with_trimesh
 
 _VERTEX = np.dtype([("xyz", "<f8", 3), ("rgb", "u1", 3)])
 _FACE = np.dtype([("count", "u1"), ("indices", "<i4", 3), ("rgb", "u1", 3)])
@@ -72,3 +75,12 @@ def export_chunks(frame: Frame, path: str | None = None, size: int | None = None
 
 def export(frame: Frame, path: str | None = None) -> bytes:
     return b"".join(export_chunks(frame, path))
+
+
+def read(path: str):
+    """A PLY file as one frame, coloured by its vertices."""
+    return read_with_trimesh(path)
+
+
+FORMATS = (Format("ply", (".ply",), "mesh", "binary PLY with vertex colours", export,
+                  write_pieces=export_chunks, read=read, triangles_only=True, listed=40),)

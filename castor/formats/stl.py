@@ -12,7 +12,9 @@ from typing import Iterator
 import numpy as np
 
 from castor.mesh.frame import Frame
+from castor.formats import Format
 from castor.formats._mesh import Piece, pieces, triangle_counts, triangles
+from castor.formats._trimesh import read_with_trimesh
 
 _RECORD = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
 
@@ -61,3 +63,17 @@ def export_ascii_chunks(frame: Frame, path: str | None = None,
 
 def export_ascii(frame: Frame, path: str | None = None) -> bytes:
     return b"".join(export_ascii_chunks(frame, path))
+
+
+def read(path: str):
+    """An STL file, binary or ASCII, as one frame (grey: STL has no colour)."""
+    return read_with_trimesh(path)
+
+
+FORMATS = (
+    Format("stl", (".stl",), "mesh", "binary STL, geometry only", export,
+           write_pieces=export_chunks, read=read, triangles_only=True, listed=30),
+    Format("stl-ascii", (".stl",), "mesh", "ASCII STL, geometry only", export_ascii,
+           write_pieces=export_ascii_chunks, read=read, binary=False, triangles_only=True,
+           listed=31),
+)

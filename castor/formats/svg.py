@@ -1,28 +1,27 @@
-"""SVG: a drawing at its printed size, each object a group named after it.
+"""SVG: a drawing's sheet at its printed size, each object a group named after it.
 
-Lengths are millimetres on paper (at 1:100, 1 m of the scene is 10 mm);
-the page is the drawing's extent plus a margin. Cut regions (poché) are
-filled and outlined with a heavy line, seen edges drawn with a thin one, as
-an architect's pens: 0.5 mm and 0.18 mm. Each group is also an Inkscape
-layer labelled with the object's name.
+Lengths are millimetres on paper (at 1:100, 1 m of the scene is 10 mm). The
+objects' groups sit in one group ``drawing`` whose ``data-origin`` is the
+paper point of the page's (0, 0) metres and ``data-mm-per-metre`` the scale,
+so a reader can take any point back to metres. Pens are stroke widths at the
+printed size (castor.drawings.sheet); each object's group is also an Inkscape
+layer labelled with its name. Text is text, escaped, in Helvetica.
 """
 
 from __future__ import annotations
 
 import re
-from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-MARGIN = 10.0  # mm
-CUT_PEN = 0.5  # mm
-SEEN_PEN = 0.18  # mm
-POCHE = "#8c8c8c"
+from castor.formats import Format
+
+FONT = "Helvetica, Arial, sans-serif"
 
 
-def _ids(names: list[str]) -> list[str]:
+def _ids(names: list[str], taken: set[str]) -> list[str]:
     """Valid, distinct XML ids made from the objects' names."""
-    seen: set[str] = set()
+    seen = set(taken)
     ids = []
     for name in names:
         base = re.sub(r"[^A-Za-z0-9_.-]", "_", name) or "object"
@@ -41,44 +40,66 @@ def _number(x: float) -> str:
     return "0" if text in ("-0", "") else text
 
 
-def export_drawing(drawing) -> bytes:
-    """The drawing as SVG bytes, in millimetres at the drawing's scale."""
-    mm = 1000.0 / drawing.scale  # millimetres on paper per metre
-    (x0, y0), (x1, y1) = drawing.box()
-    width = (x1 - x0) * mm + 2 * MARGIN
-    height = (y1 - y0) * mm + 2 * MARGIN
+def _item(item) -> str:
+    """One item of the sheet as an SVG element."""
+    # imported here: xml.sax.saxutils brings urllib, too slow for every start-up
+    from xml.sax.saxutils import escape
 
-    def page(points: np.ndarray) -> np.ndarray:
-        return np.column_stack([(points[:, 0] - x0) * mm + MARGIN,
-                                (y1 - points[:, 1]) * mm + MARGIN])
+    from castor.drawings.sheet import Lines, Shape
 
+    if isinstance(item, Lines):
+        a, b = item.segments[:, 0].tolist(), item.segments[:, 1].tolist()
+        path = " ".join(f"M{_number(p[0])} {_number(p[1])}L{_number(q[0])} {_number(q[1])}"
+                        for p, q in zip(a, b))
+        return (f'<path class="{item.kind}" d="{path}" fill="none" stroke="black" '
+                f'stroke-width="{item.pen}" stroke-linecap="round"/>')
+    if isinstance(item, Shape):
+        parts = []
+        for loop in item.loops:
+            points = np.asarray(loop).tolist()
+            parts.append("M" + "L".join(f"{_number(x)} {_number(y)}" for x, y in points)
+                         + ("Z" if item.closed else ""))
+        fill = item.fill or "none"
+        rule = ' fill-rule="evenodd"' if item.fill else ""
+        return (f'<path class="{item.kind}" d="{"".join(parts)}" fill="{fill}"{rule} '
+                f'stroke="black" stroke-width="{item.pen}" stroke-linejoin="round"/>')
+    anchor = f' text-anchor="{item.anchor}"' if item.anchor != "start" else ""
+    turn = (f' transform="rotate({_number(-item.angle)} {_number(item.x)} {_number(item.y)})"'
+            if item.angle else "")
+    return (f'<text x="{_number(item.x)}" y="{_number(item.y)}" '
+            f'font-size="{_number(item.size)}"{anchor}{turn}>{escape(item.text)}</text>')
+
+
+def export_drawing(sheet) -> bytes:
+    """The sheet as SVG bytes, in millimetres at the drawing's scale."""
+    from xml.sax.saxutils import escape, quoteattr
+
+    width, height = _number(sheet.width), _number(sheet.height)
     out = [
         '<?xml version="1.0" encoding="UTF-8"?>',
         f'<svg xmlns="http://www.w3.org/2000/svg" '
         f'xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" '
-        f'width="{_number(width)}mm" height="{_number(height)}mm" '
-        f'viewBox="0 0 {_number(width)} {_number(height)}">',
-        f'<title>{drawing.view.name} 1:{drawing.scale:g}</title>',
+        f'width="{width}mm" height="{height}mm" viewBox="0 0 {width} {height}">',
+        f'<title>{escape(sheet.title)}: {escape(sheet.description)}, '
+        f'1:{sheet.drawing.scale:g}</title>',
         '<rect width="100%" height="100%" fill="white"/>',
+        f'<g id="drawing" data-origin="{_number(sheet.origin[0])} {_number(sheet.origin[1])}" '
+        f'data-mm-per-metre="{sheet.mm:.12g}">',
     ]
-    for layer, ident in zip(drawing.layers, _ids([l.name for l in drawing.layers])):
+    reserved = {"drawing"} | {g.name for g in sheet.groups}
+    for group, ident in zip(sheet.layers, _ids([g.name for g in sheet.layers], reserved)):
         out.append(f'<g id="{ident}" inkscape:groupmode="layer" '
-                   f'inkscape:label={quoteattr(layer.name)}>')
-        if len(layer.lines):
-            a = page(layer.lines[:, 0])
-            b = page(layer.lines[:, 1])
-            path = " ".join(f"M{_number(p[0])} {_number(p[1])}L{_number(q[0])} {_number(q[1])}"
-                            for p, q in zip(a.tolist(), b.tolist()))
-            out.append(f'<path d="{path}" fill="none" stroke="black" '
-                       f'stroke-width="{SEEN_PEN}" stroke-linecap="round"/>')
-        if layer.cuts:
-            parts = []
-            for loop in layer.cuts:
-                points = page(loop).tolist()
-                parts.append("M" + "L".join(f"{_number(x)} {_number(y)}" for x, y in points) + "Z")
-            out.append(f'<path class="cut" d="{"".join(parts)}" fill="{POCHE}" '
-                       f'fill-rule="evenodd" stroke="black" stroke-width="{CUT_PEN}" '
-                       f'stroke-linejoin="round"/>')
+                   f'inkscape:label={quoteattr(group.name)}>')
+        out.extend(_item(item) for item in group.items)
+        out.append("</g>")
+    out.append("</g>")
+    for group in sheet.groups:
+        out.append(f'<g id="{group.name}" font-family="{FONT}" fill="black">')
+        out.extend(_item(item) for item in group.items)
         out.append("</g>")
     out.append("</svg>")
     return ("\n".join(out) + "\n").encode()
+
+
+FORMATS = (Format("svg", (".svg",), "drawing", "a plan, section or elevation as a vector drawing",
+                  export_drawing, binary=False, listed=90),)

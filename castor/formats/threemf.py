@@ -11,13 +11,12 @@ gives the same bytes.
 from __future__ import annotations
 
 import io
-import zipfile
 from typing import Iterator
-from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
 from castor.mesh.frame import Frame
+from castor.formats import Format
 from castor.formats._mesh import CHUNK, materials, object_names, object_pieces, triangles
 from castor.formats.cps import number_strings
 
@@ -44,6 +43,9 @@ def model(frame: Frame) -> str:
 def model_pieces(frame: Frame) -> Iterator[bytes]:
     """The 3D/3dmodel.model document, encoded, an object's part at a time: the
     text is held once, as bytes, not as a line per triangle."""
+    # imported here: xml.sax.saxutils brings urllib, too slow for every start-up
+    from xml.sax.saxutils import quoteattr
+
     table, material_of = materials(frame)
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            '<model unit="millimeter" xml:lang="en-US" '
@@ -100,6 +102,8 @@ def model_pieces(frame: Frame) -> Iterator[bytes]:
 
 
 def export(frame: Frame, path: str | None = None) -> bytes:
+    import zipfile
+
     buffer = io.BytesIO()
     with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as package:
         for name, data in (("[Content_Types].xml", _CONTENT_TYPES.encode("utf-8")),
@@ -112,3 +116,72 @@ def export(frame: Frame, path: str | None = None) -> bytes:
             package.writestr(info, data)
             del data
     return buffer.getvalue()
+
+
+# --- reading a package back (castor-view): the core specification's mesh
+# objects, their base materials and the build's items
+
+_CORE = "{http://schemas.microsoft.com/3dmanufacturing/core/2015/02}"
+# the model's unit in scene units (metres)
+_UNITS = {"micron": 1e-6, "millimeter": 1e-3, "centimeter": 1e-2, "inch": 0.0254,
+          "foot": 0.3048, "meter": 1.0}
+
+
+def read(path: str):
+    """A 3MF package as one frame of coloured triangles, in scene units (metres)."""
+    import zipfile
+    from xml.etree import ElementTree
+
+    from castor.formats.cps import StreamError, StreamFrame
+
+    try:
+        with zipfile.ZipFile(path) as package:
+            names = [n for n in package.namelist() if n.lower().endswith(".model")]
+            if not names:
+                raise StreamError(f"{path}: not a 3MF package (no 3D model in it)")
+            root = ElementTree.fromstring(package.read(names[0]))
+    except (OSError, zipfile.BadZipFile, ElementTree.ParseError, KeyError) as exc:
+        raise StreamError(f"{path}: cannot read this 3MF file ({exc})") from None
+    scale = _UNITS.get(root.get("unit", "millimeter"), 1e-3)
+    colours: dict[str, list[tuple[float, float, float]]] = {}
+    for group in root.iter(f"{_CORE}basematerials"):
+        colours[group.get("id")] = [_colour(base.get("displaycolor", "#CCCCCC"))
+                                    for base in group.findall(f"{_CORE}base")]
+    points, face_colours = [], []
+    try:
+        for obj in root.iter(f"{_CORE}object"):
+            mesh = obj.find(f"{_CORE}mesh")
+            if mesh is None:
+                continue
+            vertices = np.array([[float(v.get(a)) for a in "xyz"]
+                                 for v in mesh.iter(f"{_CORE}vertex")]).reshape(-1, 3) * scale
+            default_group, default_index = obj.get("pid"), int(obj.get("pindex", 0))
+            tris, rgb = [], []
+            for t in mesh.iter(f"{_CORE}triangle"):
+                tris.append((int(t.get("v1")), int(t.get("v2")), int(t.get("v3"))))
+                table = colours.get(t.get("pid", default_group), [])
+                index = int(t.get("p1", default_index))
+                rgb.append(table[index] if index < len(table) else (0.8, 0.8, 0.8))
+            if tris:
+                points.append(vertices[np.array(tris, np.int64)].reshape(-1, 3))
+                face_colours.append(np.array(rgb, np.float64))
+    except (TypeError, ValueError, IndexError) as exc:
+        raise StreamError(f"{path}: malformed 3MF mesh ({exc})") from None
+    if not points:
+        raise StreamError(f"{path}: the file holds no faces")
+    count = sum(len(c) for c in face_colours)
+    yield StreamFrame(1, path, np.concatenate(points), np.arange(count + 1) * 3,
+                      np.concatenate(face_colours))
+
+
+def _colour(text: str) -> tuple[float, float, float]:
+    """'#RRGGBB' or '#RRGGBBAA' as 0..1 numbers (grey when unreadable)."""
+    digits = text.lstrip("#")
+    try:
+        return tuple(int(digits[i:i + 2], 16) / 255.0 for i in (0, 2, 4))
+    except ValueError:
+        return (0.8, 0.8, 0.8)
+
+
+FORMATS = (Format("3mf", (".3mf",), "mesh", "3D Manufacturing Format, coloured, in millimetres",
+                  export, read=read, triangles_only=True, listed=60),)

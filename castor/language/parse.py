@@ -321,21 +321,23 @@ _local = threading.local()
 
 
 def _lark_and_builder(tables: Tables) -> tuple[Lark, Builder]:
-    """One LALR parser for each thread (building it is the slow part of
-    start-up; lark caches its tables in the temporary directory between runs).
+    """One LALR parser for each thread: from the tables shipped in the package
+    (castor.language.tables), else built (the slow part of start-up; lark then
+    caches its tables in the temporary directory between runs).
     Its builder is handed each Parser's tables before each parse, so that
     parsers made one after another, or in other threads, never mix up scenes."""
     shared = getattr(_local, "shared", None)
     if shared is None:
+        from castor.language import tables as saved
+
         builder = Builder(tables)
-        try:
-            lark = Lark(grammar_text(), parser="lalr", lexer="contextual",
-                        start=["statement", "program"], transformer=builder,
-                        maybe_placeholders=True, cache=True)
-        except OSError:  # an unwritable temporary directory: build without the cache
-            lark = Lark(grammar_text(), parser="lalr", lexer="contextual",
-                        start=["statement", "program"], transformer=builder,
-                        maybe_placeholders=True)
+        grammar = grammar_text()
+        lark = saved.load(grammar, builder)  # the tables made when the package was built
+        if lark is None:
+            try:
+                lark = Lark(grammar, transformer=builder, cache=True, **saved.OPTIONS)
+            except OSError:  # an unwritable temporary directory: build without the cache
+                lark = Lark(grammar, transformer=builder, **saved.OPTIONS)
         shared = _local.shared = (lark, builder)
     return shared
 
@@ -572,6 +574,8 @@ def _habit(chunk: Chunk, pos: int, token: Token, expected: set[str], tables):
                 f"{_describe_found(token)} is not an object; a parameter name starts with "
                 f"an uppercase letter: {name[0].upper() + name[1:]} = ...", None)
     used = _NAME_BEFORE.search(before)
+    if used and token.type == "LPAR" and "LPAR" not in expected:
+        return _call_where_an_object_is_expected(chunk, before, used, tables)
     if used and "LPAR" in expected and token.type != "LPAR":
         name = used.group(1)
         start = chunk.location(before.count("\n") + 1,
@@ -584,6 +588,29 @@ def _habit(chunk: Chunk, pos: int, token: Token, expected: set[str], tables):
         return (f"'{name}' is not a parameter: parameter names start with an uppercase "
                 f"letter ({name[0].upper() + name[1:]})", start)
     return None
+
+
+def _call_where_an_object_is_expected(chunk: Chunk, before: str, used, tables):
+    """A lowercase name followed by '(' where an object is expected: a function
+    call (``h = sqrt(-1);``) or an object given arguments; say that lowercase
+    names are objects and parameters start with an uppercase letter."""
+    name = used.group(1)
+    start = chunk.location(before.count("\n") + 1, used.start() - (before.rfind("\n") + 1) + 1)
+    defined = re.fullmatch(r"\s*([a-z][A-Za-z0-9_]*)\s*=\s*" + re.escape(name) + r"\s*", before)
+    if tables is not None and name in tables.objects and name not in FUNCTIONS:
+        return (f"'{name}' is an object and takes no arguments; for a value that varies, "
+                f"use a parameter (its name starts with an uppercase letter) inside the "
+                f"object's definition", start)
+    what = (f"'{name}' is a function, called" if name in FUNCTIONS
+            else f"'{name}(' is a call")
+    if defined:
+        target = defined.group(1)
+        return (f"{what} where an object is expected: '{target}' starts with a "
+                f"lowercase letter, so it names an object; a parameter name starts with an "
+                f"uppercase letter: {target[0].upper() + target[1:]} = {name}(...)", start)
+    return (f"{what} where an object is expected: lowercase names are objects; "
+            f"a number goes into an argument, or into a parameter (its name starts with an "
+            f"uppercase letter)", start)
 
 
 def _syntax_error(exc: UnexpectedInput, chunk: Chunk,

@@ -27,17 +27,17 @@ def _shown(name: str) -> str:
     return name[len(here):] if name.startswith(here) else name
 
 
+def _printable(name: str) -> str:
+    """A file name as a message shows it: control characters (a NUL byte) escaped."""
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in name)
+
+
 def _escape(name: str) -> str:
     return name.replace("\\", "\\\\").replace('"', '\\"')
 
 
 class IncludeTooDeep(Exception):
     pass
-
-
-class MissingInclude(Exception):
-    """An include file that cannot be found: everything after it would only
-    cascade (its macros undefined), so the run stops there, as gcc does."""
 
 
 class SourceLines:
@@ -74,12 +74,15 @@ def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict
             self.compress = 0
             self.definitions: dict[str, Location] = {}  # macro -> where it was #defined
             self.redefinitions: list[tuple[str, Location]] = []  # of -D macros
+            self.unreadable: list[str] = []
 
         def on_error(self, file, line, msg):
             self.return_code += 1
             reporter.error(PreprocessError(msg, Location(file or "<stdin>", int(line or 0), 1)))
 
         def on_include_not_found(self, is_malformed, is_system_include, curdir, includepath):
+            """Report the #include at its place and drop the directive: the run goes on,
+            so that the errors after it are seen too, as an external cpp shows them."""
             token = self.lastdirective
             file = getattr(token, "source", None) or "<stdin>"
             line = getattr(token, "lineno", 0) or 0
@@ -87,11 +90,27 @@ def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict
             column = 1
             if text is not None:
                 reporter.source_lines[(file, line)] = text
-                found = text.find(includepath)
+                found = text.find(includepath) if includepath else -1
                 column = found if found > 0 else text.find("#") + 1
+            location = Location(file, line, column)
+            if not is_malformed and not includepath.strip():
+                reporter.error(PreprocessError(
+                    "#include names no file; write #include \"file.cas\"", location))
+                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+            if "\0" in includepath:
+                reporter.error(PreprocessError(
+                    f"include file name '{_printable(includepath)}' holds a NUL byte, which no "
+                    f"file name can hold", location))
+                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+            if self.unreadable:
+                reporter.error(PreprocessError(
+                    f"cannot read include file '{_printable(includepath)}': {self.unreadable[0]}",
+                    location))
+                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
             if is_malformed:
-                message = f"malformed #include {includepath}; write #include \"file.cas\""
-                reporter.error(PreprocessError(message, Location(file, line, column)))
+                message = (f"malformed #include {_printable(includepath)}; write "
+                           f"#include \"file.cas\"")
+                reporter.error(PreprocessError(message, location))
                 raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
             shown = []
             for directory in ([] if is_system_include else self.temp_path) + self.path:
@@ -102,22 +121,45 @@ def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict
                     shown.append(name)
             shown = ", ".join(shown or ["."])
             reporter.error(PreprocessError(
-                f"cannot find include file '{includepath}' (searched: {shown}); give the "
-                f"directory that holds it with -I DIR", Location(file, line, column)))
-            raise MissingInclude(includepath)
+                f"cannot find include file '{_printable(includepath)}' (searched: {shown}); "
+                f"give the directory that holds it with -I DIR", location))
+            raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
 
         def on_file_open(self, is_system_include, includepath):
+            """Open and read an include file whole, as UTF-8 text. Any failure is an
+            OSError for pcpp, which then tries the next directory and at the end
+            calls on_include_not_found; why a file that is there could not be read
+            (a directory, no permission, not UTF-8) is kept for its message."""
             if len(self.temp_path) > MAX_INCLUDE_DEPTH:
                 raise IncludeTooDeep(includepath)
-            opened = super().on_file_open(is_system_include, includepath)
+            try:
+                with open(includepath, encoding="utf-8") as handle:
+                    text = handle.read()
+            except FileNotFoundError:
+                raise
+            except IsADirectoryError:
+                self.unreadable.append("it is a directory")
+                raise
+            except OSError as exc:
+                self.unreadable.append(exc.strerror or str(exc))
+                raise
+            except ValueError as exc:  # a NUL byte in the name, or not UTF-8 text
+                if isinstance(exc, UnicodeDecodeError):
+                    line = exc.object[:exc.start].count(b"\n") + 1
+                    self.unreadable.append(
+                        f"it is not UTF-8 text (byte 0x{exc.object[exc.start]:02x} on line {line})")
+                raise OSError(str(exc)) from None
             if included is not None:  # for the live preview, which watches them
                 included.append(includepath)
-            return opened
+            return io.StringIO(text[1:] if text.startswith("\ufeff") else text)
 
         def on_directive_handle(self, directive, toks, ifpassthru, precedingtoks):
             self.lastdirective = directive
+            self.unreadable = []  # why the files this directive names could not be read
             if directive.value == "define" and toks:
                 self._defining(directive, toks)
+            if directive.value == "pragma" and not any(tok.value.strip() for tok in toks):
+                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)  # as cpp: nothing to do
             what = _NEEDS.get(directive.value)
             if what and not any(tok.value.strip() for tok in toks):
                 # pcpp itself would fail on these with an IndexError
@@ -213,8 +255,6 @@ def preprocess(sources: list[tuple[str, str]], defines: list[str], undefines: li
         p.parse(text, name)
         try:
             p.write(out)
-        except MissingInclude:
-            return ""
         except IncludeTooDeep as exc:
             token = p.lastdirective
             reporter.error(PreprocessError(

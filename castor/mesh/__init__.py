@@ -1,5 +1,8 @@
 """Stage 3, meshes: an evaluated CSG tree to closed, coloured polygon meshes.
 
-primitives (triangle meshes of the unit solids) ─► engine (manifold3d, the
-booleans) ─► polygons (triangles merged into convex polygons) ─► frame.
+facetize (the entry point) ─► primitives (triangle meshes of the unit solids)
+─► instances (templates in the engine, placed copies) ─► booleans (broadphase,
+adapter: manifold3d, checks, regularize) ─► provenance (triangles with their
+origins and faces) ─► regularize (flat, sheets, seams) ─► merge (convex
+polygons) ─► frame. caches holds what a process remembers; arrays the kit.
 """

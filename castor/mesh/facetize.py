@@ -1,9 +1,13 @@
-"""Facetize an evaluated CSG tree (castor.csg.tree) into closed polygon meshes.
+"""Facetize an evaluated CSG tree (castor.csg.tree) into closed polygon meshes:
+the stage's entry point.
 
 Each primitive's mesh is built once per kind, shape and facet tolerance and
-instanced; a shared subtree is built once per key and reused by moving it, in
-this process (the key is its content, so every process agrees). Booleans go
-to the engine; the triangles that come back are merged into convex polygons.
+instanced (instances); a shared subtree is built once per key and reused by
+moving it, in this process (the key is its content, so every process
+agrees). Booleans go to the engine (booleans); the triangles that come back,
+with their origins and faces (provenance), are regularized (regularize) and
+merged into convex polygons (merge). What is remembered between frames is
+held by castor.mesh.caches.
 """
 
 from __future__ import annotations
@@ -15,15 +19,18 @@ from castor.csg import tree
 from castor.csg.paths import Path
 from castor.diagnostics import GeometryError, LimitError
 from castor.language.vocabulary import PRIMITIVES
-from castor.mesh import engine, memory, polygons, primitives, smooth
-from castor.mesh.frame import Frame, Origin, compact
+from castor.mesh import (adapter, booleans, instances, memory, merge, primitives, provenance,
+                         smooth)
+from castor.mesh.caches import PROCESS
+from castor.mesh.frame import (FaceSurfaces, Frame, Origin, compact, curved_origins,
+                               polygon_surfaces)
+from castor.mesh.regularize import regular_triangles
+from castor.mesh.solid import EMPTY, Solid, instance
 from castor.options import DEFAULT_MAX_POLYGONS
 
 # A frame whose estimate is this many times --max-polygons is refused before
 # it is built (operands of a union add up; their overlap would only remove).
 ESTIMATE_SLACK = 4
-# Shared solids are kept while they hold fewer triangles than this.
-_CACHE_TRIANGLES = 4_000_000
 
 
 @dataclass
@@ -41,11 +48,10 @@ class Facetizer:
         # False for formats that hold triangles only (STL, PLY, glTF): merging
         # triangles into polygons that the writer cuts up again is wasted work
         self.merge_polygons = merge_polygons
-        self.cache: dict[str, tuple[engine.Solid, int]] = {}  # shared key -> solid, primitives
-        self.cache_triangles = 0
-        # primitive shapes already built in the engine, by kind, shape and facets
-        self.shape_cache: dict[tuple, object] = {}
-        self.counter = engine.Counter()
+        # shared solids and primitives' templates: the process's (caches.PROCESS)
+        self.caches = PROCESS
+        self.caches.new_facetizer()
+        self.counter = booleans.Counter()
         self.primitive_count = 0
         self.stats = FrameStats()
 
@@ -65,20 +71,24 @@ class Facetizer:
                              f"more than the {short[1] / 2 ** 30:.1f} GB available; simplify the "
                              "scene or raise TOLERANCE", scene.location)
         total = 0
-        merger = polygons.Merger()
+        self.caches.patterns.clear()  # patterns of this frame's parts only
+        merger = merge.Merger(self.caches.patterns)
         frame = Frame(scene.number, scene.where)
         for obj in scene.objects:
-            solid = self.solid(obj.root) if obj.root is not None else engine.EMPTY
+            solid = self.solid(obj.root) if obj.root is not None else EMPTY
             pieces = []
-            for batch in engine.batches(solid.parts):
-                tri = engine.triangles(batch, solid.origins)
+            curved = curved_origins(solid.origins)
+            for batch in provenance.batches(solid.parts):
+                tri = regular_triangles(provenance.triangles(batch, solid.origins), batch)
                 if self.merge_polygons:
                     merged = merger.merge(tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids)
                 else:
-                    merged = polygons.as_triangles(tri.triangles, tri.origin_ids)
+                    merged = merge.as_triangles(tri.triangles, tri.origin_ids)
                 total += len(merged.offsets) - 1  # the limit counts polygons (CLI.md)
                 self._check_count(total, scene)
-                pieces.append((tri.vertices, merged))
+                surfaces = polygon_surfaces(solid.origins, curved, merged.origin_ids,
+                                            tri.face_ids[merged.source])
+                pieces.append((tri.vertices, merged, surfaces))
                 del tri
             frame.objects.append(compact(pieces, solid.origins, obj.name))
         # the frame's booleans, each shared subtree counted once: the same
@@ -93,7 +103,7 @@ class Facetizer:
                              where.location)
 
     # --- one node
-    def solid(self, node: tree.Node) -> engine.Solid:
+    def solid(self, node: tree.Node) -> Solid:
         kind = type(node)
         if kind is tree.Primitive:
             return self._primitive(node)
@@ -103,24 +113,24 @@ class Facetizer:
             return self._smooth(node)
         return self._use(node)
 
-    def _smooth(self, node: tree.Smooth) -> engine.Solid:
+    def _smooth(self, node: tree.Smooth) -> Solid:
         """A smooth solid, made once per key (castor.mesh.smooth) and moved."""
-        cached = self.cache.get(node.key)
+        cached = self.caches.solids.get(node.key)
         if cached is not None:
             solid = cached[0]
             self.primitive_count += cached[1]
         else:
             before = self.primitive_count
             solid = smooth.smoothed(self.solid(node.operand), node, self.max_polygons)
-            self.cache[node.key] = (solid, self.primitive_count - before)
-            self.cache_triangles += solid.triangle_count()
+            self.caches.solids.put(node.key, (solid, self.primitive_count - before),
+                                   solid.triangle_count())
         if node.matrix != tree.IDENTITY and not solid.empty:
             solid = solid.transformed(node.matrix)
         return solid
 
-    def _use(self, use: tree.Use) -> engine.Solid:
+    def _use(self, use: tree.Use) -> Solid:
         shared = use.shared
-        cached = self.cache.get(shared.key)
+        cached = self.caches.solids.get(shared.key)
         # the engine's own solid, as it was computed: never a copy rebuilt from
         # its mesh, which the engine may rebuild differently
         if cached is not None:
@@ -129,12 +139,8 @@ class Facetizer:
         else:
             before = self.primitive_count
             solid = self.solid(shared.child)
-            count = solid.triangle_count()
-            if self.cache_triangles + count > _CACHE_TRIANGLES:
-                self.cache.clear()
-                self.cache_triangles = 0
-            self.cache[shared.key] = (solid, self.primitive_count - before)
-            self.cache_triangles += count
+            self.caches.solids.put(shared.key, (solid, self.primitive_count - before),
+                                   solid.triangle_count())
         solid = solid.prefixed(f"({shared.name})")
         if use.path:
             solid = solid.prefixed(use.path)
@@ -142,40 +148,45 @@ class Facetizer:
             solid = solid.transformed(use.matrix)
         return solid
 
-    def _boolean(self, node: tree.Boolean) -> engine.Solid:
+    def _boolean(self, node: tree.Boolean) -> Solid:
         operands = [self.solid(o) for o in node.operands]
         operand_triangles = sum(s.triangle_count() for s in operands)
         if operand_triangles > 2 * self.max_polygons:
             self._check_count(operand_triangles, node)
         if node.op == "U":
-            result = engine.union(operands, self.counter)
+            result = booleans.union(operands, self.counter)
         elif node.op == "I":
-            result = engine.intersection(operands, self.counter)
+            result = booleans.intersection(operands, self.counter)
         else:
-            result = engine.difference(operands[0], operands[1], self.counter)
+            result = booleans.difference(operands[0], operands[1], self.counter)
         result_triangles = result.triangle_count()
         if result_triangles > 2 * self.max_polygons:  # polygons are counted when merged
             self._check_count(result_triangles, node)
         return result
 
-    def _primitive(self, leaf: tree.Primitive) -> engine.Solid:
+    def _primitive(self, leaf: tree.Primitive) -> Solid:
         key = (leaf.kind, leaf.shape, leaf.tolerance if PRIMITIVES[leaf.kind].curved else None)
-        shape_in_engine = self.shape_cache.get(key)
-        if shape_in_engine is None:
-            self._check_count(primitives.estimate_triangles(leaf.kind, leaf.shape,
-                                                            leaf.tolerance), leaf)
+        cached = self.caches.templates.get(key)
+        if cached is None:
+            estimate = primitives.estimate_triangles(leaf.kind, leaf.shape, leaf.tolerance)
+            self._check_count(estimate, leaf)
             mesh = primitives.build(leaf.kind, leaf.shape, leaf.tolerance)
             try:
-                shape_in_engine = engine.template(mesh)
-            except engine.EngineError as exc:
+                template = instances.template(mesh)
+            except adapter.EngineError as exc:
                 raise GeometryError(f"{leaf.path} gives no valid solid ({exc})",
                                     leaf.location) from None
-            if len(self.shape_cache) > 4096:
-                self.shape_cache.clear()
-            self.shape_cache[key] = shape_in_engine
+            # which faces are facets of a curved surface, for the outputs' creases
+            surfaces = (FaceSurfaces(mesh.surfaces) if (mesh.surfaces >= 0).any() else None)
+            self.caches.templates.put(key, (template, estimate, surfaces))
+        else:
+            # (the cache is the process's: checked against this facetizer's limit)
+            template, estimate, surfaces = cached
+            if estimate > self.max_polygons:
+                self._check_count(estimate, leaf)
         self.primitive_count += 1
-        return engine.instance(shape_in_engine, Origin(Path(leaf.path), leaf.colour),
-                               None if leaf.matrix == tree.IDENTITY else leaf.matrix)
+        origin = Origin(Path(leaf.path), leaf.colour, leaf.kind, surfaces)
+        return instance(template, origin, None if leaf.matrix == tree.IDENTITY else leaf.matrix)
 
 
 def tree_figures(scene: tree.Frame) -> tuple[int, int]:

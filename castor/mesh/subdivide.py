@@ -304,3 +304,27 @@ def smooth(vertices, offsets, indices, angle: float, tolerance: float,
         levels += 1
     triangles, faces = _triangles(chosen, positions)
     return Smoothed(positions, triangles, faces, depth, gap)
+
+
+def patches(vertices, offsets, indices, angle: float) -> np.ndarray:
+    """For each control polygon, the smooth patch it belongs to: polygons that
+    meet across an edge that is no crease for ``@s(angle)`` share one (their
+    refined facets are one curved surface; a crease bounds it)."""
+    edges, edge_of, count, following = _topology(vertices, offsets, indices)
+    crease = creases(vertices, offsets, indices, angle)
+    polygon = np.repeat(np.arange(len(offsets) - 1), np.diff(offsets))
+    order = np.argsort(edge_of, kind="stable")
+    start = np.concatenate([[0], np.cumsum(count)[:-1]])
+    smooth_pair = (count == 2) & ~crease
+    first = polygon[order[start[smooth_pair]]]
+    second = polygon[order[start[smooth_pair] + 1]]
+    label = np.arange(len(offsets) - 1)
+    while True:  # each polygon takes the least label of its smooth neighbours
+        low = np.minimum(label[first], label[second])
+        new = label.copy()
+        np.minimum.at(new, first, low)
+        np.minimum.at(new, second, low)
+        new = new[new]  # jump along chains
+        if np.array_equal(new, label):
+            return label
+        label = new

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from castor.pictures import shade
-from castor.pictures.camera import Camera, direction, make_camera
+from castor.pictures.camera import Camera, make_camera
 from castor.pictures.trace import Projection, Scene, compile_frame
 
 TILE = 64  # pixels on a side of a tile of rays
@@ -24,7 +24,7 @@ __all__ = ["animation", "picture", "render_scene", "sample_offsets"]
 
 
 def picture(frame, spec) -> np.ndarray:
-    """The frame drawn with the picture options of ``spec`` (castor.jobs.Spec)."""
+    """The frame drawn with the picture settings ``spec`` (castor.settings.PictureSettings)."""
     scene = compile_frame(frame)
     low, high = scene.box
     camera = make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)
@@ -74,17 +74,15 @@ class _Samples:
 
 def render_scene(scene: Scene, camera: Camera, sun, samples: int, edges: bool,
                  ground: float | None = None) -> np.ndarray:
-    """The picture of a compiled scene from ``camera``: sun ``(az, el)`` or None;
+    """The picture of a compiled scene from ``camera``: sun ``(az, el)``, None or a
+    castor.options.CameraSun beside the camera (castor.pictures.shade.sun_light);
     the ground at height ``ground`` (by default, the foot of the scene)."""
     width, height = camera.width, camera.height
     low, high = scene.box
     if ground is None:
         ground = float(low[2])
     size = float(np.linalg.norm(high - low)) or 1.0
-    if sun is not None:
-        light, shadows = direction(*sun), True
-    else:
-        light, shadows = shade.shoulder_light(camera.right, camera.up, camera.forward), False
+    light, shadows = shade.sun_light(sun, camera)
     tracer = _Tracer(scene, camera, light, shadows, ground, size)
     # one ray through each pixel's centre, tile by tile
     order = _tile_order(width, height)

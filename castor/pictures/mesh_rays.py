@@ -171,7 +171,7 @@ def smooth_leaf(node, matrix: np.ndarray, leaves: list, make_leaf):
     the 4x4 ``matrix``): its refined facets, made by the facetizer (once per
     key), as ``MeshRays``; one leaf number for each colour of its faces, the
     first traced, the others naming the colour of a crossing."""
-    from castor.mesh import engine
+    from castor.mesh import provenance
     from castor.mesh.facetize import Facetizer
 
     if abs(np.linalg.det(matrix[:3, :3])) < 1e-300:
@@ -181,7 +181,7 @@ def smooth_leaf(node, matrix: np.ndarray, leaves: list, make_leaf):
     solid = _FACETIZER[0].solid(node)  # in the space above the node
     if solid.empty:
         return None
-    tri = engine.triangles(solid.parts, solid.origins)
+    tri = provenance.triangles(solid.parts, solid.origins)
     colours = np.array([solid.origins[int(i)].colour for i in range(len(solid.origins))])
     table, group = np.unique(colours[tri.origin_ids], axis=0, return_inverse=True)
     rays = MeshRays(tri.vertices, tri.triangles, group.ravel())

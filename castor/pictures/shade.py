@@ -30,6 +30,30 @@ def intensity(normals: np.ndarray, towards_viewer: np.ndarray, light: np.ndarray
     return np.clip(BASE + SKY * sky + FACING * facing + SUN * sun, 0, 1)
 
 
+def sun_light(sun, camera) -> tuple[np.ndarray, bool]:
+    """The unit vector towards the light of a picture, and whether it casts shadows.
+
+    ``sun`` is ``(azimuth, elevation)`` (``--sun AZ,EL``), None (``--sun none``:
+    a light over the viewer's shoulder, no shadows) or a castor.options.CameraSun,
+    the default: the sun ``turn`` degrees beside the camera's azimuth, so that every
+    face the camera sees is lit and the shadows fall back and to the side. The
+    camera's azimuth is that of the direction from the point looked at to the eye,
+    for --view AZ,EL (AZ itself), --eye/--look and the orthographic elevations
+    alike; a camera looking straight down or up (top, bottom) takes the direction
+    from the picture's middle to its bottom edge (south for a plan)."""
+    from castor.pictures.camera import direction
+
+    if sun is None:
+        return shoulder_light(camera.right, camera.up, camera.forward), False
+    if hasattr(sun, "turn"):
+        back = -np.asarray(camera.forward, dtype=np.float64)
+        if np.hypot(back[0], back[1]) < 1e-6:
+            back = -np.asarray(camera.up, dtype=np.float64)
+        azimuth = np.degrees(np.arctan2(back[1], back[0]))
+        return direction(float(azimuth) + sun.turn, sun.elevation), True
+    return direction(*sun), True
+
+
 def shoulder_light(right: np.ndarray, up: np.ndarray, forward: np.ndarray) -> np.ndarray:
     """A light from over the viewer's left shoulder, for pictures without a sun."""
     light = -forward * 0.55 + up * 0.65 - right * 0.45
@@ -38,9 +62,13 @@ def shoulder_light(right: np.ndarray, up: np.ndarray, forward: np.ndarray) -> np
 
 def edges(key: np.ndarray, depth: np.ndarray, normals: np.ndarray) -> np.ndarray:
     """(H, W) strengths 0..1 of outline edges from per-pixel surface numbers
-    (-1: nothing), depths and normals: a silhouette where the surface ends or
-    the depth jumps, a crease where the normal turns; never between two
-    coplanar pieces of a face, whatever primitives they come from."""
+    (-1: nothing; equal on one flat face or one curved surface of one
+    primitive), depths and normals: a silhouette where the surface ends or
+    the depth jumps, a crease where two surfaces meet (castor.mesh.creases);
+    never between two coplanar pieces of a face, whatever primitives they
+    come from, nor within one curved surface, however fast it turns."""
+    from castor.mesh.creases import creases
+
     h, w = key.shape
     strength = np.zeros((h, w), np.float32)
     hit = key >= 0
@@ -52,7 +80,7 @@ def edges(key: np.ndarray, depth: np.ndarray, normals: np.ndarray) -> np.ndarray
         near = np.minimum(np.where(ha, da, np.inf), np.where(hb, db, np.inf))
         with np.errstate(invalid="ignore"):
             jump = np.abs(da - db) > 0.02 * near + 1e-9
-        turn = np.einsum("ijk,ijk->ij", normals[a], normals[b]) < 0.9
+        turn = creases(np.einsum("ijk,ijk->ij", normals[a], normals[b]), key[a] == key[b])
         line = (ha != hb) | (ha & hb & (jump | turn))
         # draw on the nearer side, so that a silhouette sits on the object
         a_nearer = np.where(ha & ~hb, True, np.where(hb & ~ha, False, da <= db))

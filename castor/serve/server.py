@@ -28,7 +28,8 @@ from dataclasses import dataclass
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
 
-from castor.serve.scene import Diagnostic, DrawnFrame, Evaluation, Job, Overtaken, evaluate
+from castor.diagnostics import UsageError
+from castor.serve.scene import Diagnostic, DrawnFrame, Evaluation, Overtaken, Watched, evaluate
 from castor.serve.watch import Watcher
 
 POLL_SECONDS = 0.05  # how often the files are looked at
@@ -84,7 +85,7 @@ class Snapshot:
 class Preview:
     """The scene's current state, kept up to date with the files on disk."""
 
-    def __init__(self, job: Job, report=None):
+    def __init__(self, job: Watched, report=None):
         self.job = job
         self.report = report  # called with each Evaluation (to print on stderr)
         # versions count from 1 again when castor is started again: a page that
@@ -99,6 +100,21 @@ class Preview:
         self._frames_ids = 0
         self._watcher = Watcher(job.files)
         self._watcher_lock = threading.Lock()
+        from castor.serve.parameters import Panel
+
+        self.panel = Panel(job.files, job.evaluation, job.reading)
+
+    def apply(self, overrides: dict[str, float], tolerance: float | None) -> None:
+        """Evaluate again with the panel's values, as --set gives them."""
+        from dataclasses import replace
+
+        from castor.settings import EvaluationSettings
+
+        with self.state:
+            self.job = replace(self.job, evaluation=EvaluationSettings(overrides=overrides,
+                                                                       tolerance=tolerance))
+            self._wanted += 1
+            self.state.notify_all()
 
     def state_key(self) -> tuple[int, bool]:
         return self.snapshot.version, self.evaluating
@@ -198,6 +214,9 @@ class _Handler(BaseHTTPRequestHandler):
             with preview.state:
                 snapshot, evaluating = preview.snapshot, preview.evaluating
             self._send(200, snapshot.as_json(preview.name, evaluating), "application/json", head)
+        elif path == "/parameters.json":
+            self._send(200, json.dumps(preview.panel.as_json()).encode(), "application/json",
+                       head)
         elif path == "/events" and not head:
             self._events()
         elif match := _FRAME.fullmatch(path):
@@ -210,6 +229,42 @@ class _Handler(BaseHTTPRequestHandler):
                            "text/plain; charset=utf-8", head)
         else:
             self._send(404, b"not found\n", "text/plain; charset=utf-8", head)
+
+    def do_POST(self):
+        """``/parameters``: a change from the parameters panel (castor.serve.parameters)."""
+        from castor.serve.parameters import PanelError
+
+        if not self._host_allowed() or not self._same_origin():
+            self._send(403, b"unknown host\n", "text/plain; charset=utf-8", False)
+            return
+        kind = self.headers.get("Content-Type", "").partition(";")[0].strip().lower()
+        length = self.headers.get("Content-Length", "")
+        if self.path != "/parameters":
+            self._send(404, b"not found\n", "text/plain; charset=utf-8", False)
+            return
+        if kind != "application/json" or not length.isdigit() or int(length) > 65536:
+            self._send(400, b"send JSON (application/json), at most 64 kB\n",
+                       "text/plain; charset=utf-8", False)
+            return
+        preview = self.server.preview
+        try:
+            request = json.loads(self.rfile.read(int(length)) or b"null")
+            overrides, tolerance = preview.panel.change(request)
+        except (ValueError, PanelError) as exc:
+            body = json.dumps({"error": str(exc)}).encode()
+            self._send(400, body, "application/json", False)
+            return
+        if not (isinstance(request, dict) and "save" in request):
+            preview.apply(overrides, tolerance)
+        self._send(200, json.dumps(preview.panel.as_json()).encode(), "application/json", False)
+
+    def _same_origin(self) -> bool:
+        """A POST from another site's page is refused (its Origin is not ours)."""
+        origin = self.headers.get("Origin")
+        if origin is None:
+            return True
+        host = self.headers.get("Host", "")
+        return origin in (f"http://{host}", f"https://{host}")
 
     def _host_allowed(self) -> bool:
         """On the loopback address, only pages of this machine may talk to us (a
@@ -326,7 +381,7 @@ def _pages() -> dict[str, bytes]:
 class PreviewServer:
     """The preview and its server, started and stopped together."""
 
-    def __init__(self, job: Job, bind: str = "127.0.0.1", port: int = 0, report=None):
+    def __init__(self, job: Watched, bind: str = "127.0.0.1", port: int = 0, report=None):
         self.preview = Preview(job, report)
         kind = _Server6 if ":" in bind else _Server
         pages = _pages()
@@ -374,36 +429,25 @@ class PreviewServer:
             thread.join(timeout=1.0)
 
 
-def serve(args, settings) -> int:
-    """``castor --serve``: serve until Ctrl-C; the exit status."""
-    from castor.cli import _STACK_BYTES, USAGE_ERROR
+def serve(watched: Watched, bind: str = "127.0.0.1", port: int = 0) -> int:
+    """``castor --serve``: serve until Ctrl-C; the exit status. A scene file that
+    cannot be read, or an address that cannot be listened on, raises UsageError."""
+    from castor.pipeline import STACK_BYTES
 
-    def usage(message: str) -> int:
-        sys.stderr.write(f"castor: error: {message}\n")
-        return USAGE_ERROR
-
-    if not args.files or "-" in args.files:
-        return usage("--serve needs a scene file to watch (not standard input)")
-    if args.output or args.check:
-        return usage("--serve shows the frames in a web browser; it writes nothing "
-                     f"({'-o' if args.output else '--check'} goes without --serve)")
-    for name in args.files:
+    for name in watched.files:
         try:
             with open(name, "rb"):
                 pass
         except OSError as exc:
-            return usage(f"cannot read '{name}': {exc.strerror}")
-    job = Job(tuple(args.files), settings, tuple(args.defines), tuple(args.undefines),
-              tuple(args.include_dirs), args.no_cpp, args.quiet)
+            raise UsageError(f"cannot read '{name}': {exc.strerror}") from None
     try:
-        server = PreviewServer(job, args.bind, args.port, report=_print_evaluation)
+        server = PreviewServer(watched, bind, port, report=_print_evaluation)
     except OSError as exc:
-        return usage(f"cannot listen on {args.bind} port {args.port}: "
-                     f"{exc.strerror or exc}")
+        raise UsageError(f"cannot listen on {bind} port {port}: {exc.strerror or exc}") from None
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGTERM, _interrupt)
-    server.start(_STACK_BYTES)
-    sys.stderr.write(f"castor: serving {' '.join(args.files)} at {server.url} "
+    server.start(STACK_BYTES)
+    sys.stderr.write(f"castor: serving {' '.join(watched.files)} at {server.url} "
                      "(Ctrl-C stops)\n")
     sys.stderr.flush()
     try:

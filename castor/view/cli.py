@@ -6,10 +6,9 @@ import argparse
 import re
 import sys
 
-USAGE_ERROR = 2
+from castor.diagnostics import USAGE_ERROR
+
 _PATTERN = re.compile(r"%0?\d*d")
-_MESH_SUFFIXES = (".off", ".obj", ".stl", ".ply", ".glb", ".gltf")
-_NOT_READ = (".3mf", ".png", ".gif", ".svg", ".dxf")  # castor writes them; no reader here
 
 
 class _Parser(argparse.ArgumentParser):
@@ -31,11 +30,13 @@ def _triple(text: str, parser, option: str):
 
 def _arguments(argv):
     from castor import __version__
+    from castor.view.scene import readable_suffixes
 
+    mesh_suffixes = " ".join(readable_suffixes(("mesh",)))
     p = _Parser(prog="castor-view", description="Draw castor's polygon stream or a mesh file.",
                 epilog="Example: castor house.cas | castor-view --view 30,20 -o house.png")
     p.add_argument("file", nargs="?", default="-", metavar="FILE",
-                   help="polygon stream or mesh file (.off .obj .stl .ply .glb); default stdin")
+                   help=f"polygon stream or mesh file ({mesh_suffixes}); default stdin")
     p.add_argument("-o", "--output", metavar="PATH",
                    help=".png for one frame; .gif, or .png with a %%d pattern, for every frame")
     p.add_argument("--size", default="800x600", metavar="WxH", help="image size (800x600)")
@@ -89,19 +90,24 @@ def _arguments(argv):
 
 
 def _pictures(args):
-    from castor.view.scene import read_mesh_file, read_stream
+    """The frames of the input: the stream as it arrives (standard input, or a
+    file of no other format), else the file through its format's reader."""
+    from castor.formats import format_for_suffix, reader_for
+    from castor.view.scene import read_stream, readable_suffixes
 
-    if args.file != "-" and args.file.lower().endswith(_MESH_SUFFIXES):
-        yield read_mesh_file(args.file)
-        return
-    if args.file != "-" and args.file.lower().endswith(_NOT_READ):
-        sys.stderr.write(f"castor-view: error: '{args.file}': castor-view reads a polygon "
-                         f"stream or a mesh file ({' '.join(_MESH_SUFFIXES)}), not "
-                         f"{args.file.rsplit('.', 1)[-1]} files\n")
-        sys.exit(USAGE_ERROR)
     if args.file == "-":
         yield from read_stream(iter(sys.stdin.readline, ""), "<stdin>")
         return
+    chosen = reader_for(args.file)
+    if chosen is not None and chosen.kind != "stream":
+        yield from chosen.read(args.file)
+        return
+    if chosen is None and format_for_suffix(args.file) is not None:
+        # castor writes it (a picture, a drawing), but it is no polygons to draw
+        sys.stderr.write(f"castor-view: error: '{args.file}': castor-view reads a polygon "
+                         f"stream or a mesh file ({' '.join(readable_suffixes(('mesh',)))}), not "
+                         f"{args.file.rsplit('.', 1)[-1]} files\n")
+        sys.exit(USAGE_ERROR)
     try:
         handle = open(args.file, encoding="utf-8", errors="replace")
     except OSError as exc:

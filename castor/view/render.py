@@ -6,7 +6,7 @@ batch's bounding boxes is tested at once with barycentric coordinates, and the
 nearest surface per pixel wins (np.minimum.at); each pixel keeps the number of
 its polygon, from which its colour and normal come. No Python loop runs per
 pixel. Edges are outlines only: ``--edges`` from the changes of depth and
-normal between pixels (as castor's pictures), ``--wire`` the polygons' edges
+of surface between pixels (as castor's pictures; castor.mesh.creases), ``--wire`` the polygons' edges
 except those between two coplanar polygons, so a flat face cut into convex
 pieces shows no diagonals.
 """
@@ -17,6 +17,7 @@ import dataclasses
 
 import numpy as np
 
+from castor.mesh.creases import curved_kinds, guessed_same_surface
 from castor.pictures.camera import Camera
 from castor.view.scene import Picture
 
@@ -44,8 +45,7 @@ def _shade(picture: Picture, camera: Camera, normals: np.ndarray) -> np.ndarray:
     """Polygon colours lit as castor's pictures are (castor.pictures.shade), by
     the default sun, without shadows; the normals are turned to the viewer."""
     from castor.options import DEFAULT_SUN
-    from castor.pictures.camera import direction
-    from castor.pictures.shade import intensity
+    from castor.pictures.shade import intensity, sun_light
 
     if camera.orthographic:
         towards = np.broadcast_to(-camera.forward, normals.shape)
@@ -56,7 +56,8 @@ def _shade(picture: Picture, camera: Camera, normals: np.ndarray) -> np.ndarray:
     # one direction to the viewer for every polygon, so that the pieces of a
     # flat face are lit alike
     towards = np.broadcast_to(-camera.forward, normals.shape)
-    strength = intensity(normals, towards, direction(*DEFAULT_SUN), np.ones(len(normals)))
+    light, _ = sun_light(DEFAULT_SUN, camera)  # beside the camera, as castor's pictures
+    strength = intensity(normals, towards, light, np.ones(len(normals)))
     return np.clip(picture.colours * strength[:, None], 0, 1)
 
 
@@ -75,6 +76,8 @@ def render(picture: Picture, camera: Camera, width: int, height: int,
     image = np.empty((big_h * big_w, 3), np.float32)
     image[:] = BACKGROUND
     normals = _normals(picture)
+    if mode == "edges":  # before the normals are turned to the viewer
+        surfaces = _surfaces(picture, normals)
     if mode != "wire" and picture.polygon_count:
         colours = _shade(picture, big, normals).astype(np.float32)
         tris, polygon = picture.triangles()
@@ -87,6 +90,7 @@ def render(picture: Picture, camera: Camera, width: int, height: int,
     if mode == "edges" and picture.polygon_count:
         strength = np.zeros((big_h, big_w), np.float32)
         owner2, depth2 = owner.reshape(big_h, big_w), depth.reshape(big_h, big_w)
+        surface = np.append(surfaces, -1)  # owner -1: nothing
         band = 128
         for top in range(0, big_h, band):  # a band of rows at a time: bounded memory
             rows = slice(top, min(top + band + 1, big_h))
@@ -94,7 +98,7 @@ def render(picture: Picture, camera: Camera, width: int, height: int,
             pixel_normals = np.zeros(here.shape + (3,), np.float32)
             hit = here >= 0
             pixel_normals[hit] = normals[here[hit]]
-            part = edges(here, depth2[rows].astype(np.float32), pixel_normals)
+            part = edges(surface[here], depth2[rows].astype(np.float32), pixel_normals)
             strength[rows] = np.maximum(strength[rows], part)
         # lines two fine pixels wide: one pixel of the picture
         strength[:-1] = np.maximum(strength[:-1], strength[1:])
@@ -117,6 +121,51 @@ def _outline_edges(picture: Picture, normals: np.ndarray) -> np.ndarray:
     count = len(picture.points)
     if count == 0:
         return np.zeros(0, bool)
+    first, second, polygon = _shared_edges(picture)
+    turn = np.einsum("ij,ij->i", normals[polygon[first]], normals[polygon[second]])
+    flat = np.abs(turn) > 1 - 1e-9
+    draw = np.ones(count, bool)
+    draw[first[flat]] = False
+    draw[second[flat]] = False
+    return draw
+
+
+def _surfaces(picture: Picture, normals: np.ndarray) -> np.ndarray:
+    """Each polygon's surface number: neighbouring polygons that are facets of
+    one curved surface of one primitive share one. The stream gives each
+    polygon's path, not its surface: castor.mesh.creases guesses it from the
+    path's kind and the turn between the polygons."""
+    count = picture.polygon_count
+    label = np.arange(count)
+    if len(picture.points) == 0:
+        return label
+    first, second, polygon = _shared_edges(picture)
+    p, q = polygon[first], polygon[second]
+    if picture.path_of is not None:
+        origin = picture.path_of
+        curved = curved_kinds([path.rpartition("!")[2] for path in picture.paths])
+    else:  # a mesh file: no paths
+        origin = np.zeros(count, np.int64)
+        curved = np.ones(1, bool)
+    cosine = np.einsum("ij,ij->i", normals[p], normals[q])
+    smooth = guessed_same_surface(origin[p] == origin[q], curved[origin[p]], cosine)
+    p, q = p[smooth], q[smooth]
+    while len(p):  # each facet takes the lowest number of its surface
+        lowest = np.minimum(label[p], label[q])
+        new = label.copy()
+        np.minimum.at(new, p, lowest)
+        np.minimum.at(new, q, lowest)
+        new = new[new]
+        if np.array_equal(new, label):
+            break
+        label = new
+    return label
+
+
+def _shared_edges(picture: Picture):
+    """The edges two polygons share: for each, the point that starts it in
+    one polygon and in the other, and every point's polygon."""
+    count = len(picture.points)
     scale = max(float(np.abs(picture.points).max()), 1.0) * 1e-9
     quantized = np.round(picture.points / scale).astype(np.int64)
     _, vertex = np.unique(quantized, axis=0, return_inverse=True)
@@ -134,13 +183,7 @@ def _outline_edges(picture: Picture, normals: np.ndarray) -> np.ndarray:
     single[1:] &= pair[1:] != pair[:-1] + 1
     single[:-1] &= pair[:-1] + 1 != pair[1:]
     pair = pair[single]
-    first, second = order[pair], order[pair + 1]
-    turn = np.einsum("ij,ij->i", normals[polygon[first]], normals[polygon[second]])
-    flat = np.abs(turn) > 1 - 1e-9
-    draw = np.ones(count, bool)
-    draw[first[flat]] = False
-    draw[second[flat]] = False
-    return draw
+    return order[pair], order[pair + 1], polygon
 
 
 def _rasterize(screen, z, tris, polygon, width, height, depth, owner, orthographic=False):

@@ -338,7 +338,23 @@
     $("pointed-swatch").style.background =
       `rgb(${c.map((v) => Math.round(Math.min(1, Math.max(0, v)) * 255)).join(",")})`;
     $("pointed-where").textContent = `frame ${frame.meta.number} · ${frame.meta.where}`;
+    // where the primitive is written: a click copies it (vi +LINE FILE, or a jump)
+    $("pointed-source").textContent = origin.source || "";
+    state.pointedSource = origin.source || null;
     box.hidden = false;
+  }
+
+  // A face's FILE:LINE:COL to the clipboard; the page says so (and keeps it
+  // in the document for whoever reads it where no clipboard is allowed).
+  function copied(source) {
+    const text = source.replace(/: ![a-z]+$/, "");
+    document.body.dataset.copied = text;
+    const done = () => { $("status").textContent = `copied ${text}`; };
+    if (navigator.clipboard && navigator.clipboard.writeText) {
+      navigator.clipboard.writeText(text).then(done, done);
+    } else {
+      done();
+    }
   }
 
   // ---- the camera ----
@@ -368,9 +384,16 @@
     canvas.setPointerCapture(e.pointerId);
     const pan = e.button === 1 || e.button === 2 || e.shiftKey;
     state.drag = { x: e.clientX, y: e.clientY, pan };
+    state.pressed = { x: e.clientX, y: e.clientY, source: state.pointedSource };
     $("pointed").hidden = true;
   });
   canvas.addEventListener("pointerup", (e) => {
+    const pressed = state.pressed;
+    state.pressed = null;
+    if (pressed && pressed.source && e.button === 0 &&
+        Math.abs(e.clientX - pressed.x) + Math.abs(e.clientY - pressed.y) < 4) {
+      copied(pressed.source);  // a click, not a turn of the camera
+    }
     state.drag = null;
     canvas.releasePointerCapture(e.pointerId);
     redraw();
@@ -578,4 +601,137 @@
     $("status").textContent = "no answer from castor --serve: is it still running?";
   });
   load();
+})();
+
+// The parameters panel (castor/serve/parameters.py): a slider for a range, a
+// list for choices, a number input otherwise, in their groups. A change sends
+// numbers, never text; while a slider is dragged the values go as drafts
+// (coarser facets), the value on release as the final one. One request at a
+// time: while one is on its way, only the newest value waits behind it.
+(function () {
+  const $ = (id) => document.getElementById(id);
+  let sending = false, waiting = null;
+
+  async function post(body) {
+    const answer = await fetch("/parameters", {
+      method: "POST", headers: { "Content-Type": "application/json" },
+      body: JSON.stringify(body), cache: "no-store" });
+    const data = await answer.json().catch(() => ({ error: "no answer" }));
+    const error = $("parameters-error");
+    error.hidden = answer.ok;
+    error.textContent = answer.ok ? "" : data.error;
+    return answer.ok ? data : null;
+  }
+
+  function send(body) {
+    if (sending) {
+      waiting = body;
+      return;
+    }
+    sending = true;
+    post(body).then((data) => {
+      if (data) show(data, body.values === undefined);
+    }).finally(() => {
+      sending = false;
+      if (waiting) {
+        const next = waiting;
+        waiting = null;
+        send(next);
+      }
+    });
+  }
+
+  function control(p) {
+    const row = document.createElement("div");
+    row.className = "parameter" + (p.changed ? " changed" : "");
+    row.title = [p.description, p.location].filter(Boolean).join(" — ");
+    const name = document.createElement("span");
+    name.className = "name";
+    name.textContent = p.name;
+    const value = document.createElement("span");
+    value.className = "value";
+    value.textContent = String(p.value);
+    let input;
+    const changed = (draft) => {
+      const v = Number(input.value);
+      if (!Number.isFinite(v)) return;
+      value.textContent = String(v);
+      row.classList.add("changed");
+      send({ values: { [p.name]: v }, draft });
+    };
+    if (p.control === "slider") {
+      input = document.createElement("input");
+      input.type = "range";
+      input.min = String(p.range.min);
+      input.max = String(p.range.max);
+      input.step = String(p.range.step);
+      input.value = String(p.value);
+      input.addEventListener("input", () => changed(true));
+      input.addEventListener("change", () => changed(false));
+    } else if (p.control === "choice") {
+      input = document.createElement("select");
+      for (const c of p.choices) {
+        const option = document.createElement("option");
+        option.value = String(c.value);
+        option.textContent = c.label;
+        input.appendChild(option);
+      }
+      input.value = String(p.value);
+      input.addEventListener("change", () => changed(false));
+    } else {
+      input = document.createElement("input");
+      input.type = "number";
+      input.step = "any";
+      input.value = String(p.value);
+      input.addEventListener("change", () => changed(false));
+    }
+    input.id = "parameter-" + p.name;
+    input.dataset.name = p.name;
+    input.setAttribute("aria-label", p.name);
+    row.append(name, input, value);
+    return row;
+  }
+
+  function show(data, rebuild) {
+    $("parameters-toggle").hidden = data.parameters.length === 0;
+    $("parameters-command").textContent = data.command;
+    const sets = $("parameters-sets");
+    while (sets.options.length > 1) sets.remove(1);
+    for (const name of data.sets) {
+      const option = document.createElement("option");
+      option.value = name;
+      option.textContent = name;
+      sets.appendChild(option);
+    }
+    sets.title = "sets saved in " + data.sets_file;
+    if (!rebuild) return;
+    const groups = $("parameters-groups");
+    groups.textContent = "";
+    let current = undefined;
+    for (const p of data.parameters) {
+      if (p.group !== current) {
+        current = p.group;
+        if (current) {
+          const title = document.createElement("h3");
+          title.textContent = current;
+          groups.appendChild(title);
+        }
+      }
+      groups.appendChild(control(p));
+    }
+  }
+
+  $("parameters-toggle").addEventListener("click", () => {
+    $("parameters").hidden = !$("parameters").hidden;
+    $("parameters-toggle").classList.toggle("active", !$("parameters").hidden);
+  });
+  $("parameters-reset").addEventListener("click", () => send({ reset: true }));
+  $("parameters-sets").addEventListener("change", (e) => {
+    if (e.target.value) send({ set: e.target.value });
+  });
+  $("parameters-save").addEventListener("click", () => {
+    const name = $("parameters-name").value.trim();
+    if (name) send({ save: name });
+  });
+  fetch("/parameters.json", { cache: "no-store" }).then((r) => r.json()).then((d) => show(d, true));
 })();

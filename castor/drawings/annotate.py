@@ -1,0 +1,153 @@
+"""What a drawing measures: the dimension chains of a plan or section and the
+levels of an elevation or section, in metres on the page.
+
+A chain runs along one side of the cut regions (the poché). Seen from that
+side, the cut edges facing it and parallel to the page's axes form an
+envelope: for each stretch along the side, the nearest facing edge. The
+stretches whose edge lies within ``BAND`` of the outermost one are the outer
+face (a wall, the door leaf in its opening); a stretch farther in is an
+opening, seen through to the walls beyond. The chain's breaks are where the
+envelope changes from one to another (wall, opening, wall ...); the overall
+dimension spans the cut regions' whole extent.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+BAND = 1.0  # metres: how far in from the outermost face an edge still counts as outer
+GRID = 1e-6  # metres: positions are rounded to this, so breaks meet bit for bit
+MERGE = 1e-4  # metres: breaks closer than this are one
+SIDES = ("bottom", "top", "left", "right")
+
+
+class Chain(NamedTuple):
+    """The dimensions along one side: ``breaks`` ascending along the side (page x
+    for bottom and top, page y for left and right), empty when the chain would
+    only repeat the overall; ``overall`` the extent; ``edge`` the page y (bottom,
+    top) or x (left, right) of the outermost cut edge on that side."""
+
+    side: str
+    breaks: np.ndarray
+    overall: tuple[float, float]
+    edge: float
+
+
+# the page (x, y) turned so that each side is the bottom: u along it, v outwards
+# negative; and the way back from u and v to the page
+_TURN = {"bottom": ((1, 0), (0, 1)), "top": ((-1, 0), (0, -1)),
+         "left": ((0, -1), (1, 0)), "right": ((0, 1), (-1, 0))}
+
+
+def _turned(points: np.ndarray, side: str) -> np.ndarray:
+    (ux, uy), (vx, vy) = _TURN[side]
+    return np.column_stack([ux * points[:, 0] + uy * points[:, 1],
+                            vx * points[:, 0] + vy * points[:, 1]])
+
+
+def _along(u: np.ndarray, side: str) -> np.ndarray:
+    """Turned u back to the page coordinate along the side."""
+    return -u if side in ("top", "left") else u
+
+
+def _envelope(a: np.ndarray, b: np.ndarray):
+    """The outermost facing edge along the side: edges a→b (turned) that run
+    along u with the region above them; returns the stretch ends and, for each
+    stretch, the v of its nearest edge (inf where there is none)."""
+    du, dv = b[:, 0] - a[:, 0], b[:, 1] - a[:, 1]
+    facing = (np.abs(dv) <= GRID) & (du > GRID)
+    lo, hi, v = a[facing, 0], b[facing, 0], (a[facing, 1] + b[facing, 1]) / 2
+    if not len(lo):
+        return np.zeros(0), np.zeros(0)
+    ends = np.unique(np.round(np.concatenate([lo, hi]) / GRID)) * GRID
+    middles = (ends[:-1] + ends[1:]) / 2
+    nearest = np.full(len(middles), np.inf)
+    step = max(1, 4_000_000 // max(len(lo), 1))
+    for s in range(0, len(middles), step):
+        m = middles[s:s + step]
+        cover = (lo[:, None] < m[None]) & (hi[:, None] > m[None])
+        nearest[s:s + step] = np.where(cover, v[:, None], np.inf).min(axis=0)
+    return ends, nearest
+
+
+def dimension_chains(loops: list[np.ndarray]) -> list[Chain]:
+    """The chains on each side of the cut regions (page metres)."""
+    loops = [l for l in loops if len(l) >= 3]
+    if not loops:
+        return []
+    every = np.concatenate(loops)
+    chains = []
+    for side in SIDES:
+        turned = [_turned(l, side) for l in loops]
+        a = np.concatenate(turned)
+        b = np.concatenate([np.roll(t, -1, axis=0) for t in turned])
+        ends, nearest = _envelope(a, b)
+        finite = np.isfinite(nearest)
+        if not finite.any():
+            continue
+        outermost = nearest[finite].min()
+        outer = finite & (nearest <= outermost + BAND)
+        state = np.where(outer, np.round(nearest / GRID), np.nan)
+        first, last = np.flatnonzero(outer)[[0, -1]]
+        breaks = [ends[first]]
+        for k in range(first + 1, last + 1):
+            same = state[k] == state[k - 1] or (np.isnan(state[k]) and np.isnan(state[k - 1]))
+            if not same:
+                breaks.append(ends[k])
+        breaks.append(ends[last + 1])
+        breaks = np.array(breaks)
+        # an edge's ends that float arithmetic put a hair apart are one break
+        breaks = breaks[np.concatenate([[True], np.diff(breaks) > MERGE])]
+        u = _turned(every, side)[:, 0]
+        span = np.sort(_along(np.array([u.min(), u.max()]), side))
+        along = np.sort(_along(breaks, side))
+        if len(along) < 3:
+            along = np.zeros(0)
+        edge = outermost if side in ("bottom", "left") else -outermost
+        chains.append(Chain(side, along, (float(span[0]), float(span[1])), float(edge)))
+    return chains
+
+
+class Level(NamedTuple):
+    height: float  # metres, page y (z in an elevation or a vertical section)
+    kind: str  # "ground", "top" or "edge"
+
+
+def level_heights(layers, box: np.ndarray) -> list[Level]:
+    """The levels of an elevation or vertical section: the ground (z = 0), the
+    top of what is drawn and every horizontal edge seen (profile or not: a
+    sill or a head seen in front of the room behind it is not an outline) or
+    of a cut region, each once (to the millimetre)."""
+    heights = []
+    for layer in layers:
+        seg = layer.lines
+        if len(seg):
+            d = seg[:, 1] - seg[:, 0]
+            flat = (np.abs(d[:, 1]) <= GRID) & (np.abs(d[:, 0]) > 1e-3)
+            heights.append(seg[flat, 0, 1])
+        for loop in layer.cuts:
+            nxt = np.roll(loop, -1, axis=0)
+            flat = (np.abs(nxt[:, 1] - loop[:, 1]) <= GRID) & (np.abs(nxt[:, 0] - loop[:, 0]) > 1e-3)
+            heights.append(loop[flat, 1])
+    found = {}
+    for h in np.concatenate(heights).tolist() if heights else []:
+        found.setdefault(round(h, 3), "edge")
+    top = round(float(box[1, 1]), 3)
+    found[top] = "top"
+    found[0.0] = "ground"
+    return [Level(h, kind) for h, kind in sorted(found.items())]
+
+
+def level_text(height: float) -> str:
+    """A level as drawings write it: ±0.00, +2.90, -0.25 (metres)."""
+    text = f"{abs(height):.2f}"
+    if text == "0.00":
+        return "±0.00"
+    return ("+" if height > 0 else "-") + text
+
+
+def length_text(length: float) -> str:
+    """A dimension as drawings write it: metres with two decimals, 2.40."""
+    return f"{abs(length):.2f}"

@@ -1,0 +1,452 @@
+"""The sheet: a drawing laid out on paper with its dimensions, levels, scale
+bar, north arrow and title block, as plain items in paper millimetres (x to
+the right, y down) that castor.formats.svg, pdf and dxf write out.
+
+Pens (ISO 128-20, as an office's standard sets them): the outline of cut
+regions 0.5 mm, the profile 0.35 mm, other seen edges 0.18 mm, dimensions
+and text 0.13 mm. Text is 2.5 mm high (ISO 3098), upright and readable from
+the bottom or the right. Dimension lines end in oblique ticks, the
+architect's terminator of ISO 129-1; levels are marked as ISO 7519 draws
+them, a triangle on the level's line with its height above.
+"""
+
+from __future__ import annotations
+
+import datetime
+import os
+from dataclasses import dataclass, field
+from typing import NamedTuple
+
+import numpy as np
+
+from castor.drawings.annotate import (Chain, dimension_chains, length_text, level_heights,
+                                      level_text)
+
+CUT_PEN, PROFILE_PEN, SEEN_PEN, THIN_PEN = 0.5, 0.35, 0.18, 0.13  # mm
+POCHE = "#8c8c8c"
+TEXT = 2.5  # mm, the height of dimension, level and sheet text
+MARGIN = 10.0  # mm round the sheet's content, and from the paper's edge to the border
+STANDARD_SCALES = (20, 50, 100, 200, 500, 1000)
+TITLE_BLOCK = (110.0, 30.0)  # mm
+GROUND_OVERHANG = 5.0  # mm the ground line runs on beyond the drawing
+
+# where the parts of a dimension stand, in mm out from the drawing's box
+EXTENSION_GAP = 2.0  # extension lines start this far from the drawing
+OVERSHOOT = 1.5  # and run on past the dimension line
+CHAIN_LINE, OVERALL_LINE, ALONE_LINE = 10.0, 19.0, 10.0
+# text rows (from, to): the chain's own row, its staggered row, the overall's;
+# text stands on the side of its line that reads as "above": towards the
+# drawing at the bottom and right, away from it at the top and left
+ROWS = {"inward": {"chain": (6.5, 9.0), "stagger": (12.0, 14.5), "overall": (15.5, 18.0),
+                   "alone": (6.5, 9.0)},
+        "outward": {"chain": (11.0, 13.5), "stagger": (14.5, 17.0), "overall": (20.0, 22.5),
+                    "alone": (11.0, 13.5)}}
+READS = {"bottom": "inward", "right": "inward", "top": "outward", "left": "outward"}
+DEPTH = {"inward": 21.0, "outward": 23.5}  # mm a side's dimensions take
+LEVEL_WIDTH = 22.0  # mm a column of levels takes
+
+
+# Helvetica's advance widths (per em) for the characters drawings write most
+_WIDTHS = {**{c: 0.556 for c in "0123456789+-±$#_?"}, ".": 0.278, ",": 0.278, " ": 0.278,
+           ":": 0.278, "=": 0.584, "i": 0.222, "l": 0.222, "j": 0.222, "f": 0.278, "t": 0.278,
+           "I": 0.278, "m": 0.833, "w": 0.722, "M": 0.833, "W": 0.944, "r": 0.333}
+
+
+def text_width(text: str, size: float) -> float:
+    """The width of ``text`` set in Helvetica at ``size`` mm, near enough to place it."""
+    return size * sum(_WIDTHS.get(c, 0.667 if c.isupper() else 0.556) for c in text)
+
+
+class Lines(NamedTuple):
+    """Straight segments (L, 2, 2) in paper mm, drawn with one pen."""
+
+    segments: np.ndarray
+    pen: float
+    kind: str  # "profile", "seen", "annotation", "sheet"
+
+
+class Shape(NamedTuple):
+    """Closed (or open) outlines in paper mm, filled or not."""
+
+    loops: list
+    pen: float
+    fill: str | None = None
+    closed: bool = True
+    kind: str = "annotation"  # "cut", "annotation", "sheet"
+
+
+class Text(NamedTuple):
+    x: float
+    y: float  # the baseline's anchor point, paper mm
+    text: str
+    size: float = TEXT
+    angle: float = 0.0  # degrees, counter-clockwise as seen on the paper
+    anchor: str = "start"  # "start", "middle", "end"
+
+
+class Dimension(NamedTuple):
+    """One dimension as CAD keeps it, in page metres: measured from p1 to p2
+    along ``angle`` (0 or 90), its line through ``base``, its text at
+    ``text_at`` (None: on the line's middle, where CAD puts it)."""
+
+    p1: tuple
+    p2: tuple
+    base: tuple
+    angle: float
+    text_at: tuple | None
+    offset: float  # metres from p1 and p2 to where the extension lines start
+    shown: bool = True  # False: no room for its text, which is left out
+
+
+@dataclass
+class Group:
+    name: str
+    items: list = field(default_factory=list)
+
+
+@dataclass
+class Sheet:
+    """A drawing laid on paper: the paper's size, the objects' groups, the
+    annotation groups and what a CAD file needs to rebuild the dimensions."""
+
+    width: float
+    height: float
+    title: str
+    description: str
+    origin: tuple[float, float]  # the paper point of the page's (0, 0) metres
+    mm: float  # paper millimetres per metre
+    layers: list[Group]  # one per object
+    groups: list[Group]  # "dimensions", "levels", "sheet"
+    dimensions: list[Dimension]
+    drawing: object  # castor.drawings.model.Drawing
+
+    def to_metres(self, points: np.ndarray) -> np.ndarray:
+        """Paper mm back to page metres (where a CAD file puts the sheet's items)."""
+        points = np.asarray(points, float)
+        return np.column_stack([(points[..., 0].ravel() - self.origin[0]) / self.mm,
+                                (self.origin[1] - points[..., 1].ravel()) / self.mm]
+                               ).reshape(points.shape)
+
+
+class DoesNotFit(Exception):
+    """The drawing is larger than the sheet at the asked scale."""
+
+
+def sheet_date() -> str:
+    """Today, or the day SOURCE_DATE_EPOCH fixes (the reproducible-builds
+    convention), as ISO 8601 writes it."""
+    stamp = os.environ.get("SOURCE_DATE_EPOCH")
+    when = None
+    if stamp is not None:
+        try:
+            when = datetime.datetime.fromtimestamp(int(stamp), datetime.timezone.utc)
+        except (ValueError, OverflowError, OSError):
+            when = None
+    if when is None:
+        when = datetime.datetime.now(datetime.timezone.utc)
+    return when.strftime("%Y-%m-%d")
+
+
+def scale_bar_length(scale: float) -> tuple[float, float]:
+    """The scale bar's length and division, metres: 0 to 5 m at 1:50 and 1:100."""
+    for most, length, step in ((25, 2, 0.5), (100, 5, 1), (200, 10, 2), (500, 20, 5),
+                               (1000, 50, 10)):
+        if scale <= most:
+            return length, step
+    return 100, 20
+
+
+def _inside(c: float, w: float, lo: float, hi: float) -> tuple[float, float]:
+    """A text w wide centred as near c as it can be between lo and hi (0.5 mm in)."""
+    c = min(max(c, lo + 0.5 + w / 2), hi - 0.5 - w / 2)
+    return c - w / 2, c + w / 2
+
+
+def _placed(intervals: list, lo: float, hi: float, gap: float = 0.8) -> bool:
+    return any(lo < b + gap and a - gap < hi for a, b in intervals)
+
+
+def _side_frame(side: str, box_mm: np.ndarray):
+    """For a side: the box edge's paper coordinate across the side, the sign
+    of 'outwards', and whether the side runs along paper x."""
+    (x0, y0), (x1, y1) = box_mm  # paper: y0 the top, y1 the bottom
+    return {"bottom": (y1, 1, True), "top": (y0, -1, True),
+            "left": (x0, -1, False), "right": (x1, 1, False)}[side]
+
+
+def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
+    """Lines, ticks and texts of one side's chain and overall; returns how many
+    of the chain's values had no room."""
+    edge, out, horizontal = _side_frame(chain.side, box_mm)
+    reads = READS[chain.side]
+    rows = ROWS[reads]
+    segments: list = []
+    texts: list = []
+
+    def at(s, d):  # paper point: s along the side (paper), d out from the box
+        return (s, edge + out * d) if horizontal else (edge + out * d, s)
+
+    def along(v):  # page metres along the side to paper
+        return origin[0] + v * mm if horizontal else origin[1] - v * mm
+
+    def text_at(s, row):
+        """The baseline point of a text centred at s in a row (mm out from the
+        box): its reading top is the row's paper end nearer the paper's top
+        (or left, for text turned to read from the right)."""
+        top = min(edge + out * row[0], edge + out * row[1]) + 2.1
+        return (s, top, 0.0) if horizontal else (top, s, 90.0)
+
+    def line(ends, d):
+        a, b = min(ends), max(ends)
+        segments.append([at(a - OVERSHOOT, d), at(b + OVERSHOOT, d)])
+        for s in ends:
+            segments.append([at(s, EXTENSION_GAP), at(s, d + OVERSHOOT)])
+            t = 1.25  # the tick: an oblique stroke, 45 degrees, 2.5 mm long
+            (px, py) = at(s, d)
+            segments.append([(px - t, py + t), (px + t, py - t)])
+
+    def page(c):  # a paper coordinate across the side, back to page metres
+        return (origin[1] - c) / mm if horizontal else (c - origin[0]) / mm
+
+    def dimension(u1, u2, d, text_point, shown=True):
+        """The CAD dimension from u1 to u2 (page metres along the side)."""
+        line_at = page(edge + out * d)
+        if horizontal:
+            p1, p2, base, angle = (u1, chain.edge), (u2, chain.edge), (u1, line_at), 0.0
+        else:
+            p1, p2, base, angle = (chain.edge, u1), (chain.edge, u2), (line_at, u1), 90.0
+        offset = abs(chain.edge - page(edge + out * EXTENSION_GAP))
+        where = None
+        if text_point is not None:
+            where = ((text_point[0] - origin[0]) / mm, (origin[1] - text_point[1]) / mm)
+        dims.append(Dimension(p1, p2, base, angle, where, offset, shown))
+
+    left_out = 0
+    overall = chain.overall
+    o_lo, o_hi = sorted((along(overall[0]), along(overall[1])))
+    if len(chain.breaks):
+        ends = [along(b) for b in chain.breaks]
+        line(ends, CHAIN_LINE)
+        order = np.argsort(ends)
+        ends_sorted = [ends[i] for i in order]
+        main_row, stagger_row = [], []
+        for i in range(len(ends_sorted) - 1):
+            a, b = ends_sorted[i], ends_sorted[i + 1]
+            u1, u2 = sorted((chain.breaks[order[i]], chain.breaks[order[i + 1]]))
+            text = length_text(u2 - u1)
+            w = text_width(text, TEXT)
+            c = (a + b) / 2
+            if w + 1.0 <= b - a and not _placed(main_row, c - w / 2, c + w / 2):
+                main_row.append((c - w / 2, c + w / 2))
+                x, y, angle = text_at(c, rows["chain"])
+                texts.append(Text(x, y, text, TEXT, angle, "middle"))
+                dimension(u1, u2, CHAIN_LINE, None)
+            elif (o_hi - o_lo >= w + 1.0
+                  and not _placed(stagger_row, *_inside(c, w, o_lo, o_hi))):
+                c = sum(_inside(c, w, o_lo, o_hi)) / 2  # clear of the overall's extension lines
+                stagger_row.append(_inside(c, w, o_lo, o_hi))
+                x, y, angle = text_at(c, rows["stagger"])
+                texts.append(Text(x, y, text, TEXT, angle, "middle"))
+                dimension(u1, u2, CHAIN_LINE, (x, y))
+            else:
+                left_out += 1  # its ticks stay; in CAD, a dimension with no text
+                dimension(u1, u2, CHAIN_LINE, None, shown=False)
+        d_overall, row = OVERALL_LINE, rows["overall"]
+    else:
+        d_overall, row = ALONE_LINE, rows["alone"]
+    line([o_lo, o_hi], d_overall)
+    text = length_text(overall[1] - overall[0])
+    x, y, angle = text_at((o_lo + o_hi) / 2, row)
+    texts.append(Text(x, y, text, TEXT, angle, "middle"))
+    dimension(overall[0], overall[1], d_overall, None)
+    items.append(Lines(np.array(segments, float).reshape(-1, 2, 2), THIN_PEN, "annotation"))
+    items.extend(texts)
+    return left_out
+
+
+def _level_symbols(levels, box_mm, x, items):
+    """The level symbols in a column at paper x. A level closer to one already
+    shown than its text's height and gap is merged into it; the ground and the
+    top are shown first, then the others from the bottom up. Returns the
+    levels shown."""
+    priority = {"ground": 0, "top": 1, "edge": 2}
+    shown: list = []
+    for level, y in sorted(levels, key=lambda item: (priority[item[0].kind], -item[1])):
+        if all(abs(y - other) >= TEXT + 1.0 for _, other in shown):
+            shown.append((level, y))
+    shown.sort(key=lambda item: -item[1])
+    segments = []
+    for level, y in shown:
+        segments.append([(x, y), (x + LEVEL_WIDTH - 4, y)])
+        items.append(Shape([np.array([(x + 1.0, y - 2.6), (x + 4.0, y - 2.6), (x + 2.5, y)])],
+                           THIN_PEN, None))
+        items.append(Text(x + 5.0, y - 0.8, level_text(level.height)))
+    items.insert(0, Lines(np.array(segments, float).reshape(-1, 2, 2), THIN_PEN, "annotation"))
+    return [level for level, _ in shown]
+
+
+def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> Sheet:
+    """The drawing on its sheet (``paper``: castor.options.Paper, or None for a
+    sheet as large as the drawing needs). Raises DoesNotFit when the drawing
+    is larger than the paper at its scale."""
+    mm = 1000.0 / drawing.scale
+    (x0, y0), (x1, y1) = drawing.box()
+    vertical = tuple(drawing.view.up) == (0, 0, 1)  # an elevation or a vertical section
+    ground = vertical
+    if ground:
+        y0, y1 = min(y0, 0.0), max(y1, 0.0)
+    # the box of what is drawn, on paper with the page origin at (0, 0)
+    box = np.array([[x0 * mm, -y1 * mm], [x1 * mm, -y0 * mm]])
+    if ground:
+        box[0, 0] -= GROUND_OVERHANG
+        box[1, 0] += GROUND_OVERHANG
+    loops = [c for layer in drawing.layers for c in layer.cuts]
+    chains = dimension_chains(loops) if drawing.section is not None else []
+    depth = {side: 0.0 for side in ("bottom", "top", "left", "right")}
+    for chain in chains:
+        depth[chain.side] = DEPTH[READS[chain.side]] if len(chain.breaks) else DEPTH[READS[chain.side]] - 9
+    levels = level_heights(drawing.layers, np.array([[x0, y0], [x1, y1]])) if vertical else []
+    level_x = box[1, 0] + depth["right"] + (4.0 if depth["right"] else 6.0)
+    right = depth["right"] + (LEVEL_WIDTH + 6.0 if levels else 0.0)
+    # the content's box on paper: the drawing and everything round it
+    content = np.array([[box[0, 0] - depth["left"], box[0, 1] - depth["top"]],
+                        [box[1, 0] + right, box[1, 1] + depth["bottom"]]])
+    title_w, title_h = TITLE_BLOCK
+    bar_m, bar_step = scale_bar_length(drawing.scale)
+    bar_w = bar_m * mm + 10.0 + (20.0 if drawing.is_plan else 0.0)
+    band = title_h + 8.0  # below the content: scale bar, north arrow, title block
+    cw, ch = content[1] - content[0]
+    if paper is None:
+        width = max(cw, title_w + bar_w + 10.0) + 2 * MARGIN
+        height = ch + band + 2 * MARGIN
+        shift = np.array([MARGIN + (width - 2 * MARGIN - cw) / 2, MARGIN]) - content[0]
+    else:
+        width, height = float(paper.width), float(paper.height)
+        area_w = width - 2 * MARGIN - 10.0
+        area_h = height - 2 * MARGIN - 10.0 - band
+        if cw > area_w or ch > area_h or title_w + bar_w + 10 > width - 2 * MARGIN:
+            extra = np.array([cw, ch]) - np.array([x1 - x0, y1 - y0]) * mm
+            fits = [n for n in STANDARD_SCALES
+                    if (x1 - x0) * 1000 / n + extra[0] <= area_w
+                    and (y1 - y0) * 1000 / n + extra[1] <= area_h]
+            need = f"{cw:.0f} x {ch:.0f} mm; the sheet holds {area_w:.0f} x {area_h:.0f} mm"
+            if fits:
+                raise DoesNotFit(f"the drawing does not fit on {paper.name} at 1:{drawing.scale:g} "
+                                 f"({need}); the largest scale that fits is 1:{min(fits)}: "
+                                 f"--scale 1:{min(fits)}, or a larger --sheet")
+            raise DoesNotFit(f"the drawing does not fit on {paper.name} at 1:{drawing.scale:g} "
+                             f"({need}), nor at 1:{STANDARD_SCALES[-1]}; use a larger --sheet")
+        top_left = np.array([MARGIN + 5.0 + (area_w - cw) / 2, MARGIN + 5.0 + (area_h - ch) / 2])
+        shift = top_left - content[0]
+    origin = (float(shift[0]), float(shift[1]))
+    box_mm = box + shift
+    level_x += shift[0]
+
+    def paper_of(points):
+        points = np.asarray(points, float)
+        return np.stack([points[..., 0] * mm + origin[0], origin[1] - points[..., 1] * mm], axis=-1)
+
+    layers = []
+    for layer in drawing.layers:
+        group = Group(layer.name)
+        if len(layer.lines):
+            seen = paper_of(layer.lines[~layer.profile])
+            profile = paper_of(layer.lines[layer.profile])
+            if len(seen):
+                group.items.append(Lines(seen, SEEN_PEN, "seen"))
+            if len(profile):
+                group.items.append(Lines(profile, PROFILE_PEN, "profile"))
+        if layer.cuts:
+            group.items.append(Shape([paper_of(loop) for loop in layer.cuts], CUT_PEN, POCHE,
+                                     True, "cut"))
+        layers.append(group)
+    if ground:
+        layers.append(Group("ground", [Lines(np.array([[[box_mm[0, 0], origin[1]],
+                                                        [box_mm[1, 0], origin[1]]]]),
+                                             PROFILE_PEN, "profile")]))
+    dimensions_group, levels_group, sheet_group = Group("dimensions"), Group("levels"), Group("sheet")
+    cad: list[Dimension] = []
+    left_out = {}
+    for chain in chains:
+        missing = _dimension_side(chain, box_mm, mm, origin, dimensions_group.items, cad)
+        if missing:
+            left_out[chain.side] = missing
+    if left_out and warn is not None:
+        sides = ", ".join(f"{n} on the {side}" for side, n in left_out.items())
+        warn(f"{sum(left_out.values())} dimension(s) left out, too narrow for their text at "
+             f"1:{drawing.scale:g} ({sides}); a larger scale shows them")
+    if levels:
+        placed = [(level, origin[1] - level.height * mm) for level in levels]
+        _level_symbols(placed, box_mm, level_x, levels_group.items)
+    # the band: title block at the lower right, scale bar and north arrow at the left
+    if paper is not None:
+        sheet_group.items.append(Shape([np.array([(MARGIN, MARGIN), (width - MARGIN, MARGIN),
+                                                  (width - MARGIN, height - MARGIN),
+                                                  (MARGIN, height - MARGIN)])], PROFILE_PEN,
+                                       None, True, "sheet"))
+        tx, ty = width - MARGIN - title_w, height - MARGIN - title_h
+        bx, by = MARGIN + 5.0, height - MARGIN - 8.0
+    else:
+        tx, ty = width - MARGIN - title_w, height - MARGIN - title_h
+        bx, by = MARGIN, height - MARGIN - 8.0
+    _title_block(sheet_group.items, tx, ty, title, drawing.description(),
+                 f"1:{drawing.scale:g}", sheet_date(), where)
+    _scale_bar(sheet_group.items, bx, by, bar_m, bar_step, mm)
+    if drawing.is_plan:
+        _north_arrow(sheet_group.items, bx + bar_m * mm + 18.0, by - 9.0)
+    return Sheet(width, height, title, drawing.description(), origin, mm, layers,
+                 [dimensions_group, levels_group, sheet_group], cad, drawing)
+
+
+def _fitted(text: str, size: float, room: float, keep_end: bool = False) -> tuple[str, float]:
+    """The text and size that fit ``room`` mm: smaller down to TEXT, then cut
+    short (at its start for a path, whose end says most)."""
+    while size > TEXT and text_width(text, size) > room:
+        size = max(TEXT, size - 0.25)
+    if text_width(text, size) > room:
+        while text and text_width(text + "…", size) > room:
+            text = text[1:] if keep_end else text[:-1]
+        text = "…" + text if keep_end else text + "…"
+    return text, size
+
+
+def _title_block(items, x, y, title, what, scale, date, where):
+    w, h = TITLE_BLOCK
+    items.append(Shape([np.array([(x, y), (x + w, y), (x + w, y + h), (x, y + h)])],
+                       PROFILE_PEN, None, True, "sheet"))
+    items.append(Lines(np.array([[(x, y + 11), (x + w, y + 11)],
+                                 [(x, y + 18.5), (x + w, y + 18.5)],
+                                 [(x, y + 24.5), (x + w, y + 24.5)],
+                                 [(x + 45, y + 18.5), (x + 45, y + 24.5)]]), SEEN_PEN, "sheet"))
+    text, size = _fitted(title, 5.0, w - 6)
+    items.append(Text(x + 3, y + 8.0, text, size))
+    text, size = _fitted(what, 3.5, w - 6)
+    items.append(Text(x + 3, y + 16.5, text, size))
+    items.append(Text(x + 3, y + 22.5, f"Scale {scale}"))
+    items.append(Text(x + 48, y + 22.5, f"Date {date}"))
+    text, size = _fitted(where, TEXT, w - 6, keep_end=True)
+    items.append(Text(x + 3, y + 28.5, text, size))
+
+
+def _scale_bar(items, x, y, length, step, mm):
+    """Blocks of ``step`` metres, black and white in turn, numbered in metres."""
+    count = int(round(length / step))
+    blocks = [np.array([(x + k * step * mm, y - 2), (x + (k + 1) * step * mm, y - 2),
+                        (x + (k + 1) * step * mm, y), (x + k * step * mm, y)])
+              for k in range(count)]
+    items.append(Shape(blocks[0::2], THIN_PEN, "black", True, "sheet"))
+    items.append(Shape(blocks[1::2], THIN_PEN, "white", True, "sheet"))
+    for k in range(count + 1):
+        label = f"{k * step:g}" + (" m" if k == count else "")
+        items.append(Text(x + k * step * mm, y + 4.0, label, TEXT, 0.0,
+                          "start" if k == count else "middle"))
+
+
+def _north_arrow(items, x, y):
+    """A circle with an arrow pointing up the page (north, +y) and an N."""
+    angles = np.linspace(0, 2 * np.pi, 49)[:-1]
+    items.append(Shape([np.column_stack([x + 6 * np.cos(angles), y + 6 * np.sin(angles)])],
+                       THIN_PEN, None, True, "sheet"))
+    items.append(Shape([np.array([(x, y - 6), (x + 2.5, y + 4), (x, y + 2), (x - 2.5, y + 4)])],
+                       THIN_PEN, "black", True, "sheet"))
+    items.append(Text(x, y - 7.5, "N", 3.5, 0.0, "middle"))

@@ -1,0 +1,91 @@
+"""PDF: a drawing's sheet for printing, its page the sheet's size.
+
+Written with reportlab (imported only here, only when a PDF is asked for):
+it comes as a wheel from PyPI and needs no system library, so ``pip install``
+on a fresh machine is enough (cairosvg would need Debian's libcairo). The
+page is vector: lines with the pens' widths at the printed size, poché as
+filled paths, and text as text in Helvetica (one of PDF's standard fonts,
+so a reader can search and copy the dimensions). ``invariant`` mode leaves
+out the creation time and a random document id, so the same sheet gives the
+same bytes.
+"""
+
+from __future__ import annotations
+
+import io
+
+import numpy as np
+
+from castor.formats import Format
+
+MM = 72 / 25.4  # PDF points per millimetre
+
+
+def _colour(canvas, name: str | None, fill: bool) -> None:
+    from reportlab.lib import colors
+
+    if name is None:
+        return
+    colour = colors.HexColor(name) if name.startswith("#") else getattr(colors, name)
+    (canvas.setFillColor if fill else canvas.setStrokeColor)(colour)
+
+
+def export_drawing(sheet) -> bytes:
+    """The sheet as PDF bytes, one page of the sheet's size."""
+    from reportlab.pdfgen import canvas as pdfcanvas
+
+    from castor.drawings.sheet import Lines, Shape
+
+    out = io.BytesIO()
+    page = pdfcanvas.Canvas(out, pagesize=(sheet.width * MM, sheet.height * MM), invariant=1,
+                            pageCompression=1)
+    page.setTitle(f"{sheet.title}: {sheet.description}")
+    page.setCreator("castor")
+    # millimetres, y down, as the sheet is laid out
+    page.translate(0, sheet.height * MM)
+    page.scale(MM, -MM)
+    page.setLineCap(1)
+    page.setLineJoin(1)
+    for group in [*sheet.layers, *sheet.groups]:
+        for item in group.items:
+            if isinstance(item, Lines):
+                path = page.beginPath()
+                for (x0, y0), (x1, y1) in item.segments.tolist():
+                    path.moveTo(x0, y0)
+                    path.lineTo(x1, y1)
+                page.setLineWidth(item.pen)
+                page.drawPath(path, stroke=1, fill=0)
+            elif isinstance(item, Shape):
+                path = page.beginPath()
+                for loop in item.loops:
+                    points = np.asarray(loop).tolist()
+                    path.moveTo(*points[0])
+                    for point in points[1:]:
+                        path.lineTo(*point)
+                    if item.closed:
+                        path.close()
+                page.setLineWidth(item.pen)
+                _colour(page, item.fill, True)
+                page.drawPath(path, stroke=1, fill=1 if item.fill else 0, fillMode=0)
+                page.setFillColorRGB(0, 0, 0)
+            else:
+                page.saveState()
+                page.translate(item.x, item.y)
+                page.scale(1, -1)  # text upright again
+                page.rotate(item.angle)
+                page.setFont("Helvetica", item.size)
+                if item.anchor == "middle":
+                    page.drawCentredString(0, 0, item.text)
+                elif item.anchor == "end":
+                    page.drawRightString(0, 0, item.text)
+                else:
+                    page.drawString(0, 0, item.text)
+                page.restoreState()
+    page.showPage()
+    page.save()
+    return out.getvalue()
+
+
+FORMATS = (Format("pdf", (".pdf",), "drawing",
+                  "a plan, section or elevation on its sheet, for printing", export_drawing,
+                  listed=110),)

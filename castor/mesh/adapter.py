@@ -1,0 +1,148 @@
+"""The boolean engine, manifold3d, behind one small adapter: the only module
+that imports it.
+
+Everything castor asks of the engine is a function here: a mesh in (a
+primitive's template), a mesh out (arrays, with the runs that say which
+template and placement each triangle comes from), the booleans, moving,
+composing and splitting solids. The rest of castor holds the engine's solids
+as opaque handles (``Manifold``) and asks them only for their counts, box,
+volume and area (``num_tri()``, ``bounding_box()``, ``volume()``, …).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import manifold3d
+import numpy as np
+
+Manifold = manifold3d.Manifold
+
+_Intersect = manifold3d.OpType.Intersect
+
+
+class EngineError(Exception):
+    """manifold3d refused a mesh (not an oriented 2-manifold)."""
+
+
+# --- into the engine
+
+
+def from_mesh(vertices: np.ndarray, triangles: np.ndarray, faces: np.ndarray) -> Manifold:
+    """The engine's solid of a closed, oriented triangle mesh whose triangles
+    carry face numbers (kept through every boolean); EngineError if refused."""
+    gl = manifold3d.Mesh64(
+        vert_properties=vertices,
+        tri_verts=triangles.astype(np.uint64),
+        face_id=faces.astype(np.uint64),
+    )
+    manifold = manifold3d.Manifold(gl)
+    if manifold.status() != manifold3d.Error.NoError:
+        raise EngineError(str(manifold.status()))
+    return manifold
+
+
+def from_runs(vertices: np.ndarray, triangles: np.ndarray, faces: np.ndarray,
+              starts: np.ndarray) -> tuple[Manifold, np.ndarray]:
+    """The engine's solid of a closed, oriented triangle mesh castor made itself
+    (a smooth solid's refined facets), its triangles in runs beginning at
+    ``starts``, each run under an engine ID of its own (returned, one per run)
+    so that its triangles keep their origin through any boolean; EngineError
+    if refused."""
+    first = manifold3d.Manifold.reserve_ids(len(starts))
+    ids = np.arange(first, first + len(starts), dtype=np.int64)
+    gl = manifold3d.Mesh64(
+        vert_properties=np.ascontiguousarray(vertices, dtype=np.float64),
+        tri_verts=np.ascontiguousarray(triangles, dtype=np.uint64),
+        run_index=(np.r_[starts, len(triangles)] * 3).astype(np.uint64),
+        run_original_id=ids.astype(np.uint32),
+        face_id=faces.astype(np.uint64))
+    manifold = manifold3d.Manifold(gl)
+    if manifold.status() != manifold3d.Error.NoError:
+        raise EngineError(str(manifold.status()))
+    return manifold, ids
+
+
+def as_original(manifold: Manifold) -> tuple[Manifold, int]:
+    """A copy of ``manifold`` under an engine ID of its own, and that ID."""
+    copy = manifold.as_original()
+    return copy, copy.original_id()
+
+
+# --- out of the engine
+
+
+class EngineMesh(NamedTuple):
+    """A solid's triangles in double precision, as the engine gives them."""
+
+    vertices: np.ndarray  # (V, 3) float64
+    triangles: np.ndarray  # (T, 3) int64
+    face_ids: np.ndarray  # (T,) int64: the template's face number of each triangle
+    run_index: np.ndarray  # (R + 1,) the first triangle of each run
+    run_ids: np.ndarray  # (R,) the engine ID of each run's template
+    placements: np.ndarray  # (R, 3, 4) the transformation that placed each run
+    merge_from: np.ndarray  # vertices the engine split only for properties…
+    merge_to: np.ndarray  # …and the vertex each is one with
+
+
+def to_arrays(manifold: Manifold) -> EngineMesh:
+    """The engine's mesh of ``manifold`` as numpy arrays."""
+    gl = manifold.to_mesh64()
+    return EngineMesh(
+        np.asarray(gl.vert_properties, dtype=np.float64)[:, :3],
+        np.asarray(gl.tri_verts, dtype=np.int64),
+        np.asarray(gl.face_id, dtype=np.int64) & 0xFFFFFFFF,
+        np.asarray(gl.run_index, dtype=np.int64) // 3,
+        np.asarray(gl.run_original_id, dtype=np.int64),
+        # the engine's transformations are (R, 4, 3), the columns of our 3x4 rows
+        np.asarray(gl.run_transform, dtype=np.float64).transpose(0, 2, 1),
+        np.asarray(gl.merge_from_vert, dtype=np.int64),
+        np.asarray(gl.merge_to_vert, dtype=np.int64),
+    )
+
+
+# --- the engine's operations
+
+
+def empty() -> Manifold:
+    return manifold3d.Manifold()
+
+
+def add(a: Manifold, b: Manifold) -> Manifold:
+    """a + b, the engine's union of two solids."""
+    return a + b
+
+
+def subtract(a: Manifold, b: Manifold) -> Manifold:
+    """a - b, the engine's difference."""
+    return a - b
+
+
+def intersect(a: Manifold, b: Manifold) -> Manifold:
+    """a ^ b, the engine's intersection of two solids."""
+    return a ^ b
+
+
+def intersect_all(manifolds: list) -> Manifold:
+    """The engine's intersection of all at once."""
+    return manifold3d.Manifold.batch_boolean(manifolds, _Intersect)
+
+
+def compose(manifolds: list) -> Manifold:
+    """Solids that do not meet as one, without a boolean."""
+    return manifold3d.Manifold.compose(manifolds)
+
+
+def decompose(manifold: Manifold) -> list:
+    """The solid's connected shells, each a solid."""
+    return manifold.decompose()
+
+
+def transform(manifold: Manifold, rows: np.ndarray) -> Manifold:
+    """Moved by an affine map (3x4 rows, contiguous)."""
+    return manifold.transform(rows)
+
+
+def triangulate(outline: np.ndarray) -> np.ndarray:
+    """Triangles (T, 3) of a simple polygon (N, 2), counter-clockwise."""
+    return np.asarray(manifold3d.triangulate([outline]), dtype=np.int64)

@@ -1,0 +1,83 @@
+"""Every cache of the facetizer, in one place, under one eviction policy.
+
+A process holds one ``Caches`` (``PROCESS``): what it remembers between
+booleans, parts and frames, and so how much memory it may keep. Each
+cache but one is a ``Bounded`` dictionary, whose policy is the same for all:
+
+    before an entry goes in, a cache that holds more than its number of
+    entries, or whose weight with the new entry would pass its bound, is
+    emptied at once.
+
+Emptying whole is enough: what is cached is found again by content (a shared
+subtree's key, a primitive's kind, shape and facets, triangles' bytes), so a
+cache emptied costs time, never a different result. The exception is the
+table of templates by engine ID, which holds none of them: an entry lives as
+long as its template does (a weak reference).
+"""
+
+from __future__ import annotations
+
+import weakref
+
+
+class Bounded:
+    """A dictionary emptied whole when it would pass its bounds (see above)."""
+
+    __slots__ = ("weight", "max_entries", "max_weight", "_data")
+
+    def __init__(self, max_entries: int | None = None, max_weight: int | None = None):
+        self.max_entries = max_entries
+        self.max_weight = max_weight
+        self.weight = 0
+        self._data: dict = {}
+
+    def get(self, key):
+        return self._data.get(key)
+
+    def __contains__(self, key) -> bool:
+        return key in self._data
+
+    def __len__(self) -> int:
+        return len(self._data)
+
+    def put(self, key, value, weight: int = 0) -> None:
+        if (self.max_entries is not None and len(self._data) > self.max_entries) or (
+                self.max_weight is not None and self.weight + weight > self.max_weight):
+            self.clear()
+        self._data[key] = value
+        self.weight += weight
+
+    def clear(self) -> None:
+        self._data.clear()
+        self.weight = 0
+
+
+class Caches:
+    """The caches of one process, each named for what it holds."""
+
+    def __init__(self):
+        # shared subtree's key -> (the engine's solid as computed, its primitives);
+        # weighed in triangles
+        self.solids = Bounded(max_weight=4_000_000)
+        # (kind, shape, facet tolerance) -> (the primitive's template, its triangles)
+        self.templates = Bounded(max_entries=4096)
+        # engine ID -> template, for every ID a template's runs carry (checks.off_faces)
+        self.engine_ids: "weakref.WeakValueDictionary[int, object]" = weakref.WeakValueDictionary()
+        # id() of a union's result no two of whose primitives' planes meet -> that
+        # result (held, so that its id is not reused): no sheet can be in it
+        self.plain = Bounded(max_entries=1000)
+        # hash of a part's triangles and faces -> True: found free of flat
+        # triangles and sheets (a copy moved by an affine map is too)
+        self.clean = Bounded(max_entries=10_000)
+        # a part's triangles and faces -> (its polygons, its vertices): copies of
+        # one object merged once (merge.Merger); weighed in triangles, emptied
+        # at each frame
+        self.patterns = Bounded(max_entries=10_000, max_weight=2_000_000)
+
+    def new_facetizer(self) -> None:
+        """A new facetizer starts from nothing built (what benchmarks measure)."""
+        self.solids.clear()
+        self.templates.clear()
+
+
+PROCESS = Caches()

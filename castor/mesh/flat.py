@@ -1,0 +1,204 @@
+"""Flat triangles and coincident twins taken out of a closed surface.
+
+The engine's rounding leaves a few triangles of (about) zero area, and where
+two faces coincide turned towards each other, pairs of triangles on the same
+three vertices: both are no part of a regular solid (LANGUAGE.md §7).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from castor.mesh.arrays import cross, same_place
+
+_FLAT = 1e-10
+
+
+def flat_triangles(vertices: np.ndarray, triangles: np.ndarray, chunk: int = 1 << 20) -> np.ndarray:
+    """Which triangles have (about) zero area: a repeated vertex, or three in a line."""
+    flat = np.zeros(len(triangles), bool)
+    for start in range(0, len(triangles), chunk):  # in slices: a few temporaries of 3 x chunk
+        t = triangles[start:start + chunk]
+        p = vertices[t]
+        e0, e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 1], p[:, 0] - p[:, 2]
+        normal = cross(e0, -e2)
+        twice_area_squared = np.einsum("ij,ij->i", normal, normal)
+        longest_squared = np.maximum(np.maximum(np.einsum("ij,ij->i", e0, e0),
+                                                np.einsum("ij,ij->i", e1, e1)),
+                                     np.einsum("ij,ij->i", e2, e2))
+        flat[start:start + chunk] = (twice_area_squared <= (_FLAT * longest_squared) ** 2) | (
+            (t[:, 0] == t[:, 1]) | (t[:, 1] == t[:, 2]) | (t[:, 2] == t[:, 0]))
+    return flat
+
+
+def without_flat_triangles(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
+                           face_ids: np.ndarray, twins: bool = True):
+    """The same closed surface with no flat triangle (LANGUAGE.md §7).
+
+    The engine leaves a few: two vertices at one place, or closer than the
+    rounding of the triangle's size (welded into one, and the triangles
+    between them dropped), or three in a line (the triangle's
+    long edge is flipped with the neighbour across it, which splits the
+    neighbour at the middle vertex: the flat triangle's area, zero, goes to a
+    triangle in the neighbour's plane). Every edge stays paired. Returns the
+    arrays unchanged if there is nothing to do.
+    """
+    flat = flat_triangles(vertices, triangles)
+    if twins:  # (False where no two faces can coincide)
+        triangles, origin_ids, face_ids, flat = _without_twins_at_one_place(
+            vertices, triangles, origin_ids, face_ids, flat)
+    twins = _coincident(triangles) if twins else None
+    if twins is not None:  # a sheet of coincident triangles turned towards each other
+        keep = ~twins
+        triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
+        flat = flat[keep]
+    if not flat.any():
+        return triangles, origin_ids, face_ids
+    triangles = triangles.copy()
+    # weld the vertices of flat triangles that are at one place, or closer
+    # than rounding: needles, and fins of two flat triangles back to back
+    corners = np.unique(triangles[flat])
+    points = vertices[corners]
+    scale = max(1.0, float(np.abs(points).max()))
+    remap = {}
+    for i in range(len(corners)):
+        close = np.flatnonzero(np.abs(points[i + 1:] - points[i]).max(axis=1) <= 1e-12 * scale)
+        for j in close.tolist():
+            u, w = int(corners[i]), int(corners[i + 1 + j])
+            ru, rw = remap.get(u, u), remap.get(w, w)
+            if ru != rw:
+                remap[max(ru, rw)] = min(ru, rw)
+    if remap:
+        table = np.arange(len(vertices))
+        for u in sorted(remap):  # chains resolve to their smallest number
+            table[u] = table[remap[u]]
+        triangles = table[triangles]
+    keep = ~((triangles[:, 0] == triangles[:, 1]) | (triangles[:, 1] == triangles[:, 2])
+             | (triangles[:, 2] == triangles[:, 0]))
+    keep &= ~_twins(triangles, corners)
+    triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
+    flat = flat_triangles(vertices, triangles)
+    if flat.any():
+        triangles, origin_ids, face_ids = _flip_flat(vertices, triangles, origin_ids,
+                                                     face_ids, flat)
+    return triangles, origin_ids, face_ids
+
+
+def _without_twins_at_one_place(vertices, triangles, origin_ids, face_ids, flat):
+    """Triangles that would be coincident twins turned the other way, but for
+    a vertex the engine left twice at one place: both go, and those vertices
+    are welded (the sheet they made is gone, and the surface closes there)."""
+    table = same_place(vertices)
+    if table is None:
+        return triangles, origin_ids, face_ids, flat
+    twins = _coincident(table[triangles])
+    if twins is None:
+        return triangles, origin_ids, face_ids, flat
+    involved = np.isin(table, table[np.unique(triangles[twins])])
+    weld = np.where(involved, table, np.arange(len(vertices)))
+    keep = ~twins
+    return weld[triangles[keep]], origin_ids[keep], face_ids[keep], flat[keep]
+
+
+def _coincident(triangles: np.ndarray) -> np.ndarray | None:
+    """Triangles whose three vertices another triangle has, turned the other
+    way (None if there is none: the usual case, found in a few array passes)."""
+    if len(triangles) < 2:
+        return None
+    t = triangles
+    first = np.argmin(t, axis=1)[:, None]
+    rows = np.arange(len(t))[:, None]
+    forward = t[rows, (first + np.arange(3)) % 3]  # each turn from its smallest vertex
+    backward = forward[:, [0, 2, 1]]
+    n = int(t.max()) + 1
+    if n ** 3 < 2 ** 62:
+        key_f = (forward[:, 0] * n + forward[:, 1]) * n + forward[:, 2]
+        key_b = (backward[:, 0] * n + backward[:, 1]) * n + backward[:, 2]
+    else:
+        return None
+    # a triangle and its twin have the same corners: look for a repeated set
+    # first (one sort), the usual case being that there is none
+    corners = np.sort(t, axis=1)
+    same = np.sort((corners[:, 0] * n + corners[:, 1]) * n + corners[:, 2])
+    if not (same[1:] == same[:-1]).any():
+        return None
+    hit = np.isin(key_f, key_b)
+    if not hit.any():
+        return None
+    # pair them one to one, so every edge keeps its partner
+    found = np.zeros(len(t), bool)
+    waiting: dict[int, list[int]] = {}
+    for i in np.flatnonzero(hit).tolist():
+        partners = waiting.get(int(key_b[i]))
+        if partners:
+            found[partners.pop()] = True
+            found[i] = True
+        else:
+            waiting.setdefault(int(key_f[i]), []).append(i)
+    return found if found.any() else None
+
+
+def _twins(triangles: np.ndarray, corners: np.ndarray) -> np.ndarray:
+    """Triangles near ``corners`` paired with another of the same three
+    vertices turned the other way: a sheet of zero thickness, both go."""
+    near = np.flatnonzero(np.isin(triangles, corners).any(axis=1))
+    found = np.zeros(len(triangles), bool)
+    seen: dict[tuple, list[int]] = {}
+    for i in near.tolist():
+        a, b, c = triangles[i].tolist()
+        k = min((a, b, c), (b, c, a), (c, a, b))  # this turn, from its smallest vertex
+        reverse = min((a, c, b), (c, b, a), (b, a, c))
+        partners = seen.get(reverse)
+        if partners:
+            found[partners.pop()] = True
+            found[i] = True
+        else:
+            seen.setdefault(k, []).append(i)
+    return found
+
+
+def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
+    """Flip the long edge of each triangle with three vertices in a line."""
+    corners = np.unique(triangles[flat])
+    near = np.flatnonzero(np.isin(triangles, corners).any(axis=1))
+    tris = {int(i): tuple(triangles[i].tolist()) for i in near}
+    owner = {}
+    for i, (a, b, c) in tris.items():
+        owner[(a, b)] = owner[(b, c)] = owner[(c, a)] = i
+    origin = origin_ids.copy()
+    face = face_ids.copy()
+    todo = [int(i) for i in np.flatnonzero(flat)]
+    point = vertices
+    for _ in range(4 * len(todo) + 16):
+        if not todo:
+            break
+        i = todo.pop()
+        t = tris.get(i)
+        if t is None or not flat_triangles(point, np.array([t]))[0]:
+            continue  # (a flip since it was found may have made it whole)
+        p = point[list(t)]
+        lengths = [float(np.dot(p[(k + 1) % 3] - p[k], p[(k + 1) % 3] - p[k])) for k in range(3)]
+        k = int(np.argmax(lengths))
+        u, w, m = t[k], t[(k + 1) % 3], t[(k + 2) % 3]  # long edge u->w, m between them
+        n = owner.get((w, u))
+        if n is None or n == i:
+            continue
+        a, b, c = tris[n]
+        x = ({a, b, c} - {u, w}).pop() if len({a, b, c} - {u, w}) == 1 else None
+        if x is None or x == m:
+            continue
+        for tri in (t, tris[n]):
+            for e in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+                owner.pop(e, None)
+        first, second = (m, u, x), (w, m, x)
+        tris[i], tris[n] = first, second
+        origin[i], face[i] = origin[n], face[n]
+        for j, tri in ((i, first), (n, second)):
+            for e in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+                owner[e] = j
+            if flat_triangles(point, np.array([tri]))[0]:
+                todo.append(j)
+    rows = np.array(list(tris.keys()), np.int64)
+    triangles = triangles.copy()
+    triangles[rows] = np.array([tris[r] for r in rows.tolist()], np.int64)
+    return triangles, origin, face

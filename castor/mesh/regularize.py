@@ -1,0 +1,141 @@
+"""Regularization (LANGUAGE.md §4.3, §7): a boolean's result without what
+has no volume.
+
+The engine keeps results 2-manifold, not regular. Its solids lose their
+shells of zero volume here (``regular``: sheets where solids only touch,
+cavities kept); their triangles lose flat triangles, coincident twins and
+the sheets the engine left inside a shell (``regular_triangles``, with
+castor.mesh.flat and castor.mesh.sheets).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from castor.mesh import adapter
+from castor.mesh.arrays import paired, plane_sign, row_hash, shared_across
+from castor.mesh.caches import PROCESS
+from castor.mesh.checks import off_faces
+from castor.mesh.flat import flat_triangles, without_flat_triangles
+from castor.mesh.instances import moved_planes
+from castor.mesh.provenance import Triangles
+from castor.mesh.sheets import without_sheets
+
+# A shell thinner than this (its volume over half its area), relative to the
+# size of its coordinates, is a sheet: what solids that only touch leave.
+SHEET = 1e-9
+
+
+def regular(manifold: adapter.Manifold) -> adapter.Manifold:
+    """A boolean's result without its shells of (about) zero volume.
+
+    manifold3d keeps a result 2-manifold, not regular: solids that only touch
+    intersect into a closed sheet of zero volume, a difference of coincident
+    solids leaves one. Regularization (LANGUAGE.md §4.3, §7) removes them."""
+    if manifold.is_empty():
+        return manifold
+    shells = adapter.decompose(manifold)
+    kept = [shell for shell in shells if not _sheet(shell)]
+    if len(kept) == len(shells):
+        return manifold
+    if not kept:
+        return adapter.empty()
+    outer = [shell for shell in kept if shell.volume() > 0]
+    if len(outer) == len(kept):
+        return kept[0] if len(kept) == 1 else adapter.compose(kept)
+    # a cavity is a shell turned inside out, which compose drops: the sheets
+    # are cut off instead, by the solid's own outer shells; if the engine's
+    # intersection (every face coincident) leaves faces off their planes, the
+    # sheet stays, to be cut out of the triangles at the end (regular_triangles)
+    cut = adapter.intersect(manifold, outer[0] if len(outer) == 1 else adapter.compose(outer))
+    return manifold if off_faces(cut) else cut
+
+
+def _sheet(shell: adapter.Manifold) -> bool:
+    box = shell.bounding_box()
+    size = max(1.0, max(abs(c) for c in box))
+    # a cavity is a shell of negative volume: as much a part of the solid
+    return abs(shell.volume()) <= SHEET * size * shell.surface_area() / 2
+
+
+# --- where no sheet can be
+
+
+def mark_plain(manifold: adapter.Manifold) -> None:
+    """Remember a result of a union of primitives no two of whose planes
+    coincide: no sheet, no coincident twins can be in it, and the passes that
+    look for them are skipped (caches.PROCESS.plain)."""
+    PROCESS.plain.put(id(manifold), manifold)
+
+
+def _is_plain(part) -> bool:
+    return PROCESS.plain.get(id(part)) is part
+
+
+def planes_meet(placed: list) -> bool:
+    """Whether a plane of a face of one primitive coincides (to 10⁻⁷, either
+    side) with a plane of another's: its planes moved by its matrix, keyed on
+    two grids half a cell apart, so that planes that close never miss."""
+    keys, owners = [], []
+    for k, part in enumerate(placed):
+        try:
+            normal, offset, has = moved_planes(part.template.planes, part.matrix)
+        except np.linalg.LinAlgError:
+            return True
+        normal, offset = normal[has], offset[has]
+        sign = plane_sign(normal)
+        keys.append(np.column_stack([normal * sign[:, None], offset * sign]))
+        owners.append(np.full(len(normal), k))
+    rows, owner = np.concatenate(keys), np.concatenate(owners)
+    # offsets relative to the size of the scene's coordinates, as the sheets' test has them
+    rows[:, 3] /= max(1.0, max(abs(c) for part in placed for c in part.bounding_box()))
+    return any(shared_across(row_hash(np.floor(rows * 1e7 + half)), owner)
+               for half in (0.0, 0.5))
+
+
+# --- the triangles of a solid
+
+
+def regular_triangles(tri: Triangles, parts) -> Triangles:
+    """The triangles of ``parts`` (provenance.triangles) without what the
+    engine leaves: sheets where faces only touch, and triangles of zero area
+    from its rounding. Parts already found clean are remembered by their
+    triangles and faces (caches.PROCESS.clean): a copy of one object moved by
+    an affine map has no sheet or flat triangle if the first had none."""
+    sheets = not (len(parts) == 1 and _is_plain(parts[0]))
+    key = None
+    if len(tri.triangles) <= 200_000:
+        key = hash((tri.triangles.tobytes(), tri.face_ids.tobytes()))
+        if key in PROCESS.clean:
+            return tri
+    cleaned = _cleaned(tri) if sheets else _unflattened(tri)
+    if key is not None and cleaned is tri:
+        PROCESS.clean.put(key, True)
+    return cleaned
+
+
+def _unflattened(tri: Triangles) -> Triangles:
+    """Only the flat triangles taken out (where no sheet can be)."""
+    triangles, origin_ids, face_ids = without_flat_triangles(
+        tri.vertices, tri.triangles, tri.origin_ids, tri.face_ids, twins=False)
+    if triangles is tri.triangles:
+        return tri
+    return Triangles(tri.vertices, triangles, origin_ids, face_ids)
+
+
+def _cleaned(tri: Triangles) -> Triangles:
+    vertices = tri.vertices
+    triangles, origin_ids, face_ids = without_flat_triangles(
+        vertices, tri.triangles, tri.origin_ids, tri.face_ids)
+    cut_vertices, cut, origin_cut, face_cut = without_sheets(
+        vertices, triangles, origin_ids, face_ids)
+    if cut is not triangles:  # cutting can leave slivers of its own
+        cut, origin_cut, face_cut = without_flat_triangles(
+            cut_vertices, cut, origin_cut, face_cut)
+        # kept only if every edge is still paired and nothing is flat: a
+        # sheet left in place is better than a surface that is not closed
+        if paired(cut) and not flat_triangles(cut_vertices, cut).any():
+            return Triangles(cut_vertices, cut, origin_cut, face_cut)
+    if triangles is tri.triangles:
+        return tri  # nothing to do: the same object, so that it is known clean
+    return Triangles(vertices, triangles, origin_ids, face_ids)

@@ -1,0 +1,30 @@
+"""The primitives of the language, one module each (LANGUAGE.md §4.1).
+
+Each module of this package that defines ``PRIMITIVE`` (a ``base.Primitive``)
+declares one primitive: its name, arguments, checks, unit box, mesh and ray
+spans. ``PRIMITIVES`` (name → Primitive) is gathered from the modules found
+here, so adding a primitive is adding its file: the parser, the evaluator,
+the facetizer (castor.mesh.primitives), the ray tracer (castor.pictures.spans)
+and the editor files read this table and keep none of their own.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+
+from castor.primitives.base import FLAT, Argument, Mesh, Primitive
+
+
+def _gathered() -> dict[str, Primitive]:
+    found = []
+    for module in pkgutil.iter_modules(__path__):
+        declared = getattr(importlib.import_module(f"{__name__}.{module.name}"), "PRIMITIVE", None)
+        if isinstance(declared, Primitive):
+            found.append(declared)
+    return {p.name: p for p in sorted(found, key=lambda p: p.place)}
+
+
+PRIMITIVES: dict[str, Primitive] = _gathered()
+
+__all__ = ["FLAT", "PRIMITIVES", "Argument", "Mesh", "Primitive"]
