@@ -311,12 +311,12 @@ def scene_frames(text):
 
 
 def test_a_smoothed_box_seen_from_above_is_rounded():
-    from castor.jobs import Spec
     from castor.options import View
     from castor.pictures import picture
+    from castor.settings import PictureSettings
 
     def cover(text):
-        spec = Spec(format="png", size=(120, 120), sun=None, view=View("top", 0, 0))
+        spec = PictureSettings(size=(120, 120), sun=None, view=View("top", 0, 0))
         image = picture(scene_frames(text)[0], spec)
         covered = np.any(image != 255, axis=2)
         rows, columns = np.flatnonzero(covered.any(axis=1)), np.flatnonzero(covered.any(axis=0))
