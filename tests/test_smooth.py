@@ -362,3 +362,24 @@ def test_the_oracles_smooth_solids_agree_with_castors():
         assert frame.volume() == pytest.approx(reference, rel=0.01)
     # every edge a crease: the oracle's smooth solid is the primitive itself
     assert oracle.smooth_solid(oracle.Prim("pr", (1.0, 0.0, 0.0), (6.0,)), np.eye(4), 30.0) is None
+
+
+def test_its_picture_with_edges_has_no_facet_lines():
+    from castor.options import View
+    from castor.pictures import picture
+    from castor.settings import PictureSettings
+
+    frame = scene_frames("> @s(120) @h(2, 2, 1) !cu(0.8, 0.6, 0.4);")[0]
+    plain, edged = (picture(frame, PictureSettings(size=(160, 120), sun=None, edges=edges,
+                                                   view=View("top", 0, 0)))
+                    for edges in (False, True))
+    covered = np.any(plain != 255, axis=2)
+    rows, columns = np.flatnonzero(covered.any(axis=1)), np.flatnonzero(covered.any(axis=0))
+    h, w = rows[-1] - rows[0], columns[-1] - columns[0]  # the middle half, far from the outline
+    inside = (slice(rows[0] + h // 4, rows[-1] - h // 4), slice(columns[0] + w // 4,
+                                                                columns[-1] - w // 4))
+    # inside the outline the edges change nothing: the facets are one surface
+    changed = np.any(plain[inside] != edged[inside], axis=2)
+    assert changed.mean() < 0.002
+    # and the outline is drawn
+    assert np.any(plain != edged)

@@ -51,6 +51,9 @@ class MeshRays:
         # FACE_BITS: the ray tracer reads the group as one leaf of its own
         self.group_bits = (None if groups is None
                            else np.asarray(groups, dtype=np.int64) << FACE_BITS)
+        # the surface each triangle lies on, for the edges of pictures: its own
+        # until told (smooth_leaf names each one's smooth patch)
+        self.surfaces = np.arange(len(self.triangles), dtype=np.int64)
         self._scene = rtcore_scene.EmbreeScene(robust=True)  # watertight: no ray slips between two triangles
         if len(self.triangles):
             TriangleMesh(scene=self._scene,
@@ -185,6 +188,7 @@ def smooth_leaf(node, matrix: np.ndarray, leaves: list, make_leaf):
     colours = np.array([solid.origins[int(i)].colour for i in range(len(solid.origins))])
     table, group = np.unique(colours[tri.origin_ids], axis=0, return_inverse=True)
     rays = MeshRays(tri.vertices, tri.triangles, group.ravel())
+    rays.surfaces = _surfaces(solid.origins, tri.origin_ids, tri.face_ids)
     inverse = np.linalg.inv(matrix)[:3, :]
     low, high = rays.box()
     corners = np.array([[x, y, z, 1.0] for x in (low[0], high[0]) for y in (low[1], high[1])
@@ -198,6 +202,26 @@ def smooth_leaf(node, matrix: np.ndarray, leaves: list, make_leaf):
         leaves.append(leaf)
         first = first or leaf
     return first
+
+
+def _surfaces(origins, origin_ids: np.ndarray, face_ids: np.ndarray) -> np.ndarray:
+    """For each triangle of a smooth solid, a number for the surface it lies on
+    (castor.mesh.smooth): its smooth patch, or its flat control face, of its
+    origin; numbered from 0, equal only within one surface."""
+    face = face_ids & 0xFFFFFFFF
+    patch = np.full(len(face), -1, np.int64)
+    for entry in np.unique(origin_ids):
+        rows = origin_ids == entry
+        surfaces = origins[int(entry)].surfaces
+        if surfaces is not None:
+            table = surfaces.of_face
+            known = face[rows] < len(table)
+            patch[rows] = np.where(known, table[np.minimum(face[rows], len(table) - 1)], -1)
+    flat = patch < 0
+    surface = np.where(flat, face, patch)
+    _, number = np.unique(np.column_stack([origin_ids, flat, surface]), axis=0,
+                          return_inverse=True)
+    return number.ravel().astype(np.int64)
 
 
 def _widened(a: np.ndarray, width: int, fill) -> np.ndarray:

@@ -116,6 +116,22 @@ class Scene:
         table = np.array([leaf.colour for leaf in self.leaves] or [(0.0, 0.0, 0.0)])
         return table[faces >> FACE_BITS]
 
+    def surface_keys(self, faces: np.ndarray) -> np.ndarray:
+        """For the edges of a picture, the surface each face lies on: the face
+        itself, but for the facets of a smooth solid, which name their smooth
+        patch (castor.pictures.mesh_rays: one curved surface, no lines inside)."""
+        smooth = [leaf.number for leaf in self.leaves if leaf.kind == "smooth"]
+        if not smooth or not len(faces):
+            return faces
+        keys = faces.copy()
+        numbers = faces >> FACE_BITS
+        for number in smooth:
+            rows = numbers == number
+            if rows.any():
+                surfaces = self.leaves[number].shape.surfaces
+                keys[rows] = (number << FACE_BITS) | surfaces[faces[rows] & FACE_MASK]
+        return keys
+
 
 @dataclass
 class _Rays:
