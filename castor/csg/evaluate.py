@@ -193,9 +193,11 @@ class Evaluator:
             if step.kind == "s":  # the steps after it and the child are its operand
                 operand = Transformed(node.steps[k + 1:], node.child, node.location) if k + 1 < len(
                     node.steps) else node.child
-                return None if failed else self._smooth(
-                    values[0], step.location, operand, env, tree.compose(matrix, local),
-                    stretch, tolerance, trail, rel)
+                if failed:
+                    return None
+                self._check_reach(local, trail, node)
+                return self._smooth(values[0], step.location, operand, env,
+                                    tree.compose(matrix, local), stretch, tolerance, trail, rel)
             if step.kind == "f":
                 if not (values[0] > 0):
                     raise GeometryError(f"the facet tolerance of '@f' must be positive, not "
@@ -214,12 +216,16 @@ class Evaluator:
         if failed:
             return None
         if local is not tree.IDENTITY:
-            if not all(abs(v) <= MAX_COORDINATE for v in local):
-                raise GeometryError(f"the transformations of {trail} reach beyond "
-                                    f"{MAX_COORDINATE:g}, the largest coordinate castor handles",
-                                    node.location)
+            self._check_reach(local, trail, node)
             matrix = tree.compose(matrix, local)
         return self._node(node.child, env, matrix, stretch, tolerance, trail, rel)
+
+    @staticmethod
+    def _check_reach(local, trail, node: Transformed) -> None:
+        if not all(abs(v) <= MAX_COORDINATE for v in local):
+            raise GeometryError(f"the transformations of {trail} reach beyond "
+                                f"{MAX_COORDINATE:g}, the largest coordinate castor handles",
+                                node.location)
 
     def _smooth(self, angle, location, operand, env, matrix, stretch, tolerance, trail, rel):
         """``@s(angle)``: a ``tree.Smooth`` of the operand evaluated in its own
