@@ -16,4 +16,13 @@ castor --view -70,20 --size 480x360 -o "$out/door.gif" examples/door.cas
 castor -D ONE_FRAME --set PHASE=2 --view -60,30 --size 1000x700 \
     -o "$out/bus-shelter.png" examples/bus_shelter.cas
 castor --view -35,25 -o "$out/bench.png" examples/bench.cas
+# the house's drawings, as SVG rendered by rsvg-convert (a fixed date in the title block)
+tmp=$(mktemp -d)
+for drawing in "plan --section z=1.2" "section --section x=3" "front --view front"; do
+    set -- $drawing
+    name=$1; shift
+    SOURCE_DATE_EPOCH=1767225600 castor "$@" -o "$tmp/$name.svg" examples/house.cas
+    rsvg-convert -w 1000 -b white "$tmp/$name.svg" -o "$out/house-$name.png"
+done
+rm -r "$tmp"
 echo "pictures written to $out"

@@ -58,7 +58,7 @@ def test_the_wedge_seen_from_the_front_is_its_triangle():
 
 def test_the_wedge_in_a_front_elevation_is_a_triangle(tmp_path):
     svg = _draw(tmp_path, "rampe = " + WEDGE[2:].replace(";", ";\n> rampe;"), "--view", "front")
-    drawn = Drawn(svg, 100, (0, 0))
+    drawn = Drawn(svg, 100)
     assert drawn.covered("rampe", (0, 0), (1, 0)) == pytest.approx(1)
     assert drawn.covered("rampe", (0, 0), (0, 1)) == pytest.approx(1)
     assert drawn.covered("rampe", (1, 0), (0, 1)) == pytest.approx(2 ** 0.5)
@@ -79,7 +79,8 @@ def test_the_wedge_in_the_live_preview(tmp_path, monkeypatch):
         wait_for(lambda: get(port, "/scene.json")[2].get("evaluated"))
         _, _, scene = get(port, "/scene.json")
         [frame] = scene["frames"]
-        assert frame["origins"] == [{"path": "(rampe)!we", "colour": [0.8, 0.4, 0.2]}]
+        assert frame["origins"] == [{"path": "(rampe)!we", "colour": [0.8, 0.4, 0.2],
+                                     "source": "scene.cas:1:21: !we"}]
         assert frame["box"] == [[0, 0, 0], [2, 1, 1]]
         assert frame["triangles"] == 8
         _, _, data = get(port, frame["url"])
