@@ -1,6 +1,7 @@
 """The transformations of the language, each declared once with its matrix
 (LANGUAGE.md §4.2): @t @rx @ry @rz @r @h @m, and @f (the facet tolerance,
-which has no matrix: the evaluator handles it).
+which has no matrix: the evaluator handles it), and @s (a smooth solid,
+LANGUAGE.md §7.1: no matrix either, the evaluator makes a ``tree.Smooth``).
 
 A transformation's ``matrix(values, location, path)`` takes the evaluated
 arguments and returns a 4x4 affine matrix and the largest factor by which it
@@ -8,7 +9,7 @@ stretches lengths (used to choose facet counts). Rotations by multiples of 90
 degrees are exact, so that ``@rz(90) !cu`` has corners on whole numbers.
 
 One module, not a package as the primitives are: a transformation is a
-declaration and a matrix of a few lines, and the eight read best side by side.
+declaration and a matrix of a few lines, and the nine read best side by side.
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ class Transformation(NamedTuple):
     counts: tuple[int, ...]  # allowed numbers of arguments
     form: str
     meaning: str
-    # matrix(values, location, path) -> (4x4 matrix, stretch); None for '@f'
+    # matrix(values, location, path) -> (4x4 matrix, stretch); None for '@f' and '@s'
     matrix: Callable[[list, Location, object], tuple[np.ndarray, float]] | None
 
 
@@ -113,6 +114,9 @@ TRANSFORMS: dict[str, Transformation] = {t.name: t for t in (
                    "the affine map whose 3x4 matrix has these rows", _affine),
     Transformation("f", "facet tolerance", (1,), "T",
                    "facet the object with the tolerance T (scene units)", None),
+    Transformation("s", "smooth", (1,), "A",
+                   "make the object a smooth solid, keeping as creases the edges whose "
+                   "faces turn by more than A degrees (0..180)", None),
 )}
 
 

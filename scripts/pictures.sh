@@ -15,6 +15,7 @@ castor --view -30,20 --edges -o "$out/staircase.png" examples/staircase.cas
 castor --view -70,20 --size 480x360 -o "$out/door.gif" examples/door.cas
 castor -D ONE_FRAME --set PHASE=2 --view -60,30 --size 1000x700 \
     -o "$out/bus-shelter.png" examples/bus_shelter.cas
+castor --view -35,25 -o "$out/bench.png" examples/bench.cas
 # the house's drawings, as SVG rendered by rsvg-convert (a fixed date in the title block)
 tmp=$(mktemp -d)
 for drawing in "plan --section z=1.2" "section --section x=3" "front --view front"; do

@@ -187,11 +187,19 @@ class Evaluator:
     def _transformed(self, node: Transformed, env, matrix, stretch, tolerance, trail, rel):
         local = tree.IDENTITY
         failed = False
-        for step in node.steps:
+        for k, step in enumerate(node.steps):
             values = self._values(step.args, env)
             if values is None:
                 failed = True
                 continue
+            if step.kind == "s":  # the steps after it and the child are its operand
+                operand = Transformed(node.steps[k + 1:], node.child, node.location) if k + 1 < len(
+                    node.steps) else node.child
+                if failed:
+                    return None
+                self._check_reach(local, trail, node)
+                return self._smooth(values[0], step.location, operand, env,
+                                    tree.compose(matrix, local), stretch, tolerance, trail, rel)
             if step.kind == "f":
                 if not (values[0] > 0):
                     raise GeometryError(f"the facet tolerance of '@f' must be positive, not "
@@ -210,12 +218,31 @@ class Evaluator:
         if failed:
             return None
         if local is not tree.IDENTITY:
-            if not all(abs(v) <= MAX_COORDINATE for v in local):
-                raise GeometryError(f"the transformations of {trail} reach beyond "
-                                    f"{MAX_COORDINATE:g}, the largest coordinate castor handles",
-                                    node.location)
+            self._check_reach(local, trail, node)
             matrix = tree.compose(matrix, local)
         return self._node(node.child, env, matrix, stretch, tolerance, trail, rel)
+
+    @staticmethod
+    def _check_reach(local, trail, node: Transformed) -> None:
+        if not all(abs(v) <= MAX_COORDINATE for v in local):
+            raise GeometryError(f"the transformations of {trail} reach beyond "
+                                f"{MAX_COORDINATE:g}, the largest coordinate castor handles",
+                                node.location)
+
+    def _smooth(self, angle, location, operand, env, matrix, stretch, tolerance, trail, rel):
+        """``@s(angle)``: a ``tree.Smooth`` of the operand evaluated in its own
+        space (LANGUAGE.md §7.1); ``@s(0)`` keeps every edge and is no node."""
+        if not 0 <= angle <= 180:
+            raise GeometryError(f"the angle of '@s' must lie between 0 and 180 degrees, not "
+                                f"{format_number(angle)}", location)
+        if angle == 0:
+            return self._node(operand, env, matrix, stretch, tolerance, trail, rel)
+        local = quantize(tolerance / stretch)
+        child = self._node(operand, env, tree.IDENTITY, 1.0, local, trail, rel)
+        if child is None:
+            return None
+        return tree.Smooth(float(angle), matrix, child, local,
+                           tree.smooth_key(float(angle), local, child), location)
 
     def _boolean(self, node: Boolean, env, matrix, stretch, tolerance, trail, rel):
         op = node.op

@@ -16,7 +16,9 @@ objects, each the root of a tree of
   uses it, with a canonical ``key`` computed from its content (never ``id()``),
   so that a facetizer in any process builds it once per key;
 - ``Use`` nodes: one use of a shared subtree, with the matrix that places it
-  and the path from the enclosing shared subtree down to it.
+  and the path from the enclosing shared subtree down to it;
+- ``Smooth`` nodes (``@s``, LANGUAGE.md §7.1): the operand's solid made the
+  control mesh of a subdivision surface, in its own space, placed by a matrix.
 
 Paths are relative to the nearest shared subtree above: a leaf's path holds
 the boolean steps down to it (``U1.D2!cu``; the k-th operand of a boolean is
@@ -83,7 +85,21 @@ class Use:
     shared: Shared
 
 
-Node = Union[Primitive, Boolean, Use]
+@dataclass(frozen=True, slots=True)
+class Smooth:
+    """``@s(angle)``: the operand (evaluated in its own space, the matrices
+    above it in ``matrix``) smoothed with the facet tolerance in its units;
+    ``key`` is a digest of all three, so that one smoothing serves every use."""
+
+    angle: float  # degrees: an edge whose normals turn by more is a crease
+    matrix: Matrix
+    operand: "Node"
+    tolerance: float
+    key: str
+    location: Location = field(compare=False)
+
+
+Node = Union[Primitive, Boolean, Use, Smooth]
 
 
 @dataclass(frozen=True, slots=True)
@@ -128,6 +144,8 @@ def _collect_shared(node: Node, found: dict[str, Shared]) -> None:
                 stack.append(shared.child)
         elif isinstance(node, Boolean):
             stack.extend(node.operands)
+        elif isinstance(node, Smooth):
+            stack.append(node.operand)
 
 
 def leaves(node: Node, matrix: Matrix = IDENTITY, prefix: str = "") -> Iterator[tuple[Primitive, Matrix, str]]:
@@ -145,6 +163,8 @@ def leaves(node: Node, matrix: Matrix = IDENTITY, prefix: str = "") -> Iterator[
         elif isinstance(node, Use) and node.shared.child is not None:
             stack.append((node.shared.child, compose(m, node.matrix),
                           join((p, node.path, f"({node.shared.name})"))))
+        elif isinstance(node, Smooth):
+            stack.append((node.operand, compose(m, node.matrix), p))
 
 
 def compose(a: Matrix, b: Matrix) -> Matrix:
@@ -161,6 +181,14 @@ def compose(a: Matrix, b: Matrix) -> Matrix:
             a4 * b2 + a5 * b6 + a6 * b10, a4 * b3 + a5 * b7 + a6 * b11 + a7,
             a8 * b0 + a9 * b4 + a10 * b8, a8 * b1 + a9 * b5 + a10 * b9,
             a8 * b2 + a9 * b6 + a10 * b10, a8 * b3 + a9 * b7 + a10 * b11 + a11)
+
+
+def smooth_key(angle: float, tolerance: float, operand: Node) -> str:
+    """The key of a smoothing: its angle, tolerance and operand's content."""
+    digest = hashlib.blake2b(digest_size=16)
+    digest.update(struct.pack("<2d", angle, tolerance))
+    _feed(digest, operand)
+    return digest.hexdigest()
 
 
 def content_key(name: str, child: Node | None) -> str:
@@ -192,6 +220,9 @@ def _feed(digest, node: Node) -> None:
         elif kind is Boolean:
             update(f"B{node.op}{len(node.operands)}".encode())
             stack.extend(reversed(node.operands))
+        elif kind is Smooth:  # the operand by the smoothing's own key
+            update(b"M" + node.key.encode())
+            update(_PACK(*node.matrix))
         else:  # a Use: its place, and the shared subtree by its own key
             update(b"S" + node.path.encode() + b"\0" + node.shared.key.encode())
             update(_PACK(*node.matrix))
@@ -219,6 +250,10 @@ def dump(frame: Frame) -> str:
             lines.append(f"{pad}{label}${node.op}")
             for operand in node.operands:
                 walk(operand, depth + 1, "")
+        elif isinstance(node, Smooth):
+            m = "" if node.matrix == IDENTITY else " @m(" + ", ".join(map(number, node.matrix)) + ")"
+            lines.append(f"{pad}{label}@s({number(node.angle)}){m} t={node.tolerance:g}")
+            walk(node.operand, depth + 1, "")
         else:
             shared = node.shared
             m = "" if node.matrix == IDENTITY else " @m(" + ", ".join(map(number, node.matrix)) + ")"

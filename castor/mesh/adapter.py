@@ -42,6 +42,27 @@ def from_mesh(vertices: np.ndarray, triangles: np.ndarray, faces: np.ndarray) ->
     return manifold
 
 
+def from_runs(vertices: np.ndarray, triangles: np.ndarray, faces: np.ndarray,
+              starts: np.ndarray) -> tuple[Manifold, np.ndarray]:
+    """The engine's solid of a closed, oriented triangle mesh castor made itself
+    (a smooth solid's refined facets), its triangles in runs beginning at
+    ``starts``, each run under an engine ID of its own (returned, one per run)
+    so that its triangles keep their origin through any boolean; EngineError
+    if refused."""
+    first = manifold3d.Manifold.reserve_ids(len(starts))
+    ids = np.arange(first, first + len(starts), dtype=np.int64)
+    gl = manifold3d.Mesh64(
+        vert_properties=np.ascontiguousarray(vertices, dtype=np.float64),
+        tri_verts=np.ascontiguousarray(triangles, dtype=np.uint64),
+        run_index=(np.r_[starts, len(triangles)] * 3).astype(np.uint64),
+        run_original_id=ids.astype(np.uint32),
+        face_id=faces.astype(np.uint64))
+    manifold = manifold3d.Manifold(gl)
+    if manifold.status() != manifold3d.Error.NoError:
+        raise EngineError(str(manifold.status()))
+    return manifold, ids
+
+
 def as_original(manifold: Manifold) -> tuple[Manifold, int]:
     """A copy of ``manifold`` under an engine ID of its own, and that ID."""
     copy = manifold.as_original()

@@ -19,7 +19,8 @@ from dataclasses import dataclass
 from castor.csg import tree
 from castor.csg.paths import Path
 from castor.diagnostics import GeometryError, LimitError
-from castor.mesh import adapter, booleans, instances, memory, merge, primitives, provenance
+from castor.mesh import (adapter, booleans, instances, memory, merge, primitives, provenance,
+                         smooth)
 from castor.mesh.caches import PROCESS
 from castor.mesh.frame import (FaceSurfaces, Frame, Origin, compact, curved_origins,
                                polygon_surfaces)
@@ -108,7 +109,24 @@ class Facetizer:
             return self._primitive(node)
         if kind is tree.Boolean:
             return self._boolean(node)
+        if kind is tree.Smooth:
+            return self._smooth(node)
         return self._use(node)
+
+    def _smooth(self, node: tree.Smooth) -> Solid:
+        """A smooth solid, made once per key (castor.mesh.smooth) and moved."""
+        cached = self.caches.solids.get(node.key)
+        if cached is not None:
+            solid = cached[0]
+            self.primitive_count += cached[1]
+        else:
+            before = self.primitive_count
+            solid = smooth.smoothed(self.solid(node.operand), node, self.max_polygons)
+            self.caches.solids.put(node.key, (solid, self.primitive_count - before),
+                                   solid.triangle_count())
+        if node.matrix != tree.IDENTITY and not solid.empty:
+            solid = solid.transformed(node.matrix)
+        return solid
 
     def _use(self, use: tree.Use) -> Solid:
         shared = use.shared
@@ -191,6 +209,8 @@ def tree_figures(scene: tree.Frame) -> tuple[int, int]:
             booleans += 1
             total = sum(count(o) for o in node.operands)
             return max(total, 1) if node.op == "D" else total
+        if kind is tree.Smooth:  # at least one level: four times the operand
+            return 4 * count(node.operand)
         shared = node.shared
         if shared.key not in known:
             known[shared.key] = count(shared.child) if shared.child is not None else 0

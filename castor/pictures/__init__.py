@@ -236,7 +236,7 @@ class _Tracer:
             lit_hit = np.ones(len(hit), bool)
         strength = shade.intensity(normals, -directions[hit], self.light, lit_hit)
         colour[hit] = scene.colours(face[hit]) * strength[:, None]
-        key[hit] = face[hit]
+        key[hit] = scene.surface_keys(face[hit])
         normal[hit] = normals
         depth = np.full(n, np.inf)
         depth[hit] = t[hit]

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from castor.csg import tree
+from castor.pictures.mesh_rays import smooth_leaf
 from castor.pictures.spans import SPANS
 
 INF = np.inf
@@ -114,6 +115,22 @@ class Scene:
     def colours(self, faces: np.ndarray) -> np.ndarray:
         table = np.array([leaf.colour for leaf in self.leaves] or [(0.0, 0.0, 0.0)])
         return table[faces >> FACE_BITS]
+
+    def surface_keys(self, faces: np.ndarray) -> np.ndarray:
+        """For the edges of a picture, the surface each face lies on: the face
+        itself, but for the facets of a smooth solid, which name their smooth
+        patch (castor.pictures.mesh_rays: one curved surface, no lines inside)."""
+        smooth = [leaf.number for leaf in self.leaves if leaf.kind == "smooth"]
+        if not smooth or not len(faces):
+            return faces
+        keys = faces.copy()
+        numbers = faces >> FACE_BITS
+        for number in smooth:
+            rows = numbers == number
+            if rows.any():
+                surfaces = self.leaves[number].shape.surfaces
+                keys[rows] = (number << FACE_BITS) | surfaces[faces[rows] & FACE_MASK]
+        return keys
 
 
 @dataclass
@@ -229,6 +246,8 @@ def _compile(node, matrix: np.ndarray, leaves: list):
         if node.shared.child is None:
             return None
         return _compile(node.shared.child, matrix @ _matrix(node.matrix), leaves)
+    if isinstance(node, tree.Smooth):  # traced through its refined facets
+        return smooth_leaf(node, matrix, leaves, Leaf)
     operands = [_compile(child, matrix, leaves) for child in node.operands]
     if node.op == "D":
         if not operands or operands[0] is None:

@@ -11,7 +11,7 @@ syn match castorPreProc "^\s*#\s*\(include\|define\|undef\|ifdef\|ifndef\|if\|el
 " unknown primitives show as errors; the known ones, matched after, win
 syn match castorError "![a-z][A-Za-z0-9_]*"
 syn match castorPrimitive "!\(cu\|sp\|cy\|co\|to\|pr\|py\|we\|ex\|rv\)\>"
-syn match castorTransform "@\(t\|rx\|ry\|rz\|r\|h\|m\|f\)\>"
+syn match castorTransform "@\(t\|rx\|ry\|rz\|r\|h\|m\|f\|s\)\>"
 syn match castorBoolean "\$[UID]\>"
 syn match castorFacetize "^\s*>"
 syn match castorParameter "\<[A-Z][A-Za-z0-9_]*\>"

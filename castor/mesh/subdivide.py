@@ -1,0 +1,330 @@
+"""Catmull–Clark subdivision with sharp creases, refined to a tolerance (LANGUAGE.md §7.1).
+
+``@s(A) x`` makes the facets of ``x`` the control mesh of a subdivision
+surface. Catmull–Clark's scheme is used on castor's convex polygons rather than
+Loop's on the engine's triangles: a face of a box is one quadrilateral, so a
+box rounds the same way along its three axes, where Loop's result follows the
+diagonals the triangulation happened to choose.
+
+Creases (Hoppe et al. 1994, the Catmull–Clark form of DeRose et al. 1998): an
+edge whose two faces' outward normals turn by more than A degrees, or an edge
+not shared by exactly two faces, is a crease and stays one at every level
+(its halves are creases). A crease edge's new point is its midpoint; a vertex
+on exactly two crease edges follows the cubic B-spline curve rule
+(1/8, 6/8, 1/8) and has the curve's limit (1/6, 4/6, 1/6); a vertex on three
+or more is a corner and stays put; other vertices follow the smooth rule.
+
+Everything is numpy, vectorized over the polygons and edges of a level: a
+level is the arrays of one quad mesh, its vertices, its quads' corners, the
+control face each quad comes from, and which of its edges are creases.
+
+Refinement: after each level the vertices are pushed to their limit positions
+and the facets of that level are compared with the next level's limit points
+at the middle of every edge and of every face (both diagonals, since the
+written facets are triangles); the greatest gap is the level's distance to
+the limit surface. A level is written once that distance, or a third of the
+previous level's (the distance falls by about four a level), is within the
+tolerance. The caller's limit on triangles is checked before a level is made.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+# bytes per triangle at the peak of a level (the level being made and the one
+# before, their edges sorted, then the engine's copy): see benchmarks/smooth.py
+BYTES_PER_TRIANGLE = 500
+
+
+class SubdivisionLimit(Exception):
+    """The smooth solid would need more triangles than the caller allows."""
+
+    def __init__(self, triangles: int, limit: int):
+        self.triangles = triangles
+        self.limit = limit
+        super().__init__(f"smoothing would need at least {triangles:,} triangles "
+                         f"(about {triangles * BYTES_PER_TRIANGLE / 2 ** 30:.1f} GB), more "
+                         f"than the limit of {limit:,}")
+
+
+class Smoothed(NamedTuple):
+    """The refined surface: triangles, each with the control face it comes from."""
+
+    vertices: np.ndarray  # (V, 3) float64, on the limit surface
+    triangles: np.ndarray  # (T, 3) int64, counter-clockwise from outside
+    faces: np.ndarray  # (T,) the control polygon each triangle comes from
+    levels: int  # how many times the control mesh was subdivided
+    distance: float  # the estimated distance of the triangles to the limit surface
+
+
+class _Level(NamedTuple):
+    vertices: np.ndarray  # (V, 3)
+    offsets: np.ndarray  # (P + 1,) polygon starts (quads after level 0)
+    indices: np.ndarray  # polygon corners
+    faces: np.ndarray  # (P,) control polygon of each polygon
+    edges: np.ndarray  # (E, 2) vertex pairs, low first
+    edge_of: np.ndarray  # (corners,) the edge from each corner to the next
+    crease: np.ndarray  # (E,) bool
+    corner_next: np.ndarray  # (corners,) the next corner of the same polygon
+
+
+def _topology(vertices, offsets, indices):
+    """The edges of a polygon mesh: (E, 2) pairs, the edge after each corner,
+    the number of polygons on each edge, and each corner's successor."""
+    n = len(indices)
+    following = np.arange(1, n + 1)
+    following[offsets[1:] - 1] = offsets[:-1]
+    a, b = indices, indices[following]
+    low, high = np.minimum(a, b), np.maximum(a, b)
+    key = low.astype(np.int64) * (len(vertices) + 1) + high
+    unique, first, edge_of, count = np.unique(key, return_index=True, return_inverse=True,
+                                              return_counts=True)
+    edges = np.column_stack([low[first], high[first]])
+    return edges, edge_of.ravel(), count, following
+
+
+def _normals(vertices, offsets, indices, following):
+    """Each polygon's unit normal (Newell's method: right for any planar polygon)."""
+    p, q = vertices[indices], vertices[indices[following]]
+    cross = np.cross(p, q)
+    polygon = np.repeat(np.arange(len(offsets) - 1), np.diff(offsets))
+    total = np.zeros((len(offsets) - 1, 3))
+    np.add.at(total, polygon, cross)
+    length = np.linalg.norm(total, axis=1)
+    return total / np.where(length > 0, length, 1.0)[:, None]
+
+
+def creases(vertices, offsets, indices, angle: float) -> np.ndarray:
+    """Which edges of the control mesh are creases for ``@s(angle)``, in the
+    order of ``_topology``'s edges: normals turning by more than ``angle``
+    degrees, and edges not shared by exactly two polygons."""
+    edges, edge_of, count, following = _topology(vertices, offsets, indices)
+    normal = _normals(vertices, offsets, indices, following)
+    polygon = np.repeat(np.arange(len(offsets) - 1), np.diff(offsets))
+    order = np.argsort(edge_of, kind="stable")
+    start = np.concatenate([[0], np.cumsum(count)[:-1]])
+    pair = count == 2
+    first = polygon[order[start[pair]]]
+    second = polygon[order[start[pair] + 1]]
+    cosine = np.clip(np.einsum("ij,ij->i", normal[first], normal[second]), -1.0, 1.0)
+    turn = np.degrees(np.arccos(cosine))
+    crease = np.ones(len(edges), bool)
+    crease[pair] = turn > angle
+    return crease
+
+
+def _control(vertices, offsets, indices, faces, angle) -> _Level:
+    edges, edge_of, _count, following = _topology(vertices, offsets, indices)
+    return _Level(vertices, offsets, indices, faces, edges, edge_of,
+                  creases(vertices, offsets, indices, angle), following)
+
+
+def _per_vertex_crease(level: _Level):
+    """How many crease edges meet at each vertex, and the sum of their other ends."""
+    n = len(level.vertices)
+    ends = level.edges[level.crease]
+    count = np.bincount(ends.ravel(), minlength=n)
+    other = np.zeros((n, 3))
+    np.add.at(other, ends[:, 0], level.vertices[ends[:, 1]])
+    np.add.at(other, ends[:, 1], level.vertices[ends[:, 0]])
+    return count, other
+
+
+def _sum_at(index, values, n):
+    """Row sums of ``values`` grouped by ``index`` (a vectorized scatter-add)."""
+    out = np.empty((n, values.shape[1]))
+    for axis in range(values.shape[1]):
+        out[:, axis] = np.bincount(index, weights=values[:, axis], minlength=n)
+    return out
+
+
+def _refine(level: _Level) -> _Level:
+    """One Catmull–Clark step with sharp creases: every polygon becomes one
+    quad per corner; vertices are (old vertices, edge points, face points)."""
+    v, offsets, indices = level.vertices, level.offsets, level.indices
+    nv, ne, npoly = len(v), len(level.edges), len(offsets) - 1
+    sides = np.diff(offsets)
+    polygon = np.repeat(np.arange(npoly), sides)
+    face_point = _sum_at(polygon, v[indices], npoly) / sides[:, None]
+
+    # edge points: the average of the ends and the two face points; the
+    # midpoint on a crease
+    a, b = level.edges[:, 0], level.edges[:, 1]
+    midpoint = (v[a] + v[b]) / 2
+    faces_sum = _sum_at(level.edge_of, face_point[polygon], ne)
+    faces_count = np.bincount(level.edge_of, minlength=ne)[:, None]
+    smooth_edge = (v[a] + v[b] + faces_sum) / (2 + faces_count)
+    edge_point = np.where(level.crease[:, None], midpoint, smooth_edge)
+
+    # vertex points: (F + 2R + (n - 3) P) / n, the crease rule, or a corner
+    valence = np.bincount(indices, minlength=nv)
+    f_avg = _sum_at(indices, face_point[polygon], nv) / np.maximum(valence, 1)[:, None]
+    # each edge is seen from two corners at each end: the corner's own edge
+    # and the one before it, so the edge midpoints add up twice
+    previous_edge = np.empty_like(level.edge_of)
+    previous_edge[level.corner_next] = level.edge_of
+    r_avg = (_sum_at(indices, midpoint[level.edge_of] + midpoint[previous_edge], nv)
+             / (2 * np.maximum(valence, 1))[:, None])
+    n = np.maximum(valence, 1)[:, None].astype(float)
+    smooth_vertex = (f_avg + 2 * r_avg + (n - 3) * v) / n
+    count, other = _per_vertex_crease(level)
+    crease_vertex = (other + 6 * v) / 8
+    vertex_point = np.where((count == 2)[:, None], crease_vertex,
+                            np.where((count >= 3)[:, None], v, smooth_vertex))
+
+    vertices = np.concatenate([vertex_point, edge_point, face_point])
+    quads = np.column_stack([indices, nv + level.edge_of, nv + ne + polygon,
+                             nv + previous_edge]).ravel()
+    corners = len(indices)
+    # the new edges, numbered without a sort: the two halves of each old
+    # edge (2e from its low end, 2e + 1 from its high end), then one edge
+    # from each corner's edge point to its face point (2E + corner)
+    halves = np.column_stack([level.edges.ravel(), np.repeat(nv + np.arange(ne), 2)])
+    inside = np.column_stack([nv + level.edge_of, nv + ne + polygon])
+    edges = np.concatenate([halves, inside])
+    crease = np.concatenate([np.repeat(level.crease, 2), np.zeros(corners, bool)])
+    previous_corner = np.empty_like(level.corner_next)
+    previous_corner[level.corner_next] = np.arange(corners)
+    own_half = 2 * level.edge_of + (indices != level.edges[level.edge_of, 0])
+    previous_half = 2 * previous_edge + (indices != level.edges[previous_edge, 0])
+    edge_of = np.column_stack([own_half, 2 * ne + np.arange(corners),
+                               2 * ne + previous_corner, previous_half]).ravel()
+    new_corners = np.arange(4 * corners)
+    following = new_corners - new_corners % 4 + (new_corners + 1) % 4
+    return _Level(vertices, np.arange(0, 4 * corners + 1, 4), quads, level.faces[polygon],
+                  edges, edge_of, crease, following)
+
+
+def limit_positions(level: _Level) -> np.ndarray:
+    """Where each vertex of a quad level lies on the limit surface:
+    (n² P + 4 Σ edge neighbours + Σ diagonal neighbours) / (n (n + 5)) on the
+    smooth part, (a + 4 P + b) / 6 on a crease, the vertex itself at a corner."""
+    v, indices = level.vertices, level.indices
+    nv = len(v)
+    quads = indices.reshape(-1, 4)
+    # each corner with its following, opposite and preceding corner
+    rolled = [np.roll(quads, -k, axis=1).ravel() for k in range(4)]
+    here, after, opposite, before = rolled
+    valence = np.bincount(here, minlength=nv).astype(float)
+    # every edge neighbour is after one corner and before another: 2 Σ e
+    edge_sum = _sum_at(here, v[after] + v[before], nv)
+    diagonal_sum = _sum_at(here, v[opposite], nv)
+    n = np.maximum(valence, 1)[:, None]
+    smooth = (n * n * v + 2 * edge_sum + diagonal_sum) / (n * (n + 5))
+    count, other = _per_vertex_crease(level)
+    crease = (other + 4 * v) / 6
+    return np.where((count == 2)[:, None], crease, np.where((count >= 3)[:, None], v, smooth))
+
+
+def _distance(coarse: _Level, coarse_limit: np.ndarray, fine_limit: np.ndarray) -> float:
+    """How far the triangles of ``coarse`` (vertices at their limit) are from the
+    limit surface: the gap, across the surface, between the middle of each
+    edge and of each quad's two diagonals and the limit point the next level
+    puts there. Only the part along the normal counts: on a flat face around
+    a vertex of 3 or 5 edges the points keep sliding along the plane from
+    level to level, which moves no facet off the surface."""
+    nv, ne = len(coarse.vertices), len(coarse.edges)
+    quads = coarse.indices.reshape(-1, 4)
+    p = coarse_limit
+    normal = np.cross(p[quads[:, 2]] - p[quads[:, 0]], p[quads[:, 3]] - p[quads[:, 1]])
+    edge_normal = _sum_at(coarse.edge_of, np.repeat(normal, 4, axis=0), ne)
+    normal /= np.maximum(np.linalg.norm(normal, axis=1), 1e-300)[:, None]
+    edge_normal /= np.maximum(np.linalg.norm(edge_normal, axis=1), 1e-300)[:, None]
+    a, b = coarse.edges[:, 0], coarse.edges[:, 1]
+    gap = fine_limit[nv:nv + ne] - (p[a] + p[b]) / 2
+    gaps = [np.abs(np.einsum("ij,ij->i", gap, edge_normal)).max(initial=0.0)]
+    centre = fine_limit[nv + ne:]
+    for i, j in ((0, 2), (1, 3)):
+        gap = centre - (p[quads[:, i]] + p[quads[:, j]]) / 2
+        gaps.append(np.abs(np.einsum("ij,ij->i", gap, normal)).max(initial=0.0))
+    return float(max(gaps))
+
+
+def _triangles(level: _Level, positions: np.ndarray):
+    """Each quad as two triangles, cut along its shorter diagonal."""
+    quads = level.indices.reshape(-1, 4)
+    p = positions
+    first = np.linalg.norm(p[quads[:, 0]] - p[quads[:, 2]], axis=1)
+    second = np.linalg.norm(p[quads[:, 1]] - p[quads[:, 3]], axis=1)
+    along_first = (first <= second)[:, None]
+    t0 = np.where(along_first, quads[:, [0, 1, 2]], quads[:, [1, 2, 3]])
+    t1 = np.where(along_first, quads[:, [0, 2, 3]], quads[:, [3, 0, 1]])
+    triangles = np.stack([t0, t1], axis=1).reshape(-1, 3)
+    return triangles, np.repeat(level.faces, 2)
+
+
+def has_smooth_edges(vertices, offsets, indices, angle: float) -> bool:
+    """Whether ``@s(angle)`` changes this mesh at all (some edge is not a crease)."""
+    if len(offsets) < 2:
+        return False
+    return not creases(vertices, offsets, indices, angle).all()
+
+
+def smooth(vertices, offsets, indices, angle: float, tolerance: float,
+           max_triangles: int) -> Smoothed | None:
+    """The control mesh (a closed polygon mesh, polygons counter-clockwise from
+    outside) refined until its triangles are within ``tolerance`` of the
+    Catmull–Clark limit surface with the creases of ``@s(angle)``; the triangles'
+    ``faces`` number the control polygons. None when every edge is a crease
+    (the surface is the control mesh itself). Raises ``SubdivisionLimit``
+    before a level would exceed ``max_triangles``."""
+    vertices = np.asarray(vertices, dtype=np.float64)
+    offsets = np.asarray(offsets, dtype=np.int64)
+    indices = np.asarray(indices, dtype=np.int64)
+    if len(offsets) < 2:
+        return None
+    level = _control(vertices, offsets, indices, np.arange(len(offsets) - 1), angle)
+    if level.crease.all():
+        return None
+    tolerance = max(float(tolerance), 1e-12)
+
+    def checked_refine(current: _Level) -> _Level:
+        quads = len(current.indices)  # one quad per corner
+        if 2 * quads > max_triangles:
+            raise SubdivisionLimit(2 * quads, max_triangles)
+        return _refine(current)
+
+    current = checked_refine(level)
+    current_limit = limit_positions(current)
+    levels = 1
+    while True:
+        following = checked_refine(current)
+        following_limit = limit_positions(following)
+        distance = _distance(current, current_limit, following_limit)
+        if distance <= tolerance or not math.isfinite(distance):
+            chosen, positions, gap, depth = current, current_limit, distance, levels
+            break
+        if distance / 3 <= tolerance:
+            chosen, positions, gap, depth = following, following_limit, distance / 3, levels + 1
+            break
+        current, current_limit = following, following_limit
+        levels += 1
+    triangles, faces = _triangles(chosen, positions)
+    return Smoothed(positions, triangles, faces, depth, gap)
+
+
+def patches(vertices, offsets, indices, angle: float) -> np.ndarray:
+    """For each control polygon, the smooth patch it belongs to: polygons that
+    meet across an edge that is no crease for ``@s(angle)`` share one (their
+    refined facets are one curved surface; a crease bounds it)."""
+    edges, edge_of, count, following = _topology(vertices, offsets, indices)
+    crease = creases(vertices, offsets, indices, angle)
+    polygon = np.repeat(np.arange(len(offsets) - 1), np.diff(offsets))
+    order = np.argsort(edge_of, kind="stable")
+    start = np.concatenate([[0], np.cumsum(count)[:-1]])
+    smooth_pair = (count == 2) & ~crease
+    first = polygon[order[start[smooth_pair]]]
+    second = polygon[order[start[smooth_pair] + 1]]
+    label = np.arange(len(offsets) - 1)
+    while True:  # each polygon takes the least label of its smooth neighbours
+        low = np.minimum(label[first], label[second])
+        new = label.copy()
+        np.minimum.at(new, first, low)
+        np.minimum.at(new, second, low)
+        new = new[new]  # jump along chains
+        if np.array_equal(new, label):
+            return label
+        label = new

@@ -1,0 +1,385 @@
+"""Smooth solids (LANGUAGE.md §7.1): castor.mesh.subdivide on its own, checked
+against tests/reference_subdivision.py (written apart), and the ray–mesh spans
+that pictures use for them."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from castor.mesh import subdivide
+
+import reference_subdivision as reference
+
+
+def box(sx=1.0, sy=1.0, sz=1.0):
+    """A box [0, sx] x [0, sy] x [0, sz] as six quads, counter-clockwise from outside."""
+    v = np.array([[x, y, z] for x in (0, sx) for y in (0, sy) for z in (0, sz)], float)
+    f = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]]
+    return v, np.arange(0, 25, 4), np.array(f).ravel()
+
+
+def prism(n=6, height=1.0):
+    """A regular n-gon prism of radius 1: two n-gons and n quads."""
+    angle = np.arange(n) * 2 * np.pi / n
+    ring = np.column_stack([np.cos(angle), np.sin(angle), np.zeros(n)])
+    v = np.concatenate([ring, ring + [0, 0, height]])
+    faces = [list(range(n - 1, -1, -1)), list(range(n, 2 * n))]
+    faces += [[i, (i + 1) % n, n + (i + 1) % n, n + i] for i in range(n)]
+    offsets = np.cumsum([0] + [len(f) for f in faces])
+    return v, offsets, np.concatenate(faces)
+
+
+def volume(vertices, triangles):
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6)
+
+
+def closed(triangles):
+    """Every directed edge once, and its reverse once: closed and oriented."""
+    directed = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]])
+    forward = {tuple(e) for e in directed.tolist()}
+    return len(forward) == len(directed) and all((b, a) in forward for a, b in forward)
+
+
+def test_a_cube_whose_edges_are_all_creases_is_the_cube():
+    v, o, i = box()
+    assert subdivide.smooth(v, o, i, 60, 0.001, 10 ** 6) is None  # the control mesh itself
+    assert subdivide.smooth(v, o, i, 0, 0.001, 10 ** 6) is None
+    assert subdivide.smooth(v, o, i, 89.9, 0.001, 10 ** 6) is None
+    assert not subdivide.has_smooth_edges(v, o, i, 60)
+    assert subdivide.has_smooth_edges(v, o, i, 90)
+
+
+@pytest.mark.parametrize("tolerance", [0.1, 0.01, 0.001])
+def test_the_smooth_cube_is_closed_inside_its_box_and_within_the_tolerance(tolerance):
+    v, o, i = box()
+    smooth = subdivide.smooth(v, o, i, 120, tolerance, 10 ** 7)
+    assert closed(smooth.triangles)
+    low, high = smooth.vertices.min(axis=0), smooth.vertices.max(axis=0)
+    # the limit's face centres: 0.0802 = 13/162 in from each face of the cube
+    assert np.allclose(low, 13 / 162) and np.allclose(high, 1 - 13 / 162)
+    assert smooth.distance <= tolerance
+    assert set(np.unique(smooth.faces)) == set(range(6))
+
+
+def test_the_smooth_cube_converges():
+    v, o, i = box()
+    volumes = [volume(s.vertices, s.triangles) for s in
+               (subdivide.smooth(v, o, i, 120, t, 10 ** 7) for t in (0.1, 0.01, 0.001, 0.0002))]
+    # 0.2559, 0.3221, 0.3272, 0.3275: the Catmull–Clark limit of the unit cube
+    # (its facets are inside the limit, which is convex, so the volumes rise)
+    assert volumes == sorted(volumes)
+    assert volumes[-1] == pytest.approx(0.3275, abs=5e-4)
+    gaps = np.abs(np.diff(volumes))
+    assert all(later < earlier / 4 for earlier, later in zip(gaps, gaps[1:]))
+
+
+def test_a_large_solid_gets_as_many_levels_as_its_size_needs():
+    small = subdivide.smooth(*box(0.05, 0.05, 0.05), 120, 0.001, 10 ** 7)
+    large = subdivide.smooth(*box(5, 5, 5), 120, 0.001, 10 ** 7)
+    assert small.levels < large.levels
+    assert small.distance <= 0.001 and large.distance <= 0.001
+    # the same shape, scaled
+    assert volume(large.vertices, large.triangles) == pytest.approx(0.3275 * 125, rel=1e-3)
+
+
+def test_positions_agree_with_the_reference_subdivision():
+    for (v, o, i), angle in ((box(), 120), (box(2, 1, 0.5), 120), (prism(6), 45), (prism(5), 100)):
+        points = [tuple(p) for p in v.tolist()]
+        faces = [tuple(i[o[k]:o[k + 1]].tolist()) for k in range(len(o) - 1)]
+        expected, _faces = reference.smooth(points, faces, angle, 2)
+        level = subdivide._control(v, o, i, np.arange(len(o) - 1), angle)
+        level = subdivide._refine(subdivide._refine(level))
+        got = subdivide.limit_positions(level)
+        assert sorted(map(tuple, np.round(got, 9).tolist())) == \
+            sorted(map(tuple, np.round(np.array(expected), 9).tolist()))
+
+
+def test_a_prism_keeps_its_creases():
+    # @s(45) on a hexagonal prism: the rims (90 degrees) are creases, the
+    # sides (60 degrees) smooth: the caps stay flat, in their planes, and the
+    # rims become curves between them
+    v, o, i = prism(6)
+    smooth = subdivide.smooth(v, o, i, 65, 0.001, 10 ** 7)
+    assert closed(smooth.triangles)
+    z = smooth.vertices[:, 2]
+    assert z.min() == 0 and z.max() == 1  # the caps did not move
+    bottom = smooth.triangles[(z[smooth.triangles] == 0).all(axis=1)]
+    assert len(bottom) > 0 and set(np.unique(smooth.faces[
+        (z[smooth.triangles] == 0).all(axis=1)])) == {0}
+    side = (z > 0) & (z < 1)
+    radius = np.hypot(smooth.vertices[side, 0], smooth.vertices[side, 1])
+    # the side rounds inside the hexagon, outside the B-spline rim curve's
+    # inscribed circle
+    assert radius.max() < 1 and radius.min() >= 0.8
+    # every vertex of a rim is on the B-spline curve of the hexagon: inside it
+    assert volume(smooth.vertices, smooth.triangles) < 3 * np.sqrt(3) / 2
+
+
+def test_corners_stay_put():
+    # a box under a low pyramid roof, @s(30): the box's edges (and the eaves,
+    # 79 degrees) are creases, the roof's hips (16 degrees) smooth. The eight
+    # corners meet three creases each: they stay where they are; the apex
+    # rounds down; the walls stay in their planes
+    v, o, i = box()
+    v = np.concatenate([v, [[0.5, 0.5, 1.1]]])
+    faces = [i[o[k]:o[k + 1]].tolist() for k in range(6) if k != 5]  # no top (1, 5, 7, 3)
+    faces += [[1, 5, 8], [5, 7, 8], [7, 3, 8], [3, 1, 8]]
+    offsets = np.cumsum([0] + [len(f) for f in faces])
+    smooth = subdivide.smooth(v, offsets, np.concatenate(faces), 30, 0.001, 10 ** 7)
+    assert closed(smooth.triangles)
+    written = {tuple(p) for p in smooth.vertices.tolist()}
+    assert all(tuple(p) in written for p in v[:8].tolist())
+    assert 1.0 < smooth.vertices[:, 2].max() < 1.1
+    low, high = smooth.vertices.min(axis=0), smooth.vertices.max(axis=0)
+    assert np.array_equal(low, [0, 0, 0]) and np.array_equal(high[:2], [1, 1])
+    # a pentagonal prism @s(80): rims (90 degrees) creases, sides (72) smooth:
+    # the caps stay flat, the side rounds
+    smooth = subdivide.smooth(*prism(5), 80, 0.001, 10 ** 7)
+    assert closed(smooth.triangles)
+    assert smooth.vertices[:, 2].min() == 0 and smooth.vertices[:, 2].max() == 1
+    # @s(60): every edge of the prism a crease, nothing changes
+    assert subdivide.smooth(*prism(5), 60, 0.01, 10 ** 7) is None
+
+
+def test_the_same_solid_every_time():
+    first = subdivide.smooth(*prism(7), 60, 0.002, 10 ** 7)
+    second = subdivide.smooth(*prism(7), 60, 0.002, 10 ** 7)
+    assert np.array_equal(first.vertices, second.vertices)
+    assert np.array_equal(first.triangles, second.triangles)
+    assert np.array_equal(first.faces, second.faces)
+
+
+def test_refused_before_it_explodes():
+    with pytest.raises(subdivide.SubdivisionLimit) as caught:
+        subdivide.smooth(*box(100, 100, 100), 120, 1e-6, 100_000)
+    assert caught.value.limit == 100_000
+    assert "more than the limit of 100,000" in str(caught.value)
+    assert "GB" in str(caught.value)
+
+
+# --- rays against the refined facets (castor.pictures.mesh_rays) ------------------
+
+
+def cube_triangles():
+    v, o, i = box()
+    quads = i.reshape(-1, 4)
+    return v, np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
+
+
+def test_rays_against_a_cube_mesh():
+    from castor.pictures.mesh_rays import MeshRays
+
+    v, t = cube_triangles()
+    rays = MeshRays(v, t)
+    o = np.array([[0.5, 0.5, 5.0], [0.25, 0.75, -3.0], [2.0, 2.0, 2.0], [0.3, 0.4, 0.5],
+                  [0.5, 0.5, 0.5]])
+    d = np.array([[0, 0, -2.0], [0, 0, 1.0], [0, 0, -1.0], [1.0, 0, 0], [1.0, 1.0, 1.0]])
+    spans, faces = rays.spans(o, d)
+    assert spans.shape == (5, 2)
+    assert np.allclose(spans[0], [2.0, 2.5], atol=1e-6)  # t in units of d
+    assert np.allclose(spans[1], [3.0, 4.0], atol=1e-6)
+    assert np.isinf(spans[2]).all()  # misses
+    assert np.allclose(spans[3], [-0.3, 0.7], atol=1e-6)  # the whole line, behind too
+    assert np.allclose(spans[4], [-0.5, 0.5], atol=1e-6)  # through two corners
+    normal = rays.normal(o[:2] + spans[:2, :1] * d[:2], faces[:2, 0])
+    assert normal[0, 2] > 0 and normal[1, 2] < 0  # the top, then the bottom face
+    assert np.allclose(np.cross(normal[0], [0, 0, 1]), 0)
+
+
+def test_rays_through_two_shells_and_a_cavity():
+    from castor.pictures.mesh_rays import MeshRays
+
+    v, t = cube_triangles()
+    inner = (v - 0.5) * 0.5 + 0.5  # a cavity: the small cube turned inside out
+    far = v + [3, 0, 0]
+    vertices = np.concatenate([v, inner, far])
+    triangles = np.concatenate([t, t[:, ::-1] + 8, t + 16])
+    spans, _ = MeshRays(vertices, triangles).spans(np.array([[-1.0, 0.5, 0.5]]),
+                                                   np.array([[1.0, 0, 0]]))
+    assert np.allclose(spans[0], [1, 1.25, 1.75, 2, 4, 5], atol=1e-6)
+
+
+def test_a_smooth_cube_within_the_tolerance_measured_with_rays():
+    # the limit surface (a much finer level) against the written triangles,
+    # along rays from the centre (farther than the distance across)
+    from castor.pictures.mesh_rays import MeshRays
+
+    v, o, i = box()
+    for tolerance in (0.01, 0.001):
+        smooth = subdivide.smooth(v, o, i, 120, tolerance, 10 ** 7)
+        finer = subdivide.smooth(v, o, i, 120, tolerance / 30, 10 ** 8)
+        assert finer.levels >= smooth.levels + 2
+        sample = finer.vertices[:: max(1, len(finer.vertices) // 50000)]
+        direction = sample - 0.5
+        spans, _ = MeshRays(smooth.vertices, smooth.triangles).spans(
+            np.full_like(sample, 0.5), direction)
+        radial = (1 - spans[:, 1]) * np.linalg.norm(direction, axis=1)
+        assert np.isfinite(spans[:, 1]).all()
+        # the written facets are inside the (convex) limit, by at most the tolerance
+        assert radial.min() > -1e-6 and tolerance / 10 < radial.max() <= tolerance
+
+
+# --- @s in the language: meshes, booleans, errors, pictures, drawings ----------------
+
+from meshcheck import frames_of, regularity_defects, run  # noqa: E402
+
+SMOOTH_VOLUME = 0.32747  # the Catmull–Clark limit of the unit cube
+
+
+def test_a_cube_smoothed_at_60_degrees_is_the_cube_and_at_0_nothing_changes():
+    plain, creased, zero = (frames_of(f"> {prefix}!cu(1, 0, 0);")[0]
+                            for prefix in ("", "@s(60) ", "@s(0) "))
+    assert len(creased.polygons) == 6 and creased.volume() == pytest.approx(1.0, abs=1e-12)
+    status, with_zero, _ = run("--no-cpp", stdin="> @s(0) $D(!cy(1, 0, 0), @h(0.5) !sp(0, 1, 0));")
+    status, without, _ = run("--no-cpp", stdin="> $D(!cy(1, 0, 0), @h(0.5) !sp(0, 1, 0));")
+    assert with_zero == without
+    assert [p.points.tolist() for p in zero.polygons] == [p.points.tolist() for p in plain.polygons]
+
+
+def test_a_smooth_cube_is_closed_regular_inside_the_cube_and_converges():
+    volumes = []
+    for tolerance in ("0.01", "0.001"):
+        frame = frames_of("> @s(120) !cu(0.2, 0.4, 0.6);", "--tolerance", tolerance)[0]
+        # (the winding test for sheets is quadratic: at 768 polygons, not 12,288)
+        assert regularity_defects(frame, sheets=tolerance == "0.01") == []
+        low, high = frame.box()
+        assert np.allclose(low, 13 / 162) and np.allclose(high, 1 - 13 / 162)
+        assert frame.colours() == {(0.2, 0.4, 0.6)} and frame.paths() == {"!cu"}
+        volumes.append(frame.volume())
+    assert volumes[0] < volumes[1] < SMOOTH_VOLUME
+    assert volumes[1] == pytest.approx(SMOOTH_VOLUME, abs=3 * 0.001)
+
+
+def test_a_smooth_solid_cut_and_a_smooth_union():
+    text = """
+        pierre = @s(120) @h(2, 1, 1) !cu(0.8, 0.6, 0.4);
+        trou = @t(1, 0.5, 0.5) @h(0.3, 0.3, 1) !cy(0.2, 0.4, 0.9);
+        > $D(pierre, trou);
+        > @s(150) $U(!cu(1, 0, 0), @t(0.5, 0.5, 0.5) @h(0.3, 0.3, 1) !cy(0, 1, 0));
+        > $U(pierre, @t(3, 0, 0) pierre);
+    """
+    cut, union, twice = frames_of(text)
+    for frame in (cut, union, twice):
+        assert regularity_defects(frame, sheets=len(frame.polygons) < 1500) == []
+    # the cut faces take the cutter's colour and path
+    assert cut.colours() == {(0.8, 0.6, 0.4), (0.2, 0.4, 0.9)}
+    assert cut.area(colour=(0.2, 0.4, 0.9)) > 0 and "D2(trou)!cy" in cut.paths()
+    whole = frames_of("> @s(120) @h(2, 1, 1) !cu(0.8, 0.6, 0.4);")[0]
+    assert 0 < whole.volume() - cut.volume() < np.pi * 0.09
+    # the union's seam is smoothed: each face keeps its operand's colour
+    assert union.colours() == {(1.0, 0.0, 0.0), (0.0, 1.0, 0.0)}
+    assert union.box()[1][2] > 1.0  # the cylinder stands out of the cube, rounded
+    # a named smooth solid used twice is the same solid moved
+    assert twice.volume() == pytest.approx(2 * whole.volume(), rel=1e-9)
+
+
+def test_a_bad_angle_is_reported_where_it_is_written():
+    for angle, shown in (("200", "200"), ("-1", "-1")):
+        status, _, err = run("--no-cpp", "--check", stdin=f"\n> @t(1, 0, 0) @s({angle}) !cu(1, 0, 0);")
+        assert status == 1
+        assert f"<stdin>:2:15: error: the angle of '@s' must lie between 0 and 180 degrees, not {shown}" in err
+    status, _, err = run("--no-cpp", stdin="> @s(1, 2) !cu(1, 0, 0);")
+    assert status == 1 and "'@s' takes 1 argument" in err
+
+
+def test_a_smoothing_too_fine_is_refused_before_it_is_made():
+    status, _, err = run("--no-cpp", "--max-polygons", "20000", "--tolerance", "1e-6",
+                         stdin="> @s(120) @h(10) !cu(1, 0, 0);")
+    assert status == 1
+    assert "<stdin>:1:3: error: '@s(120)': smoothing would need at least" in err
+    assert "GB" in err and "raise the tolerance" in err
+
+
+def test_the_tree_has_a_node_for_it():
+    from castor.csg import tree
+
+    frame = scene_frames("> @t(5, 0, 0) @s(90.5) @h(2) !cu(1, 0, 0);")[0]
+    root = frame.objects[0].root
+    assert isinstance(root, tree.Smooth) and root.angle == 90.5
+    assert root.matrix[3] == 5 and root.operand.matrix[0] == 2
+    assert "@s(90.5) @m(1, 0, 0, 5" in tree.dump(frame)
+
+
+def scene_frames(text):
+    from castor.run import evaluated_frames
+
+    frames, said = evaluated_frames(text, "<scene>")
+    assert "error" not in said, said
+    return frames
+
+
+def test_a_smoothed_box_seen_from_above_is_rounded():
+    from castor.options import View
+    from castor.pictures import picture
+    from castor.settings import PictureSettings
+
+    def cover(text):
+        spec = PictureSettings(size=(120, 120), sun=None, view=View("top", 0, 0))
+        image = picture(scene_frames(text)[0], spec)
+        covered = np.any(image != 255, axis=2)
+        rows, columns = np.flatnonzero(covered.any(axis=1)), np.flatnonzero(covered.any(axis=0))
+        square = covered[rows[0]:rows[-1] + 1, columns[0]:columns[-1] + 1]
+        return square.mean(), square
+
+    box_fill, _ = cover("> @h(2, 2, 1) !cu(0.8, 0.6, 0.4);")
+    smooth_fill, square = cover("> @s(120) @h(2, 2, 1) !cu(0.8, 0.6, 0.4);")
+    assert box_fill > 0.99
+    # a rounded square: the corners are empty, the middle of each side full
+    assert 0.79 * 0.95 < smooth_fill < 0.95  # 0.79: nearly a disc (pi / 4 = 0.785)
+    n = len(square)
+    assert not square[0, 0] and not square[-1, -1] and square[n // 2, 0] and square[0, n // 2]
+
+
+def test_its_front_elevation_has_no_facet_lines():
+    from castor.drawings import draw
+    from castor.mesh.facetize import Facetizer
+    from castor.options import View
+
+    frame = scene_frames("> @s(120) @h(2, 1, 1) !cu(0.8, 0.6, 0.4);")[0]
+    meshes = Facetizer().frame(frame)
+    assert meshes.polygon_count > 500
+    lines = np.concatenate([layer.lines.reshape(-1, 2, 2)
+                            for layer in draw(meshes, view=View("front", 0, 0)).layers])
+    length = np.linalg.norm(lines[:, 1] - lines[:, 0], axis=1).sum()
+    low, high = lines.reshape(-1, 2).min(axis=0), lines.reshape(-1, 2).max(axis=0)
+    # the outline of a convex silhouette is shorter than its box's perimeter
+    # and longer than its inscribed ellipse's: a line between two facets
+    # anywhere would add to it
+    assert np.pi / 2 * (high - low).sum() * 0.9 < length <= 2 * (high - low).sum()
+
+
+def test_the_oracles_smooth_solids_agree_with_castors():
+    import oracle
+
+    for prim, angle in ((oracle.Prim("cu", (1.0, 0.0, 0.0), ()), 135.0),
+                        (oracle.Prim("pr", (1.0, 0.0, 0.0), (6.0,)), 100.0),
+                        (oracle.Prim("py", (1.0, 0.0, 0.0), (5.0,)), 170.0)):
+        reference = oracle.smooth_solid(prim, np.eye(4), angle).volume()
+        text = f"> @s({angle}) {oracle.text(prim)};"
+        frame = frames_of(text, "--tolerance", "0.001")[0]
+        assert frame.volume() == pytest.approx(reference, rel=0.01)
+    # every edge a crease: the oracle's smooth solid is the primitive itself
+    assert oracle.smooth_solid(oracle.Prim("pr", (1.0, 0.0, 0.0), (6.0,)), np.eye(4), 30.0) is None
+
+
+def test_its_picture_with_edges_has_no_facet_lines():
+    from castor.options import View
+    from castor.pictures import picture
+    from castor.settings import PictureSettings
+
+    frame = scene_frames("> @s(120) @h(2, 2, 1) !cu(0.8, 0.6, 0.4);")[0]
+    plain, edged = (picture(frame, PictureSettings(size=(160, 120), sun=None, edges=edges,
+                                                   view=View("top", 0, 0)))
+                    for edges in (False, True))
+    covered = np.any(plain != 255, axis=2)
+    rows, columns = np.flatnonzero(covered.any(axis=1)), np.flatnonzero(covered.any(axis=0))
+    h, w = rows[-1] - rows[0], columns[-1] - columns[0]  # the middle half, far from the outline
+    inside = (slice(rows[0] + h // 4, rows[-1] - h // 4), slice(columns[0] + w // 4,
+                                                                columns[-1] - w // 4))
+    # inside the outline the edges change nothing: the facets are one surface
+    changed = np.any(plain[inside] != edged[inside], axis=2)
+    assert changed.mean() < 0.002
+    # and the outline is drawn
+    assert np.any(plain != edged)
