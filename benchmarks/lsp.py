@@ -1,7 +1,7 @@
 """castor --lsp: diagnostics after an edit of the bus shelter, and hovers.
 
 Spawns the language server as an editor does and speaks the protocol to it
-(the test suite's client, tests/test_lsp.py). Two figures, median and worst of
+(the test suite's client, tests/preview/test_lsp.py). Two figures, median and worst of
 BENCH_RUNS edits: edit -> the diagnostics of that version published, for
 examples/bus_shelter.cas (seven files, #included); and the hover on a
 parameter and on an object (its box and volume, made once per analysis).

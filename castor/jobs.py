@@ -23,7 +23,7 @@ from castor.settings import FrameSettings, MeshSettings, OutputSettings
 class Job:
     """One frame's work: its evaluated CSG tree and what to make of it, by stage."""
 
-    scene: tree.Frame
+    scene: tree.FrameTree
     settings: FrameSettings
 
 
@@ -79,7 +79,7 @@ def make(job: Job) -> Result:
     return result
 
 
-def _make(scene: tree.Frame, settings: FrameSettings, result: Result) -> None:
+def _make(scene: tree.FrameTree, settings: FrameSettings, result: Result) -> None:
     from castor.formats import FORMATS
 
     output = settings.output
@@ -157,7 +157,7 @@ def _scaled(frame, factor: float):
                                    for obj in frame.objects])
 
 
-def _draws_nothing(scene: tree.Frame, mesh: MeshSettings) -> bool:
+def _draws_nothing(scene: tree.FrameTree, mesh: MeshSettings) -> bool:
     """Whether the frame's objects have no volume, as its polygons would say, for a
     picture, which is traced from the solids and never facetized: rays along each
     axis through a grid over the frame's box find something in almost every frame

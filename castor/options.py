@@ -30,8 +30,26 @@ DEFAULT_SCALE = 100  # 1:100
 DEFAULT_PORT = 8000
 MAX_PIXELS = 16384
 
-# orthographic views by name: the direction the camera looks in, and its up
-VIEW_NAMES = ("top", "bottom", "front", "back", "left", "right")
+class Orthographic(NamedTuple):
+    """A named orthographic view: the page's right and up, and the direction
+    towards the viewer (right x up = towards), unit vectors of the scene. A
+    picture looks along -towards with this up; a drawing projects on the three."""
+
+    right: tuple[int, int, int]
+    up: tuple[int, int, int]
+    towards: tuple[int, int, int]
+
+
+# the six named views, declared here only (CLI.md --view NAME)
+ORTHOGRAPHIC = {
+    "top": Orthographic((1, 0, 0), (0, 1, 0), (0, 0, 1)),
+    "bottom": Orthographic((1, 0, 0), (0, -1, 0), (0, 0, -1)),
+    "front": Orthographic((1, 0, 0), (0, 0, 1), (0, -1, 0)),
+    "back": Orthographic((-1, 0, 0), (0, 0, 1), (0, 1, 0)),
+    "left": Orthographic((0, -1, 0), (0, 0, 1), (-1, 0, 0)),
+    "right": Orthographic((0, 1, 0), (0, 0, 1), (1, 0, 0)),
+}
+VIEW_NAMES = tuple(ORTHOGRAPHIC)
 
 
 class View(NamedTuple):

@@ -48,7 +48,7 @@ def evaluate(source: Source, reporter: Reporter, on_frame: Callable | None, *,
              cancelled: Callable[[], bool] | None = None,
              interpreter: Callable | None = None):
     """Read, preprocess and interpret ``source``: each frame's evaluated CSG tree
-    (castor.csg.tree.Frame) goes to ``on_frame`` as soon as its '>' command has run
+    (castor.csg.tree.FrameTree) goes to ``on_frame`` as soon as its '>' command has run
     (None: evaluate only). Diagnostics go to ``reporter``; the run stops early
     only after too many errors. Returns the interpreter (its frame count, the
     parameters the scene uses).
@@ -156,7 +156,7 @@ class Checked:
     their mesh frames (castor.mesh.frame.Frame)."""
 
     diagnostics: tuple[Diagnostic, ...]
-    trees: tuple  # castor.csg.tree.Frame, one per frame without an error
+    trees: tuple  # castor.csg.tree.FrameTree, one per frame without an error
     meshes: tuple  # castor.mesh.frame.Frame, when a MeshSettings was given (and no on_mesh)
     included: tuple[str, ...]  # every file that #include opened
     printed: str

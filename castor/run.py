@@ -328,7 +328,7 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
     """Read, interpret and write: the whole run of ``castor``, its exit status
     (0, or 1 when the input had errors). A usage error found on the way (a file
     that cannot be read) raises UsageError."""
-    from castor.formats import FORMATS, of_kind
+    from castor.formats import FORMATS
     from castor.formats.output import Output
 
     evaluation = evaluation or EvaluationSettings()

@@ -2,7 +2,7 @@
 
 One walk of the DAG evaluates every expression, repetition, colour and
 matrix with the parameters in force, checks every primitive, and gives a
-``tree.Frame`` of plain data. A named object becomes one ``Shared`` subtree
+``tree.FrameTree`` of plain data. A named object becomes one ``Shared`` subtree
 for each set of values of the parameters it reads and facet tolerance, made
 once and used from every place that refers to it: 400 references to one tree
 are one subtree. Every error of the walk is collected with its location, so
@@ -19,7 +19,7 @@ from castor.csg import tree
 from castor.csg.paths import ROOT, Trail
 from castor.diagnostics import CastorError, EvaluationError, GeometryError, LimitError, Location
 from castor.language.expressions import evaluate, format_number
-from castor.language.scene import Boolean, Named, Node, Primitive, Repeat, Transformed
+from castor.language.scene import BooleanNode, NamedNode, SceneNode, PrimitiveNode, Repeat, TransformedNode
 from castor.options import DEFAULT_TOLERANCE
 from castor.primitives import PRIMITIVES
 from castor.primitives.facets import linear_part, product, quantize, stretch_above
@@ -88,12 +88,12 @@ class Evaluator:
     """
 
     def __init__(self):
-        self.memo: dict[tuple, tuple[Named, tree.Shared | None]] = {}
+        self.memo: dict[tuple, tuple[NamedNode, tree.Shared | None]] = {}
         self.errors: list[CastorError] = []
         self._seen_errors: set[tuple] = set()
 
-    def frame(self, objects: tuple[Node, ...], env: MutableMapping[str, float], number: int,
-              where: str, location: Location) -> tree.Frame:
+    def frame(self, objects: tuple[SceneNode, ...], env: MutableMapping[str, float], number: int,
+              where: str, location: Location) -> tree.FrameTree:
         """The evaluated tree of one '>' command; raises FrameErrors with every
         error found."""
         self.errors = []
@@ -106,7 +106,7 @@ class Evaluator:
             self.memo.clear()
         made = []
         for k, node in enumerate(objects, 1):
-            if type(node) is Named:
+            if type(node) is NamedNode:
                 name = node.name
             else:
                 name = f"object{k}"
@@ -115,7 +115,7 @@ class Evaluator:
         if self.errors:
             raise FrameErrors(self.errors)
         parameters = tuple((k, v) for k, v in env.items() if k != "PI")
-        return tree.Frame(number, where, location, tuple(made), parameters)
+        return tree.FrameTree(number, where, location, tuple(made), parameters)
 
     def _fail(self, error: CastorError) -> None:
         key = (error.message, error.location)
@@ -138,15 +138,15 @@ class Evaluator:
     # places it in the nearest shared subtree (or the scene), whose units the
     # ``tolerance`` is in; ``stretch``, the shape of the stretch of those units
     # above (facets.stretch_above), or None.
-    def _node(self, node: Node, env, matrix: tree.Matrix, stretch, tolerance: float,
+    def _node(self, node: SceneNode, env, matrix: tree.Matrix, stretch, tolerance: float,
               trail: Trail, rel: Trail):
         kind = type(node)
         try:
-            if kind is Named:
+            if kind is NamedNode:
                 return self._named(node, env, matrix, stretch, tolerance, trail, rel)
-            if kind is Transformed:
+            if kind is TransformedNode:
                 return self._transformed(node, env, matrix, stretch, tolerance, trail, rel)
-            if kind is Boolean:
+            if kind is BooleanNode:
                 return self._boolean(node, env, matrix, stretch, tolerance, trail, rel)
             return self._primitive(node, env, matrix, stretch, tolerance, trail, rel)
         except FrameErrors as group:
@@ -156,7 +156,7 @@ class Evaluator:
             self._fail(error)
         return None
 
-    def _named(self, node: Named, env, matrix, stretch, tolerance, trail, rel):
+    def _named(self, node: NamedNode, env, matrix, stretch, tolerance, trail, rel):
         linear = linear_part(matrix)
         if stretch is not None:
             linear = product(stretch, linear)
@@ -184,7 +184,7 @@ class Evaluator:
             return None
         return tree.Use(matrix, rel.steps(), shared)
 
-    def _transformed(self, node: Transformed, env, matrix, stretch, tolerance, trail, rel):
+    def _transformed(self, node: TransformedNode, env, matrix, stretch, tolerance, trail, rel):
         local = tree.IDENTITY
         failed = False
         for k, step in enumerate(node.steps):
@@ -193,7 +193,7 @@ class Evaluator:
                 failed = True
                 continue
             if step.kind == "s":  # the steps after it and the child are its operand
-                operand = Transformed(node.steps[k + 1:], node.child, node.location) if k + 1 < len(
+                operand = TransformedNode(node.steps[k + 1:], node.child, node.location) if k + 1 < len(
                     node.steps) else node.child
                 if failed:
                     return None
@@ -223,7 +223,7 @@ class Evaluator:
         return self._node(node.child, env, matrix, stretch, tolerance, trail, rel)
 
     @staticmethod
-    def _check_reach(local, trail, node: Transformed) -> None:
+    def _check_reach(local, trail, node: TransformedNode) -> None:
         if not all(abs(v) <= MAX_COORDINATE for v in local):
             raise GeometryError(f"the transformations of {trail} reach beyond "
                                 f"{MAX_COORDINATE:g}, the largest coordinate castor handles",
@@ -237,14 +237,19 @@ class Evaluator:
                                 f"{format_number(angle)}", location)
         if angle == 0:
             return self._node(operand, env, matrix, stretch, tolerance, trail, rel)
-        local = quantize(tolerance / stretch)
-        child = self._node(operand, env, tree.IDENTITY, 1.0, local, trail, rel)
+        # the operand in its own space, its tolerance scaled as a named object's is
+        linear = linear_part(matrix)
+        if stretch is not None:
+            linear = product(stretch, linear)
+        largest, shape = stretch_above(linear)
+        local = quantize(tolerance / largest) if shape is None else tolerance / largest
+        child = self._node(operand, env, tree.IDENTITY, shape, local, trail, rel)
         if child is None:
             return None
         return tree.Smooth(float(angle), matrix, child, local,
                            tree.smooth_key(float(angle), local, child), location)
 
-    def _boolean(self, node: Boolean, env, matrix, stretch, tolerance, trail, rel):
+    def _boolean(self, node: BooleanNode, env, matrix, stretch, tolerance, trail, rel):
         op = node.op
         operands = []
         if node.repeat is None:
@@ -273,7 +278,7 @@ class Evaluator:
             return operands[0]
         return tree.Boolean(op, tuple(operands), node.location)
 
-    def _primitive(self, node: Primitive, env, matrix, stretch, tolerance, trail, rel):
+    def _primitive(self, node: PrimitiveNode, env, matrix, stretch, tolerance, trail, rel):
         here = trail.down(f"!{node.kind}")
         values = self._values(node.args, env)
         if values is None:
@@ -296,7 +301,7 @@ class Evaluator:
                               node.location)
 
 
-def _check_reach(matrix: tree.Matrix, extent: float, node: Primitive, here: Trail) -> None:
+def _check_reach(matrix: tree.Matrix, extent: float, node: PrimitiveNode, here: Trail) -> None:
     """Refuse a primitive whose corners reach beyond MAX_COORDINATE (``extent``:
     the largest coordinate of its unit box, declared with the primitive)."""
     for row in range(3):

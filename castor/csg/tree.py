@@ -1,7 +1,7 @@
 """The evaluated CSG tree: the scene of one frame as plain, immutable, picklable data.
 
 At each '>' (and each value of ``>[T = ...]``) the evaluator instantiates the
-scene graph with the parameter values in force and gives one ``Frame``: its
+scene graph with the parameter values in force and gives one ``FrameTree``: its
 objects, each the root of a tree of
 
 - ``Primitive`` leaves: the kind, the evaluated shape arguments, the colour,
@@ -58,7 +58,7 @@ class Primitive:
 @dataclass(frozen=True, slots=True)
 class Boolean:
     op: str  # "U", "I" or "D"
-    operands: tuple["Node", ...]
+    operands: tuple["TreeNode", ...]
     location: Location = field(compare=False)
 
 
@@ -67,7 +67,7 @@ class Shared:
     """A named object's subtree, one object for each key however often it is used."""
 
     name: str
-    child: "Node | None"  # None: empty
+    child: "TreeNode | None"  # None: empty
     key: str  # a digest of the name and the content
     location: Location = field(compare=False)
 
@@ -93,13 +93,13 @@ class Smooth:
 
     angle: float  # degrees: an edge whose normals turn by more is a crease
     matrix: Matrix
-    operand: "Node"
+    operand: "TreeNode"
     tolerance: float
     key: str
     location: Location = field(compare=False)
 
 
-Node = Union[Primitive, Boolean, Use, Smooth]
+TreeNode = Union[Primitive, Boolean, Use, Smooth]
 
 
 @dataclass(frozen=True, slots=True)
@@ -108,12 +108,12 @@ class Object:
     ``objectK``) and its tree (None when it is empty)."""
 
     name: str
-    root: Node | None
+    root: TreeNode | None
     where: str = ""  # FILE:LINE of its definition (a named object's) or of the '>' command
 
 
 @dataclass(frozen=True, slots=True)
-class Frame:
+class FrameTree:
     """The scene of one frame: what a facetizer, a ray tracer or a drawing needs."""
 
     number: int
@@ -131,7 +131,7 @@ class Frame:
         return found
 
 
-def _collect_shared(node: Node, found: dict[str, Shared]) -> None:
+def _collect_shared(node: TreeNode, found: dict[str, Shared]) -> None:
     stack = [node]
     while stack:
         node = stack.pop()
@@ -148,7 +148,7 @@ def _collect_shared(node: Node, found: dict[str, Shared]) -> None:
             stack.append(node.operand)
 
 
-def leaves(node: Node, matrix: Matrix = IDENTITY, prefix: str = "") -> Iterator[tuple[Primitive, Matrix, str]]:
+def leaves(node: TreeNode, matrix: Matrix = IDENTITY, prefix: str = "") -> Iterator[tuple[Primitive, Matrix, str]]:
     """Every primitive under ``node`` with its matrix to the scene and its full
     path from ``node``, shared subtrees expanded (as many times as they are used)."""
     from castor.csg.paths import join
@@ -183,7 +183,7 @@ def compose(a: Matrix, b: Matrix) -> Matrix:
             a8 * b2 + a9 * b6 + a10 * b10, a8 * b3 + a9 * b7 + a10 * b11 + a11)
 
 
-def smooth_key(angle: float, tolerance: float, operand: Node) -> str:
+def smooth_key(angle: float, tolerance: float, operand: TreeNode) -> str:
     """The key of a smoothing: its angle, tolerance and operand's content."""
     digest = hashlib.blake2b(digest_size=16)
     digest.update(struct.pack("<2d", angle, tolerance))
@@ -191,7 +191,7 @@ def smooth_key(angle: float, tolerance: float, operand: Node) -> str:
     return digest.hexdigest()
 
 
-def content_key(name: str, child: Node | None) -> str:
+def content_key(name: str, child: TreeNode | None) -> str:
     """The canonical key of a shared subtree: a digest of its name and content,
     the same in every process (shared subtrees below count by their own keys)."""
     digest = hashlib.blake2b(digest_size=16)
@@ -204,7 +204,7 @@ def content_key(name: str, child: Node | None) -> str:
 _PACK = struct.Struct("<12d").pack
 
 
-def _feed(digest, node: Node) -> None:
+def _feed(digest, node: TreeNode) -> None:
     stack = [node]
     update = digest.update
     while stack:
@@ -228,7 +228,7 @@ def _feed(digest, node: Node) -> None:
             update(_PACK(*node.matrix))
 
 
-def dump(frame: Frame) -> str:
+def dump(frame: FrameTree) -> str:
     """The tree as indented text, shared subtrees written once: for tests and
     for reading what a frame is made of."""
     lines: list[str] = [f"frame {frame.number} {frame.where}"]
@@ -237,7 +237,7 @@ def dump(frame: Frame) -> str:
     def number(x: float) -> str:
         return repr(x) if x != int(x) or abs(x) >= 1e15 else str(int(x))
 
-    def walk(node: Node, depth: int, label: str) -> None:
+    def walk(node: TreeNode, depth: int, label: str) -> None:
         pad = "  " * depth
         if isinstance(node, Primitive):
             m = "" if node.matrix == IDENTITY else " @m(" + ", ".join(map(number, node.matrix)) + ")"

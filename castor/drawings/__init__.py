@@ -14,11 +14,11 @@ from __future__ import annotations
 import os
 import unicodedata
 
-from castor.drawings.model import Drawing, Layer, View, view_for
+from castor.drawings.model import Drawing, Layer, ViewBasis, view_for
 from castor.drawings.cut import cut_loops, section_area
 from castor.drawings.hidden import seen_lines
 
-__all__ = ["Drawing", "Layer", "View", "draw", "section_area", "sheet_of", "title_of"]
+__all__ = ["Drawing", "Layer", "ViewBasis", "draw", "section_area", "sheet_of", "title_of"]
 
 
 def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:

@@ -7,8 +7,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from castor.options import ORTHOGRAPHIC
 
-class View(NamedTuple):
+
+class ViewBasis(NamedTuple):
     """An orthographic direction: the page's right and up, and the direction
     towards the viewer (right x up = towards), all unit vectors of the scene."""
 
@@ -29,20 +31,14 @@ class View(NamedTuple):
         return float(self.towards[axis]) * section.value
 
 
-VIEWS = {v.name: v for v in (
-    View("top", (1, 0, 0), (0, 1, 0), (0, 0, 1)),
-    View("bottom", (1, 0, 0), (0, -1, 0), (0, 0, -1)),
-    View("front", (1, 0, 0), (0, 0, 1), (0, -1, 0)),
-    View("back", (-1, 0, 0), (0, 0, 1), (0, 1, 0)),
-    View("left", (0, -1, 0), (0, 0, 1), (-1, 0, 0)),
-    View("right", (0, 1, 0), (0, 0, 1), (1, 0, 0)),
-)}
+# the named views of castor.options, each with its name
+VIEWS = {name: ViewBasis(name, *axes) for name, axes in ORTHOGRAPHIC.items()}
 
 # a section is seen from above (z, a plan) or looking towards +x or +y
 SECTION_VIEWS = {"z": "top", "x": "left", "y": "front"}
 
 
-def view_for(section, view) -> View:
+def view_for(section, view) -> ViewBasis:
     """The direction a drawing is seen from: the section's own, else the
     orthographic --view, else the front (a perspective --view, the default
     included, gives the front elevation: a drawing is never in perspective)."""
@@ -68,7 +64,7 @@ class Layer:
 @dataclass
 class Drawing:
     layers: list[Layer]
-    view: View
+    view: ViewBasis
     scale: float  # the N of 1:N
     section: object = None  # castor.options.Section, None for an elevation
 

@@ -31,7 +31,7 @@ KINDS = {
     "drawing": "a plan, section or elevation laid on its sheet: write(sheet) -> bytes "
                "(castor.drawings.sheet.Sheet; its drawing, castor.drawings.Drawing)",
     "bim": "a building model: write(scene, frame, settings) -> bytes, the evaluated CSG "
-           "tree (castor.csg.tree.Frame), its mesh frame and the FrameSettings",
+           "tree (castor.csg.tree.FrameTree), its mesh frame and the FrameSettings",
 }
 
 

@@ -46,7 +46,7 @@ DEFAULT_CLASS = "IfcBuildingElementProxy"
 # the IFC4 classes an object may take: the concrete subtypes of IfcElement that
 # are physical things (no feature or virtual element) and need nothing but a
 # body (the 'StandardCase' and 'ElementedCase' classes require material layers
-# or parts; tests/test_ifc.py checks this list against ifcopenshell's schema)
+# or parts; tests/formats/test_ifc.py checks this list against ifcopenshell's schema)
 ELEMENT_CLASSES = (
     "IfcActuator", "IfcAirTerminal", "IfcAirTerminalBox", "IfcAirToAirHeatRecovery",
     "IfcAlarm", "IfcAudioVisualAppliance", "IfcBeam", "IfcBoiler", "IfcBuildingElementPart",
@@ -139,13 +139,13 @@ def default_title(frame: Frame) -> str:
     return stem if stem and stem != "<stdin>" else "castor"
 
 
-def write(scene: tree.Frame, frame: Frame, settings: FrameSettings) -> bytes:
+def write(scene: tree.FrameTree, frame: Frame, settings: FrameSettings) -> bytes:
     """The registry's writer (a format of kind "bim"): the frame as an IFC4
     file, titled by --title, of the classes --ifc-class gives."""
     return export(scene, frame, settings.output.title, dict(settings.bim.classes))
 
 
-def export(scene: tree.Frame, frame: Frame, title: str | None = None,
+def export(scene: tree.FrameTree, frame: Frame, title: str | None = None,
            classes: dict[str, str] | None = None) -> bytes:
     """The frame as an IFC4 file (STEP physical file text): ``scene`` is its
     evaluated CSG tree (the parameters, each object's source), ``frame`` its
@@ -154,7 +154,7 @@ def export(scene: tree.Frame, frame: Frame, title: str | None = None,
     return model(scene, frame, title, classes).to_string().encode("utf-8")
 
 
-def model(scene: tree.Frame, frame: Frame, title: str | None = None,
+def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
           classes: dict[str, str] | None = None):
     """The frame as an ``ifcopenshell.file``."""
     import ifcopenshell

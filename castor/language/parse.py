@@ -23,8 +23,8 @@ from castor.language.expressions import FUNCTIONS, arity_message, evaluate
 from castor.language.reader import Chunk
 from castor.language.vocabulary import PRIMITIVES, TRANSFORMS
 from castor.language.syntax_errors import DEFINED, syntax_error
-from castor.language.scene import (EMPTY, Binary, Boolean, Call, Facetize, Named, Number, ObjectDef, Param,
-                    ParamDef, Primitive, Repeat, Step, Tables, Transformed, Unary)
+from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, Facetize, NamedNode, Number, ObjectDef, Param,
+                    ParamDef, PrimitiveNode, Repeat, Step, Tables, TransformedNode, Unary)
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
 MAX_DEPTH = 100_000
@@ -105,7 +105,7 @@ class Builder:
     def object_def(self, children):
         name, node = children
         location = self._at(name)
-        return self._statement(ObjectDef(str(name), Named(
+        return self._statement(ObjectDef(str(name), NamedNode(
             str(name), node, location, node.params, self._depth(node.depth + 1, location)),
             location))
 
@@ -129,7 +129,7 @@ class Builder:
             for a in s.args:
                 if a.params and not a.params <= params:
                     params = params | a.params
-        return Transformed(tuple(steps), atom, steps[0].location, params, atom.depth + 1)
+        return TransformedNode(tuple(steps), atom, steps[0].location, params, atom.depth + 1)
 
     def transform(self, children):
         token, args = children
@@ -174,7 +174,7 @@ class Builder:
                     f"but {n - 3} coordinates were given, an odd number", location))
         params = EMPTY.union(*(a.params for a in args))
         depth = max((a.depth for a in args), default=0) + 1
-        return Primitive(kind, args, location, params, depth)
+        return PrimitiveNode(kind, args, location, params, depth)
 
     def boolean(self, children):
         token, rest = children[0], children[1:]
@@ -201,7 +201,7 @@ class Builder:
         if repeat is not None:
             params = (params - {repeat.param}) | repeat.params
         depth = self._depth(max(o.depth for o in operands) + 1, location)
-        return Boolean(op, tuple(operands), repeat, location, params, depth)
+        return BooleanNode(op, tuple(operands), repeat, location, params, depth)
 
     def reference(self, children):
         token = children[0]
@@ -215,7 +215,7 @@ class Builder:
             else:
                 hint = _suggest(name, self.tables.objects)
                 self.faults.append(SceneError(f"object '{name}' is not defined{hint}", location))
-            return Primitive("cu", (), location)  # placeholder; the statement is dropped
+            return PrimitiveNode("cu", (), location)  # placeholder; the statement is dropped
         return node
 
     def repeat(self, children):

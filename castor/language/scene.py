@@ -86,7 +86,7 @@ class Repeat:
 
 
 @dataclass(eq=False, slots=True)
-class Primitive:
+class PrimitiveNode:
     """``!cu(R, G, B)`` and friends: a unit solid with a colour."""
 
     kind: str
@@ -106,7 +106,7 @@ class Step:
 
 
 @dataclass(eq=False, slots=True)
-class Transformed:
+class TransformedNode:
     """A run of transformation prefixes applied to one object, right to left.
 
     The run is kept flat (not one node per prefix) so that ten thousand nested
@@ -114,18 +114,18 @@ class Transformed:
     """
 
     steps: tuple[Step, ...]
-    child: "Node"
+    child: "SceneNode"
     location: Location
     params: frozenset[str] = EMPTY
     depth: int = 1
 
 
 @dataclass(eq=False, slots=True)
-class Boolean:
+class BooleanNode:
     """``$U``, ``$I`` or ``$D`` of operands, or of a repeated body."""
 
     op: str  # 'U', 'I' or 'D'
-    operands: tuple["Node", ...]
+    operands: tuple["SceneNode", ...]
     repeat: Repeat | None
     location: Location
     params: frozenset[str] = EMPTY
@@ -133,17 +133,17 @@ class Boolean:
 
 
 @dataclass(eq=False, slots=True)
-class Named:
+class NamedNode:
     """The node an object definition creates: it knows the name pointing at it."""
 
     name: str
-    child: "Node"
+    child: "SceneNode"
     location: Location
     params: frozenset[str] = EMPTY
     depth: int = 1
 
 
-Node = Primitive | Transformed | Boolean | Named
+SceneNode = PrimitiveNode | TransformedNode | BooleanNode | NamedNode
 
 
 # --- statements ------------------------------------------------------------
@@ -159,13 +159,13 @@ class ParamDef:
 @dataclass(frozen=True, slots=True)
 class ObjectDef:
     name: str
-    node: Node
+    node: SceneNode
     location: Location
 
 
 @dataclass(frozen=True, slots=True)
 class Facetize:
-    objects: tuple[Node, ...]
+    objects: tuple[SceneNode, ...]
     repeat: Repeat | None
     location: Location
 
@@ -178,6 +178,6 @@ class Tables:
     """The two symbol tables of a scene (Python dicts are hash tables)."""
 
     parameters: dict[str, float] = field(default_factory=dict)
-    objects: dict[str, Named] = field(default_factory=dict)
+    objects: dict[str, NamedNode] = field(default_factory=dict)
     # names whose definition failed: their uses are reported once, quietly
     broken: set[str] = field(default_factory=set)

@@ -172,7 +172,7 @@ def _united(operands: list) -> adapter.Manifold:
     """The union of manifolds, two at a time in a balanced tree. (manifold3d's
     batch_boolean unites them all at once; on operands whose faces coincide,
     copies of one object side by side, it was seen to lose volume where
-    unions two at a time do not: tests/test_regularize.py.)"""
+    unions two at a time do not: tests/geometry/test_regular_booleans.py.)"""
     united = _balanced(operands)
     if not off_faces(united):
         return united

@@ -26,7 +26,7 @@ def off_faces(manifold: adapter.Manifold) -> int:
     primitive's face it comes from (beyond rounding): none, in a right result.
 
     The engine's union of solids whose faces coincide exactly was seen to go
-    wrong (tests/test_regularize.py): a few vertices moved off their faces
+    wrong (tests/geometry/test_regular_booleans.py): a few vertices moved off their faces
     and volume lost. The engine reports each run's template and placement,
     so each triangle's plane is known without trusting its vertices."""
     if manifold.is_empty() or manifold.num_tri() > CHECKED_TRIANGLES:

@@ -56,7 +56,7 @@ class Facetizer:
         self.stats = FrameStats()
 
     # --- a whole frame
-    def frame(self, scene: tree.Frame) -> Frame:
+    def frame(self, scene: tree.FrameTree) -> Frame:
         started = time.perf_counter()
         self.counter.booleans = 0
         self.primitive_count = 0
@@ -103,7 +103,7 @@ class Facetizer:
                              where.location)
 
     # --- one node
-    def solid(self, node: tree.Node) -> Solid:
+    def solid(self, node: tree.TreeNode) -> Solid:
         kind = type(node)
         if kind is tree.Primitive:
             return self._primitive(node)
@@ -190,7 +190,7 @@ class Facetizer:
         return instance(template, origin, None if leaf.matrix == tree.IDENTITY else leaf.matrix)
 
 
-def tree_figures(scene: tree.Frame) -> tuple[int, int]:
+def tree_figures(scene: tree.FrameTree) -> tuple[int, int]:
     """About how many triangles the frame gives, and its boolean operations,
     without building anything: operands add up, primitives count their facets,
     a shared subtree counts its triangles once per use and its booleans once.

@@ -17,17 +17,6 @@ import numpy as np
 FIELD_OF_VIEW = 35.0  # degrees, vertical
 MARGIN = 0.94  # the framed scene fills this much of the picture
 
-# orthographic views: the direction looked in, and the picture's up
-_ORTHOGRAPHIC = {
-    "top": ((0.0, 0.0, -1.0), (0.0, 1.0, 0.0)),
-    "bottom": ((0.0, 0.0, 1.0), (0.0, 1.0, 0.0)),
-    "front": ((0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
-    "back": ((0.0, -1.0, 0.0), (0.0, 0.0, 1.0)),
-    "left": ((1.0, 0.0, 0.0), (0.0, 0.0, 1.0)),
-    "right": ((-1.0, 0.0, 0.0), (0.0, 0.0, 1.0)),
-}
-
-
 @dataclass(frozen=True)
 class Camera:
     eye: np.ndarray  # perspective: the eye; orthographic: the picture's centre, before the scene
@@ -102,7 +91,7 @@ def make_camera(low, high, size: tuple[int, int], view=None, eye=None, look=None
     None: the default direction), or an explicit ``eye`` and ``look``; the
     named views are orthographic, every camera but --eye frames the box
     (``low``, ``high``) of the scene."""
-    from castor.options import DEFAULT_VIEW
+    from castor.options import DEFAULT_VIEW, ORTHOGRAPHIC
 
     width, height = size
     low = np.asarray(low, dtype=np.float64)
@@ -120,8 +109,9 @@ def make_camera(low, high, size: tuple[int, int], view=None, eye=None, look=None
     corners = _corners(low, high) - centre
     radius = max(float(np.linalg.norm(high - low)) / 2, 1e-6)
     if view is not None and view.name is not None:
-        look_along, up = _ORTHOGRAPHIC[view.name]
-        forward, right, up = _basis(np.array(look_along), np.array(up))
+        axes = ORTHOGRAPHIC[view.name]
+        forward, right, up = _basis(-np.array(axes.towards, dtype=np.float64),
+                                    np.array(axes.up, dtype=np.float64))
         across, along = corners @ right, corners @ up
         aspect = width / height
         half = max(float(np.max(np.abs(along))), float(np.max(np.abs(across))) / aspect, 1e-6)

@@ -1,6 +1,6 @@
 """Rays against the evaluated CSG tree of a frame: the booleans taken on spans.
 
-``Scene`` compiles a ``castor.csg.tree.Frame`` once: every primitive with the
+``Scene`` compiles a ``castor.csg.tree.FrameTree`` once: every primitive with the
 inverse of its matrix to the scene (shared subtrees expanded for each use),
 every node with its bounding box in the scene. ``spans`` gives, for a batch of
 rays, the spans where each ray is inside the frame's solids: a primitive's
@@ -39,7 +39,7 @@ class Leaf:
 
 
 @dataclass
-class Node:
+class TracedBoolean:
     op: str  # "U", "I" or "D"
     operands: list
     low: np.ndarray
@@ -48,7 +48,7 @@ class Node:
 
 @dataclass
 class Scene:
-    root: object  # Leaf, Node or None (nothing to draw)
+    root: object  # Leaf, TracedBoolean or None (nothing to draw)
     leaves: list = field(default_factory=list)
 
     @property
@@ -189,7 +189,7 @@ class Projection:
         return rect
 
 
-def compile_frame(frame: tree.Frame) -> Scene:
+def compile_frame(frame: tree.FrameTree) -> Scene:
     """The frame's objects as one scene of primitives placed in the scene."""
     scene = Scene(None)
     roots = []
@@ -209,11 +209,11 @@ def _grouped(node):
     """The tree with each large union split into nested unions of nearby
     operands (a bounding volume hierarchy), so that a ray meets the boxes of
     a few groups rather than of every operand."""
-    if not isinstance(node, Node):
+    if not isinstance(node, TracedBoolean):
         return node
     operands = [_grouped(o) for o in node.operands]
     if node.op != "U" or len(operands) <= GROUP:
-        return Node(node.op, operands, node.low, node.high)
+        return TracedBoolean(node.op, operands, node.low, node.high)
     return _group(operands)
 
 
@@ -224,12 +224,12 @@ def _group(operands: list):
     highs = np.array([o.high for o in operands])
     low, high = lows.min(axis=0), highs.max(axis=0)
     if len(operands) <= GROUP:
-        return Node("U", operands, low, high)
+        return TracedBoolean("U", operands, low, high)
     centres = (lows + highs) / 2
     axis = int(np.argmax(centres.max(axis=0) - centres.min(axis=0)))
     order = np.argsort(centres[:, axis], kind="stable")
     half = len(operands) // 2
-    return Node("U", [_group([operands[i] for i in order[:half]]),
+    return TracedBoolean("U", [_group([operands[i] for i in order[:half]]),
                       _group([operands[i] for i in order[half:]])], low, high)
 
 
@@ -255,7 +255,7 @@ def _compile(node, matrix: np.ndarray, leaves: list):
         cutters = [c for c in operands[1:] if c is not None]
         if not cutters:
             return operands[0]
-        return Node("D", [operands[0], _make("U", cutters)], operands[0].low,
+        return TracedBoolean("D", [operands[0], _make("U", cutters)], operands[0].low,
                     operands[0].high)
     if node.op == "I" and any(o is None for o in operands):
         return None
@@ -266,7 +266,7 @@ def _make(op: str, operands: list):
     """An n-ary union or intersection (nested ones of the same kind flattened)."""
     flat = []
     for o in operands:
-        if isinstance(o, Node) and o.op == op and op in "UI":
+        if isinstance(o, TracedBoolean) and o.op == op and op in "UI":
             flat.extend(o.operands)
         else:
             flat.append(o)
@@ -282,7 +282,7 @@ def _make(op: str, operands: list):
         low, high = lows.max(axis=0), highs.min(axis=0)
         if np.any(low > high):
             return None
-    return Node(op, flat, low, high)
+    return TracedBoolean(op, flat, low, high)
 
 
 def _leaf(primitive: tree.Primitive, matrix: np.ndarray, leaves: list):
@@ -343,7 +343,7 @@ def _first(node, rays: _Rays, rows: np.ndarray):
     each (len(rows),); a union is the nearest of its operands' first surfaces."""
     n = len(rows)
     t_best, face_best = np.full(n, INF), np.zeros(n, np.int64)
-    if isinstance(node, Node) and node.op == "U":
+    if isinstance(node, TracedBoolean) and node.op == "U":
         hit = np.flatnonzero(_crosses_box(node, rays, rows))
         for operand in node.operands:
             t, face = _first(operand, rays, rows[hit])
@@ -367,7 +367,7 @@ def _blocked(node, rays: _Rays, rows: np.ndarray) -> np.ndarray:
     """Whether the rays ``rows`` meet a solid beyond ``near``; a union asks
     each operand only about the rays not yet blocked."""
     n = len(rows)
-    if isinstance(node, Node) and node.op == "U":
+    if isinstance(node, TracedBoolean) and node.op == "U":
         blocked = np.zeros(n, bool)
         open_rows = np.flatnonzero(_crosses_box(node, rays, rows))
         for operand in node.operands:
@@ -390,7 +390,7 @@ def _leaf_spans(leaf: Leaf, rays: _Rays, rows: np.ndarray):
     return t, face + (leaf.number << FACE_BITS)
 
 
-def _difference(node: Node, rays: _Rays, rows: np.ndarray):
+def _difference(node: TracedBoolean, rays: _Rays, rows: np.ndarray):
     t, face = _evaluate(node.operands[0], rays, rows)
     if t.shape[1] == 0:
         return t, face

@@ -17,7 +17,7 @@ from lark import Lark
 from castor.language import tables
 from castor.language.parse import grammar_text
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 PROGRAM = "L = 2;\nmur = @t(0, 0, 1) @h(L, 0.2, 3) !cu(0.9, 0.9, 0.8);\n> $D(mur, @t(1, -1, 1) !cu(0, 0, 1));\n"
 
 

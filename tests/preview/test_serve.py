@@ -23,7 +23,7 @@ from castor.serve.scene import Overtaken, Watched, evaluate
 from castor.serve.server import PreviewServer
 
 BOX = "boite = @h({x}, 3, 4) !cu(0.25, 0.45, 0.85);\n> boite;\n"
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def save(path, text: str) -> None:

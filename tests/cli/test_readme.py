@@ -5,7 +5,7 @@ reader types it: a temporary directory holds the outputs and sees the
 repository's `examples/` beside them (a link), so `examples/house.cas` is
 found and nothing is written into the checkout. Two lines are skipped, and
 say why: `--scheduler` needs a Dask cluster at HOST, and `--serve` is a server
-that runs until Ctrl-C (tests/test_serve.py drives it). The pictures' table
+that runs until Ctrl-C (tests/preview/test_serve.py drives it). The pictures' table
 must say what scripts/pictures.sh runs.
 """
 
@@ -20,9 +20,9 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 SKIPPED = {"--scheduler": "needs a Dask cluster at tcp://HOST:8786",
-           "--serve": "a server that runs until Ctrl-C (tests/test_serve.py drives it)"}
+           "--serve": "a server that runs until Ctrl-C (tests/preview/test_serve.py drives it)"}
 
 
 def _blocks():

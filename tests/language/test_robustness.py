@@ -21,7 +21,7 @@ from castor.pipeline import RECURSION_LIMIT
 # looks, so that running castor in-process does not change it under its feet.
 sys.setrecursionlimit(RECURSION_LIMIT)
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 SEED_SCENES = [
     "a = !cu(1, 0, 0);\nX = 2 * PI;\n> @t(X, 0, 0) @rz(45) a;\n",
     "roue = @h(0.3, 0.3, 0.1) !cy(0.1, 0.1, 0.1);\nv = $U(@h(4,1.6,1) !cu(1,0,0), @t(1,0,0) roue);\n> v;\n",

@@ -15,7 +15,7 @@ import pytest
 from meshcheck import run
 from test_drawings import SVG, Drawn
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 # 10 x 8 m, walls 0.3 m thick and 3 m high; in the south wall (y = 0) a door
 # 1.0 m wide at x = 4.5 .. 5.5 (head 2.10) and two windows 1.2 m wide at

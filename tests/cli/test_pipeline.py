@@ -12,7 +12,7 @@ from castor.pipeline import Overtaken, check, evaluate, frames
 from castor.settings import (EvaluationSettings, FrameSettings, MeshSettings, OutputSettings,
                              ReadSettings, RunSettings, Source)
 
-PACKAGE = Path(__file__).resolve().parent.parent / "castor"
+PACKAGE = Path(__file__).resolve().parents[2] / "castor"
 
 SCENE = """L = 2;
 boite = @h(L, 1, 1) !cu(1, 1, 1);

@@ -13,7 +13,7 @@ import pytest
 from castor.diagnostics import Location
 from castor.language.annotations import parse_annotation
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 SCENE = """\
 /* [Walls] */

@@ -12,7 +12,7 @@ from pathlib import Path
 from castor.csg import tree
 from castor.run import evaluated_frames
 
-HOUSE = Path(__file__).resolve().parent.parent / "examples" / "house.cas"
+HOUSE = Path(__file__).resolve().parents[2] / "examples" / "house.cas"
 VITRE = (0.25, 0.45, 0.85)  # the cutting boxes' colour in house.cas
 
 

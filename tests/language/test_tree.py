@@ -12,7 +12,7 @@ from castor.csg import tree
 from castor.run import evaluated_frames
 from meshcheck import frames_of, parse_stream, run
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.cas"))
 
 

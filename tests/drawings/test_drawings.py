@@ -14,7 +14,7 @@ import pytest
 from meshcheck import run
 
 SVG = "{http://www.w3.org/2000/svg}"
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 # a room of 4 x 3 m, walls 0.2 m thick, a door 0.9 m wide in the south wall,
 # standing on a floor slab 0.5 m wider all round; one object

@@ -14,7 +14,7 @@ import pytest
 
 from meshcheck import run
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 HOUSE = ROOT / "examples" / "house.cas"
 
 # several objects: one of one colour, one of two, an unnamed one, an empty one,

@@ -5,7 +5,7 @@ line to a vertex of the written frame passes through the folders in order."""
 import ast
 from pathlib import Path
 
-PACKAGE = Path(__file__).resolve().parent.parent / "castor"
+PACKAGE = Path(__file__).resolve().parents[2] / "castor"
 
 # stage of each top-level module or folder, in pipeline order
 STAGES = {

@@ -12,7 +12,7 @@ from PIL import Image
 
 from meshcheck import check_solid, parse_stream, run
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.cas"))
 
 

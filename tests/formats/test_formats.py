@@ -8,7 +8,7 @@ import trimesh
 from castor.formats import FORMATS as REGISTRY, of_kind
 from meshcheck import parse_stream, run
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 # every mesh format castor writes, but 3MF, which trimesh reads only with networkx
 # (castor-view reads it with castor's own reader: see below)
 FORMATS = [f.name for f in of_kind("mesh") if f.name != "3mf"]
@@ -131,7 +131,7 @@ def test_castor_view_draws_a_mesh_file_in_its_colours(tmp_path, name):
     from PIL import Image
 
     path = tmp_path / f"car{REGISTRY[name].suffix}"
-    run("-o", str(path), str(Path(__file__).resolve().parent.parent / "examples" / "car.cas"),
+    run("-o", str(path), str(Path(__file__).resolve().parents[2] / "examples" / "car.cas"),
         check_status=0)
     picture = tmp_path / "car.png"
     subprocess.run([sys.executable, "-m", "castor.view.cli", "-o", str(picture), str(path)],
@@ -163,7 +163,7 @@ def _view(tmp_path, path, name):
 def test_castor_view_draws_the_house_from_its_3mf_as_from_its_glb(tmp_path):
     import numpy as np
 
-    source = str(Path(__file__).resolve().parent.parent / "examples" / "house.cas")
+    source = str(Path(__file__).resolve().parents[2] / "examples" / "house.cas")
     for suffix in (".3mf", ".glb"):
         run("-D", "ONE_FRAME", "-o", str(tmp_path / f"house{suffix}"), source, check_status=0)
     from_3mf = _view(tmp_path, tmp_path / "house.3mf", "from-3mf.png")

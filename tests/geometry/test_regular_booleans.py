@@ -134,7 +134,7 @@ def _fresh_frames(path, monkeypatch):
     return parse_stream(out.getvalue())
 
 
-EXAMPLES = sorted((__import__("pathlib").Path(__file__).resolve().parent.parent / "examples")
+EXAMPLES = sorted((__import__("pathlib").Path(__file__).resolve().parents[2] / "examples")
                   .glob("*.cas"))
 
 

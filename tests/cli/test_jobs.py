@@ -10,7 +10,7 @@ import pytest
 
 from meshcheck import run
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.cas"))
 
 WITH_ERRORS = """L = 1;

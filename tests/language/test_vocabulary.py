@@ -8,7 +8,7 @@ from castor.mesh.primitives import build
 from castor.pictures.spans import SPANS
 from meshcheck import run
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_every_primitive_comes_from_its_own_module():

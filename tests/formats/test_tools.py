@@ -16,7 +16,7 @@ import pytest
 
 from meshcheck import parse_stream, run
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 CROSS = "> $U(@h(3,0.2,0.3) !cu(1,0,0), @t(1,-1,0.3) @h(0.1,2,0.2) !cu(0,1,0));\n"
 
 # Imports each file given after '--' and prints one JSON line per mesh object.
