@@ -139,6 +139,7 @@ def test_castor_view_draws_a_mesh_file_in_its_colours(tmp_path, name):
     image = np.asarray(Image.open(picture)).astype(int)
     red = (image[..., 0] > image[..., 1] + 80) & (image[..., 0] > image[..., 2] + 80)
     assert red.sum() > 1000  # the car's red body, not grey
+    (tmp_path / "x.svg").write_text("<svg/>")  # a drawing, which castor-view does not read
     sys_error = subprocess.run([sys.executable, "-m", "castor.view.cli", "-o",
                                 str(tmp_path / "x.png"), str(tmp_path / "x.svg")],
                                capture_output=True, text=True, timeout=60)
