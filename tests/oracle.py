@@ -303,6 +303,8 @@ def outward_normals(prim: Prim) -> list[np.ndarray]:
     """The outward normal of each face of ``primitive_faces(prim)``, in the
     primitive's own coordinates (its base may turn either way)."""
     faces = primitive_faces(prim)
+    if prim.kind == "we":  # its loops are written turning outward
+        return [np.cross(loop[1] - loop[0], loop[2] - loop[0]) for loop in faces]
     base = faces[0][:, :2]
     turn = 1.0 if float(np.sum(base[:, 0] * np.roll(base[:, 1], -1)
                                - np.roll(base[:, 0], -1) * base[:, 1])) > 0 else -1.0

@@ -6,6 +6,7 @@ import subprocess
 import pytest
 
 from meshcheck import parse_stream, run
+from castor.language.vocabulary import TRANSFORMS
 
 CUBE = "!cu(0.5, 0.5, 0.5)"
 
@@ -41,7 +42,7 @@ def test_error_between_two_good_frames(tmp_path):
     ("> ! cu(1,1,1);", "<stdin>:1:3: error: '!' must be followed directly by a primitive name, such as !cu"),
     ("X = 3 ? 4;", "<stdin>:1:7: error: unexpected character '?'"),
     ("> !cube(1, 1, 1);", "<stdin>:1:3: error: unknown primitive '!cube'; did you mean '!cu'? (known: !cu, !sp, !cy, !co, !to, !pr, !py, !we, !ex, !rv)"),
-    ("> @tr(1, 0, 0) !cu(1, 1, 1);", "<stdin>:1:3: error: unknown transformation '@tr'; did you mean '@t'? (known: @t, @rx, @ry, @rz, @r, @h, @m, @f)"),
+    ("> @tr(1, 0, 0) !cu(1, 1, 1);", "<stdin>:1:3: error: unknown transformation '@tr'; did you mean '@t'? (known: " + ", ".join("@" + t for t in TRANSFORMS) + ")"),
     ("> !cu(1, 1);", "<stdin>:1:3: error: '!cu' takes 3 arguments (R, G, B), but 2 were given"),
     ("> @t(1, 1) !cu(1, 1, 1);", "<stdin>:1:3: error: '@t' takes 3 arguments (X, Y, Z), but 2 were given"),
     ("> $D(!cu(1,1,1), !cu(1,1,1), !cu(1,1,1));", "<stdin>:1:3: error: '$D' takes exactly two operands (a - b), but 3 were given; to subtract several, write $D(a, $U(b, c))"),
