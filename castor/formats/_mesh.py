@@ -168,6 +168,21 @@ def materials(frame: Frame) -> tuple[list[Material], list[np.ndarray]]:
     return table, per_object
 
 
+def corner_turns(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray):
+    """For each corner of each polygon: the position of the vertex after it in
+    ``indices``, how much the boundary turns there (|incoming × outgoing|), and
+    the product of the two edges' lengths, to which a caller compares the turn."""
+    starts = offsets[:-1]
+    following = np.arange(1, len(indices) + 1)
+    following[offsets[1:] - 1] = starts
+    previous = np.arange(-1, len(indices) - 1)
+    previous[starts] = offsets[1:] - 1
+    p = vertices[indices]
+    incoming, outgoing = p - p[previous], p[following] - p
+    turn = np.linalg.norm(np.cross(incoming, outgoing), axis=1)
+    return following, turn, np.linalg.norm(incoming, axis=1) * np.linalg.norm(outgoing, axis=1)
+
+
 def straight_corners(vertices: np.ndarray, offsets: np.ndarray,
                      indices: np.ndarray) -> np.ndarray:
     """(P,) which polygons have a straight corner: a vertex in the middle of a
@@ -176,15 +191,8 @@ def straight_corners(vertices: np.ndarray, offsets: np.ndarray,
     if len(indices) == 0 or np.all(sizes == 3):
         return np.zeros(len(offsets) - 1, bool)
     starts = offsets[:-1]
-    following = np.arange(1, len(indices) + 1)
-    following[offsets[1:] - 1] = starts
-    previous = np.arange(-1, len(indices) - 1)
-    previous[starts] = offsets[1:] - 1
-    p = vertices[indices]
-    incoming = p - p[previous]
-    outgoing = p[following] - p
-    turn = np.linalg.norm(np.cross(incoming, outgoing), axis=1)
-    straight = turn <= _STRAIGHT * np.linalg.norm(incoming, axis=1) * np.linalg.norm(outgoing, axis=1)
+    _, turn, lengths = corner_turns(vertices, offsets, indices)
+    straight = turn <= _STRAIGHT * lengths
     # a triangle keeps even a flat corner: cutting it would leave a hole
     return np.logical_or.reduceat(straight, starts) & (sizes > 3)
 

@@ -286,16 +286,12 @@ def true_corner_first(vertices: np.ndarray, offsets: np.ndarray,
     first three vertices (a common shortcut) finds one this way."""
     if len(indices) == 0:
         return indices
+    from castor.formats._mesh import corner_turns
+
     sizes = np.diff(offsets)
     starts = offsets[:-1]
-    following = np.arange(1, len(indices) + 1)
-    following[offsets[1:] - 1] = starts
-    previous = np.arange(-1, len(indices) - 1)
-    previous[starts] = offsets[1:] - 1
-    p = vertices[indices]
-    incoming, outgoing = p - p[previous], p[following] - p
-    turn = np.linalg.norm(np.cross(incoming, outgoing), axis=1)
-    true = turn > 1e-9 * np.linalg.norm(incoming, axis=1) * np.linalg.norm(outgoing, axis=1)
+    following, turn, lengths = corner_turns(vertices, offsets, indices)
+    true = turn > 1e-9 * lengths
     position = np.arange(len(indices))
     ready = true[following[starts]]  # the second vertex is a true corner already
     if ready.all():
