@@ -50,20 +50,10 @@ def spans(shape, o, d):
     return rays.single(best_in, best_out, face_in, face_out)
 
 
-def normal(shape, p, face):
-    n = np.zeros_like(p)
-    side = face == 0
-    n[side, 0], n[side, 1] = p[side, 0], p[side, 1]
-    n[side, 2] = np.hypot(p[side, 0], p[side, 1])
-    n[face == 1, 2] = -1
-    n[face == 2, 2] = 1
-    return n
-
-
 PRIMITIVE = Primitive(
     place=40, name="co", title="cone", solid="base of radius 1 in z = 0, apex (0, 0, 1)",
     arguments=(), pair_names=None, curved=True, check=None, box=lambda shape: ROUND,
     mesh=lambda shape, facets: spire(facets[0], surface=0),
     triangles=lambda shape, facets: 4 * facets[0],
     # as a cylinder's: each circle of the side shrinks towards the apex, in its xy plane
-    spans=spans, normal=normal, facets=facets)
+    spans=spans, normal=rays.round_normal(True), facets=facets)

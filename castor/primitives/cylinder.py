@@ -37,18 +37,9 @@ def facets(shape, linear, tolerance) -> tuple[int]:
     return (circle_segments(1.0, quantize(tolerance / plane_stretch(linear))),)
 
 
-def normal(shape, p, face):
-    n = np.zeros_like(p)
-    side = face == 0
-    n[side, 0], n[side, 1] = p[side, 0], p[side, 1]
-    n[face == 1, 2] = -1
-    n[face == 2, 2] = 1
-    return n
-
-
 PRIMITIVE = Primitive(
     place=30, name="cy", title="cylinder", solid="radius 1 about the z axis, from z = 0 to z = 1",
     arguments=(), pair_names=None, curved=True, check=None, box=lambda shape: ROUND,
     mesh=lambda shape, facets: column(facets[0], surface=0),
     triangles=lambda shape, facets: 4 * facets[0],
-    spans=spans, normal=normal, facets=facets)
+    spans=spans, normal=rays.round_normal(False), facets=facets)

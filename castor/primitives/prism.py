@@ -23,16 +23,9 @@ def check_sides(shape: tuple, location: Location, path: object) -> None:
         raise GeometryError(f"the number of sides N of {path} is too large ({n:g})", location)
 
 
-def spans(shape, o, d):
-    n = int(shape[0])
-    if n > 512:
-        return rays.many_sides(n, False, o, d)
-    return rays.halfspaces(*rays.prism_planes(n, False), o, d)
-
-
 PRIMITIVE = Primitive(
     place=60, name="pr", title="prism", solid="a regular N-gon of circumradius 1 swept from z = 0 to 1",
     arguments=(SIDES,), pair_names=None, curved=False, check=check_sides,
     box=lambda shape: ROUND, mesh=lambda shape, facets: column(int(shape[0])),
     triangles=lambda shape, facets: 4 * int(shape[0]),
-    spans=spans, normal=rays.polygon_normal(False))
+    spans=rays.polygon_spans(False), normal=rays.polygon_normal(False))

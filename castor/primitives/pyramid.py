@@ -10,16 +10,9 @@ from castor.primitives.facets import spire
 from castor.primitives.prism import SIDES, check_sides
 
 
-def spans(shape, o, d):
-    n = int(shape[0])
-    if n > 512:
-        return rays.many_sides(n, True, o, d)
-    return rays.halfspaces(*rays.prism_planes(n, True), o, d)
-
-
 PRIMITIVE = Primitive(
     place=70, name="py", title="pyramid", solid="a regular N-gon base of circumradius 1, apex (0, 0, 1)",
     arguments=(SIDES,), pair_names=None, curved=False, check=check_sides,
     box=lambda shape: ROUND, mesh=lambda shape, facets: spire(int(shape[0])),
     triangles=lambda shape, facets: 4 * int(shape[0]),
-    spans=spans, normal=rays.polygon_normal(True))
+    spans=rays.polygon_spans(True), normal=rays.polygon_normal(True))

@@ -106,6 +106,33 @@ def many_sides(n: int, pyramid: bool, o, d):
     return single(best_in, best_out, face_in, face_out)
 
 
+def polygon_spans(pyramid: bool):
+    """The spans of rays through the prism (or the pyramid) on the regular N-gon:
+    N + 2 (N + 1) half-spaces, or past 512 sides the polygon found by angle."""
+    def spans(shape, o, d):
+        n = int(shape[0])
+        if n > 512:
+            return many_sides(n, pyramid, o, d)
+        return halfspaces(*prism_planes(n, pyramid), o, d)
+    return spans
+
+
+def round_normal(cone: bool):
+    """The outward normal of the cylinder (or the cone) at p on face 0 (the side),
+    1 (the bottom) or 2 (the top): the side's normal points away from the axis and,
+    on the cone, up as steeply as the side leans."""
+    def normal(shape, p, face):
+        n = np.zeros_like(p)
+        side = face == 0
+        n[side, 0], n[side, 1] = p[side, 0], p[side, 1]
+        if cone:
+            n[side, 2] = np.hypot(p[side, 0], p[side, 1])
+        n[face == 1, 2] = -1
+        n[face == 2, 2] = 1
+        return n
+    return normal
+
+
 def polygon_normal(pyramid: bool):
     def normal(shape, p, face):
         return prism_planes(int(shape[0]), pyramid)[0][face]
