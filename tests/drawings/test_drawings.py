@@ -235,10 +235,13 @@ def test_dxf_in_metres_with_a_layer_per_object(tmp_path):
     assert {h.dxf.layer for h in doc2.modelspace().query("HATCH")} - {"sheet"} == {"lampe"}
 
 
+# a plan, an elevation and a section of each example; the bus shelter, by far the
+# heaviest to make, as a plan only (the four others' elevations and sections cover those)
 EXAMPLE_DRAWINGS = [
     (name, drawing)
     for name in ("bus_shelter", "car", "door", "house", "staircase")
     for drawing in (("--section", "z=1.2"), ("--view", "front"), ("--section", "x=1"))
+    if name != "bus_shelter" or drawing[0] == "--section" and drawing[1] == "z=1.2"
 ]
 
 
