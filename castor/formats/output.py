@@ -15,11 +15,13 @@ import os
 import re
 import sys
 import tempfile
-from typing import Iterable, Iterator, NamedTuple, Union
+from typing import TYPE_CHECKING, Iterable, Iterator, NamedTuple, Union
 
 from castor.diagnostics import CastorError, Location
-from castor.mesh.frame import Frame
 from castor.formats import registry
+
+if TYPE_CHECKING:  # numpy with it: not at start-up (castor --check checks -o with this module)
+    from castor.mesh.frame import Frame
 
 _PATTERN = re.compile(r"%0?\d*d")
 _PERCENT = re.compile(r"%%|%0?\d*d|%")
