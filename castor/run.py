@@ -387,10 +387,11 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
     return 1 if reporter.errors else 0
 
 
-def _process_pools() -> type:
-    from concurrent.futures import ProcessPoolExecutor
-
-    return ProcessPoolExecutor
+def _process_pools() -> type | tuple:
+    """ProcessPoolExecutor, to tell a pool of processes by; () (nothing is one) where
+    its module was never imported, so none was made: a thread's run needs no import."""
+    module = sys.modules.get("concurrent.futures.process")
+    return module.ProcessPoolExecutor if module is not None else ()
 
 
 def _spool_directory(target: str | None) -> str:
