@@ -19,8 +19,6 @@ from __future__ import annotations
 
 import re
 
-from castor.language.tables import PLAIN_LAYOUT
-
 
 class Failed(Exception):
     """The text is not a statement (or a program) of the grammar."""
@@ -85,11 +83,10 @@ def _tree(name: str):
 
 
 class Parser:
-    """Parses text with the exported tables, calling ``transformer`` as it reduces."""
+    """Parses text with the exported tables (castor.language.tables.export, which
+    checks their layout), calling ``transformer`` as it reduces."""
 
     def __init__(self, tables: dict, transformer):
-        if tables.get("layout") != PLAIN_LAYOUT:
-            raise ValueError("tables of another layout")
         if any(hasattr(transformer, name) for name in tables["terminals"]):
             raise ValueError("the transformer handles terminals")  # lark would call it on tokens
         self._states = tables["states"]  # per state: symbol -> shift target (>= 0) or -1 - rule

@@ -205,10 +205,13 @@ def load_plain(grammar: str, transformer, sources=None):
                     continue  # another user's file in a shared directory: not ours to trust
                 if handle.readline() != key:
                     continue
+                data = marshal.loads(handle.read())
+                if data.get("layout") != PLAIN_LAYOUT:
+                    continue
                 from castor.language.lalr import Parser
 
-                return Parser(marshal.loads(handle.read()), transformer)
-        except (OSError, EOFError, ValueError, KeyError, TypeError, IndexError):
+                return Parser(data, transformer)
+        except (OSError, EOFError, ValueError, KeyError, TypeError, IndexError, AttributeError):
             continue
     return None
 
