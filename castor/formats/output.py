@@ -14,7 +14,6 @@ import itertools
 import os
 import re
 import sys
-import tempfile
 from typing import TYPE_CHECKING, Iterable, Iterator, NamedTuple, Union
 
 from castor.diagnostics import CastorError, Location
@@ -183,6 +182,8 @@ class AtomicFile:
                 # /dev/null, a named pipe, a terminal: written into, never renamed over
                 self.handle = open(path, "wb")
                 return
+            import tempfile  # here: the stream to standard output needs none of it
+
             directory = os.path.dirname(os.path.abspath(path))
             fd, self.temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
             _temporaries.add(self.temporary)

@@ -185,11 +185,18 @@ def save_plain(target: str | os.PathLike, parser, grammar: str) -> bool:
 
 def cached_plain() -> Path:
     """Where a checkout keeps the plain tables between runs: the temporary
-    directory, one file a user (as lark's own cache)."""
-    import tempfile
+    directory (as tempfile finds it from TMPDIR, TEMP or TMP, without importing
+    it: this is read at every start), one file a user, as lark's own cache."""
+    directory = next((os.environ[name] for name in ("TMPDIR", "TEMP", "TMP")
+                      if os.environ.get(name)), None)
+    if directory is None and os.name == "posix":
+        directory = "/tmp"
+    if directory is None:
+        import tempfile
 
+        directory = tempfile.gettempdir()
     user = os.getuid() if hasattr(os, "getuid") else 0
-    return Path(tempfile.gettempdir()) / f"castor-lalr-{user}.tables"
+    return Path(directory) / f"castor-lalr-{user}.tables"
 
 
 def load_plain(grammar: str, transformer, sources=None):
@@ -197,7 +204,8 @@ def load_plain(grammar: str, transformer, sources=None):
     else from those the temporary directory keeps (written by this user); None
     when neither was made from this grammar."""
     key = _PLAIN_MAGIC + _plain_key(grammar) + b"\n"
-    for source in sources or (PLAIN, cached_plain()):
+    for source in sources or (PLAIN, None):
+        source = cached_plain() if source is None else source
         try:
             with open(source, "rb") as handle:
                 if source != PLAIN and hasattr(os, "getuid") and \
