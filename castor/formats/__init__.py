@@ -28,7 +28,6 @@ from __future__ import annotations
 import ast
 import importlib
 import os
-import pkgutil
 from dataclasses import dataclass, fields
 from typing import Callable
 
@@ -154,6 +153,22 @@ def declared(module: str, source: str) -> list[Format] | None:
     return records
 
 
+def source_modules(path) -> list[tuple[str, str]]:
+    """(directory, name) of each module of a package whose ``__path__`` is ``path``,
+    by name: its ``NAME.py`` files (pkgutil's listing, without importing pkgutil)."""
+    found = {}
+    for directory in path:
+        try:
+            entries = os.listdir(directory)
+        except OSError:
+            continue
+        for entry in entries:
+            name, dot, suffix = entry.partition(".")
+            if suffix == "py" and name.isidentifier():
+                found.setdefault(name, directory)
+    return sorted((directory, name) for name, directory in found.items())
+
+
 _registry: dict[str, Format] | None = None
 _SKIPPED = {"output"}  # modules of this package that declare no format
 
@@ -175,12 +190,12 @@ def registry() -> dict[str, Format]:
     global _registry
     if _registry is None:
         found: list[Format] = []
-        for info in pkgutil.iter_modules(__path__):
-            if info.name.startswith("_") or info.name in _SKIPPED:
+        for directory, name in source_modules(__path__):
+            if name.startswith("_") or name in _SKIPPED:
                 continue
-            module = f"{__name__}.{info.name}"
+            module = f"{__name__}.{name}"
             records = None
-            path = os.path.join(getattr(info.module_finder, "path", ""), f"{info.name}.py")
+            path = os.path.join(directory, f"{name}.py")
             try:
                 with open(path, encoding="utf-8") as handle:
                     records = declared(module, handle.read())
