@@ -151,3 +151,23 @@ def test_a_scene_is_read_without_importing_lark_and_its_syntax_error_still_says_
     assert "LARK False" in second.stderr, second.stderr
     assert "<stdin>:1:13: error: expected ',' or ')' after an argument, found '!cu'" in wrong.stderr
     assert "object 'x' is not defined (its definition had errors)" in wrong.stderr
+
+
+def test_an_installed_castor_reads_a_scene_without_lark_from_its_first_run(tmp_path):
+    """setup.py's build step (what `pip install .` runs) ships the driver's tables:
+    with an empty temporary directory, a correct scene imports no lark."""
+    build = tmp_path / "build"
+    done = subprocess.run([sys.executable, "setup.py", "-q", "build_py", "--build-lib", str(build)],
+                          cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert (build / "castor" / "language" / "castor.lalr").stat().st_size > 1000
+    (tmp_path / "tmp").mkdir()
+    code = ("import sys; sys.argv[0] = 'castor'; from castor import cli\n"
+            "try:\n    cli.main(sys.argv[1:])\nexcept SystemExit:\n    pass\n"
+            "print('LARK', 'lark' in sys.modules, cli.__file__, file=sys.stderr)\n")
+    env = {"PYTHONPATH": str(build), "TMPDIR": str(tmp_path / "tmp"), "PATH": "/usr/bin:/bin"}
+    cube = subprocess.run([sys.executable, "-c", code, "--no-cpp", "-"], input="> !cu(1, 0, 0);\n",
+                          capture_output=True, text=True, env=env, cwd=tmp_path, timeout=120)
+    assert "endframe 1 6" in cube.stdout, cube.stderr
+    assert f"LARK False {build}" in cube.stderr, cube.stderr
+    assert list((tmp_path / "tmp").iterdir()) == []  # nothing kept: the package has them
