@@ -28,8 +28,7 @@ from __future__ import annotations
 import ast
 import importlib
 import os
-from dataclasses import dataclass, fields
-from typing import Callable
+from typing import Callable, NamedTuple
 
 # What a format is made from, and so what its ``write`` is given:
 KINDS = {
@@ -44,9 +43,9 @@ KINDS = {
 }
 
 
-@dataclass(frozen=True)
-class Format:
-    """One format: how castor names, writes and (perhaps) reads it."""
+class Format(NamedTuple):
+    """One format: how castor names, writes and (perhaps) reads it. (A NamedTuple:
+    castor --help and --version list the formats without importing dataclasses.)"""
 
     name: str  # what -f takes
     suffixes: tuple[str, ...]  # file name endings; the first is the one castor writes
@@ -111,7 +110,7 @@ class OnUse:
         self._function = None
 
 
-_FIELDS = [f.name for f in fields(Format)]
+_FIELDS = Format._fields
 _FUNCTIONS = {"write", "write_pieces", "read", "companions"}  # the fields that name functions
 _MARK = "\nFORMATS = "  # where a module's records begin
 

@@ -332,7 +332,7 @@ def _lark(builder: Builder):
                 lark = Lark(grammar, transformer=builder, cache=True, **saved.OPTIONS)
             except OSError:  # an unwritable temporary directory: build without the cache
                 lark = Lark(grammar, transformer=builder, **saved.OPTIONS)
-        lark = _local.lark = lark
+        _local.lark = lark
     return lark
 
 

@@ -17,14 +17,14 @@ SCENE = "maison = !cu(1, 0, 0);\n> maison;\n"
 
 # castor with one format's writer replaced by one that gives nothing (None, or no bytes)
 NOTHING = """
-import dataclasses, sys
+import sys
 from castor import cli, formats
 name, nothing = sys.argv[1], (None if sys.argv[2] == "none" else b"")
 record = formats.registry()[name]
 write = lambda *args, **kwargs: nothing
 pieces = (lambda *args, **kwargs: iter([] if nothing is None else [b""])) \\
     if record.write_pieces is not None else None
-formats.registry()[name] = dataclasses.replace(record, write=write, write_pieces=pieces)
+formats.registry()[name] = record._replace(write=write, write_pieces=pieces)
 sys.exit(cli.main(sys.argv[3:]))
 """
 
