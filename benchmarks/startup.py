@@ -4,6 +4,7 @@
     python benchmarks/startup.py                      this checkout
     python benchmarks/startup.py --repo ../before     ... and the checkout in ../before
     python benchmarks/startup.py --commit 490f77f     ... and that commit (git archive)
+    python benchmarks/startup.py --built ...          ... and each built as pip installs it
 
 Target (issue 18): at most 0.15 s for one cube. Each figure is the median of
 BENCH_RUNS runs (15) after one run not counted, as wall-clock and as CPU time
@@ -21,7 +22,9 @@ The parser's tables: an installed castor reads them from the package (made by
 ``pip install .``; in a checkout ``python castor/language/tables.py castor/language``
 makes them); a checkout keeps them in the temporary directory from its first run.
 The line "first run, cold temporary directory" is that first run (lark imported
-and the parser built), with an empty TMPDIR each time.
+and the parser built), with an empty TMPDIR each time. ``--built`` adds, for each
+checkout with a setup.py, the package as its build step makes it
+(``setup.py build_py``, what ``pip install .`` runs), tables shipped inside.
 """
 
 from __future__ import annotations
@@ -29,6 +32,7 @@ from __future__ import annotations
 import argparse
 import os
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -88,12 +92,29 @@ def _exported(commit: str, into: Path) -> Path:
     return target
 
 
+def _built(checkout: Path, into: Path) -> Path | None:
+    """The package as the checkout's build step makes it, or None (no setup.py); built
+    from a copy, as the build writes beside its sources (egg-info)."""
+    if not (checkout / "setup.py").exists():
+        return None
+    source = into.with_name(into.name + "-source")
+    shutil.copytree(checkout, source, ignore=shutil.ignore_patterns(
+        ".git", "__pycache__", "build", "*.egg-info", "castor.tables", "castor.lalr"))
+    done = subprocess.run([sys.executable, "setup.py", "-q", "build_py", "--build-lib", str(into)],
+                          cwd=source, capture_output=True, text=True)
+    if done.returncode != 0:
+        raise SystemExit(f"building {checkout} failed: {done.stderr[:400]}")
+    return into
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repo", action="append", default=[], metavar="DIR",
                     help="another checkout to measure beside this one")
     ap.add_argument("--commit", action="append", default=[], metavar="REV",
                     help="a commit of this repository to measure beside this one")
+    ap.add_argument("--built", action="store_true",
+                    help="also each checkout built as `pip install .` builds it")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as work:
         work_dir = Path(work)
@@ -105,6 +126,11 @@ def main() -> None:
         checkouts = [("this checkout", HERE)] + [(d, Path(d).resolve()) for d in args.repo]
         for commit in args.commit:
             checkouts.append((commit, _exported(commit, work_dir)))
+        if args.built:
+            for label, checkout in list(checkouts):
+                built = _built(checkout, work_dir / f"built-{len(checkouts)}")
+                if built is not None:
+                    checkouts.append((f"{label[-16:]} (built)", built))
         python = [sys.executable]
         reference = _environment(str(cache))
         print(f"{RUNS} runs each, median; load average {os.getloadavg()[0]:.2f} "
