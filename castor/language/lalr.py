@@ -118,41 +118,45 @@ class Parser:
                 frozenset(ignored), frozenset(newlines))
         return lexer
 
+    def _tokens(self, text: str, state_stack: list):
+        """The text's tokens, each read by the lexer of the state the parser is in
+        when it asks (lark's contextual lexer), then the end ("$END", None)."""
+        end = len(text)
+        pos, line, line_start = 0, 1, 0  # where the next token begins; its line's start
+        while pos < end:
+            matchers, ignored, newlines = self._lexer(state_stack[-1])
+            for match in matchers:
+                found = match(text, pos)
+                if found is not None:
+                    break
+            else:
+                raise Failed(pos)
+            value, kind = found.group(0), found.lastgroup
+            token = None
+            if kind not in ignored:
+                token = Token(value)
+                token.type, token.line, token.column = kind, line, pos - line_start + 1
+            if kind in newlines:
+                count = value.count("\n")
+                if count:
+                    line += count
+                    line_start = pos + value.rindex("\n") + 1
+            pos += len(value)
+            if token is not None:
+                yield kind, token
+        yield "$END", None
+
     def parse(self, text: str, start: str):
         """The value the transformer gives the start rule; raises Failed."""
         states, rules = self._states, self._rules
         state_stack = [self._starts[start]]
         value_stack: list = []
-        end = len(text)
-        pos, line, line_start = 0, 1, 0  # where the next token begins; its line's start
-        while pos < end:
-            matchers, ignored, newlines = self._lexer(state_stack[-1])
-            while pos < end:
-                for match in matchers:
-                    found = match(text, pos)
-                    if found is not None:
-                        break
-                else:
-                    raise Failed(pos)
-                value, kind = found.group(0), found.lastgroup
-                token = None
-                if kind not in ignored:
-                    token = Token(value)
-                    token.type, token.line, token.column = kind, line, pos - line_start + 1
-                if kind in newlines:
-                    count = value.count("\n")
-                    if count:
-                        line += count
-                        line_start = pos + value.rindex("\n") + 1
-                pos += len(value)
-                if token is not None:
-                    break
-            else:
-                break  # only ignored text was left
+        end_state = self._ends[start]
+        for kind, token in self._tokens(text, state_stack):
             while True:  # reduce as far as the token allows, then shift it
                 action = states[state_stack[-1]].get(kind)
-                if action is None:
-                    raise Failed(pos)
+                if action is None or (action >= 0 and token is None):
+                    raise Failed(kind)
                 if action >= 0:
                     state_stack.append(action)
                     value_stack.append(token)
@@ -166,19 +170,6 @@ class Parser:
                     children = []
                 value_stack.append(callback(children))
                 state_stack.append(states[state_stack[-1]][origin])
-        end_state = self._ends[start]
-        while True:  # the end of the text: reduce to the start rule
-            action = states[state_stack[-1]].get("$END")
-            if action is None or action >= 0:
-                raise Failed(end)
-            origin, size, callback = rules[-1 - action]
-            if size:
-                children = value_stack[-size:]
-                del state_stack[-size:]
-                del value_stack[-size:]
-            else:
-                children = []
-            value_stack.append(callback(children))
-            state_stack.append(states[state_stack[-1]][origin])
-            if state_stack[-1] == end_state:
-                return value_stack[-1]
+                if token is None and state_stack[-1] == end_state:
+                    return value_stack[-1]
+        raise Failed("the end")  # not reached: "$END" either reduces to the start or fails
