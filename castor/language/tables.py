@@ -16,8 +16,9 @@ ignored. Without the plain tables (a checkout), the first run builds lark's
 parser and keeps them in the temporary directory, as lark keeps its own cache
 there, for the runs after it.
 
-This module imports nothing from castor, so that the build can run it from the
-source tree by its path.
+This module imports nothing from castor at its top (the driver, only to load
+tables at run time), so that the build can run it from the source tree by its
+path.
 """
 
 from __future__ import annotations
