@@ -159,6 +159,8 @@ class Sequencer:
                         f"raise the tolerance or lower --max-polygons", result.location))
             else:
                 _discard(result.data)
+                if self.output is not None and result.picture is None and not result.errors:
+                    self.reporter.error(self.output.unmade(result.number, result.location))
             if result.picture is not None:
                 self.pictures.append(result.picture)
             if result.mesh is not None:
@@ -361,6 +363,8 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
         except TooManyErrors:
             pass
         _warn_unused_overrides(evaluation.overrides, interpreter, reporter)
+        if chosen.kind == "bim":
+            _warn_unknown_ifc_classes(settings.bim.classes, interpreter, reporter)
         if interpreter.frames_attempted == 0 and not how.check and not reporter.errors:
             reporter.warning("the scene has no '>' command, so nothing was written; "
                              "'> OBJECT;' writes an object's polygons")
@@ -387,10 +391,11 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
     return 1 if reporter.errors else 0
 
 
-def _process_pools() -> type:
-    from concurrent.futures import ProcessPoolExecutor
-
-    return ProcessPoolExecutor
+def _process_pools() -> type | tuple:
+    """ProcessPoolExecutor, to tell a pool of processes by; () (nothing is one) where
+    its module was never imported, so none was made: a thread's run needs no import."""
+    module = sys.modules.get("concurrent.futures.process")
+    return module.ProcessPoolExecutor if module is not None else ()
 
 
 def _spool_directory(target: str | None) -> str:
@@ -417,6 +422,18 @@ def _warn_unused_overrides(overrides, interpreter, reporter) -> None:
         if name not in names:
             reporter.warning(f"--set {name}: the scene neither assigns nor uses a parameter "
                              f"'{name}'{suggestion(name, names - set(overrides))}")
+
+
+def _warn_unknown_ifc_classes(classes, interpreter, reporter) -> None:
+    """An --ifc-class NAME=CLASS whose NAME is no object of the scene gives no element
+    its class: most likely a typo."""
+    from castor.language.parse import suggestion
+
+    objects = set(interpreter.tables.objects) | interpreter.tables.broken
+    for name, cls in classes:
+        if name not in objects:
+            reporter.warning(f"--ifc-class {name}: the scene has no object '{name}', so nothing "
+                             f"is made an {cls}{suggestion(name, objects)}")
 
 
 def _finish_collected(out, how: RunSettings, settings: FrameSettings,

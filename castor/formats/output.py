@@ -14,12 +14,13 @@ import itertools
 import os
 import re
 import sys
-import tempfile
-from typing import Iterable, Iterator, NamedTuple, Union
+from typing import TYPE_CHECKING, Iterable, Iterator, NamedTuple, Union
 
 from castor.diagnostics import CastorError, Location
-from castor.mesh.frame import Frame
 from castor.formats import registry
+
+if TYPE_CHECKING:  # numpy with it: not at start-up (castor --check checks -o with this module)
+    from castor.mesh.frame import Frame
 
 _PATTERN = re.compile(r"%0?\d*d")
 _PERCENT = re.compile(r"%%|%0?\d*d|%")
@@ -181,6 +182,8 @@ class AtomicFile:
                 # /dev/null, a named pipe, a terminal: written into, never renamed over
                 self.handle = open(path, "wb")
                 return
+            import tempfile  # here: the stream to standard output needs none of it
+
             directory = os.path.dirname(os.path.abspath(path))
             fd, self.temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
             _temporaries.add(self.temporary)
@@ -292,6 +295,19 @@ def render_pieces(frame: Frame, name: str, path: str | None = None) -> Iterator[
     return chunked(frame, path)
 
 
+def _with_bytes(data: Data) -> Data | None:
+    """``data``, or None where it holds no byte (its pieces read up to the first byte)."""
+    if isinstance(data, Spooled):
+        return data
+    if isinstance(data, (bytes, bytearray)):
+        return data if data else None
+    pieces = iter(data)
+    for piece in pieces:
+        if piece:
+            return itertools.chain([piece], pieces)
+    return None
+
+
 def to_stdout(data: Data) -> None:
     """Bytes to standard output, a piece at a time (through its text layer when
     it has no bytes one, as under a test's redirection)."""
@@ -367,12 +383,22 @@ class Output:
         refusal = self.refusal(self.frames, number, location)
         if refusal is not None:
             raise refusal
+        data = _with_bytes(data)
+        if data is None:  # a file of nothing would pass for the frame: the old one stays
+            raise self.unmade(number, location)
         if self.path is None:
             to_stdout(data)
             return
         for companion, content in companions.items():
             write_atomically(companion, content)
         write_atomically(frame_path(self.path, number) if patterned else self.path, data)
+
+    def unmade(self, number: int, location: Location) -> OutputError:
+        """The error of a frame its format's writer gave no bytes for: nothing is written."""
+        patterned = bool(self.path and has_pattern(self.path))
+        where = (frame_path(self.path, number) if patterned else self.path) or "standard output"
+        return OutputError(f"{where} not written: the {self.format} writer gave no bytes for "
+                           f"frame {number}", location)
 
     def refusal(self, count: int, number: int, location: Location) -> OutputError | None:
         """Why this output cannot take its ``count``-th frame (frame ``number``), or None."""

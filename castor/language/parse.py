@@ -15,14 +15,11 @@ import threading
 from functools import lru_cache
 from typing import Iterator
 
-from lark import Lark, Token
-from lark.exceptions import UnexpectedInput
-
 from castor.diagnostics import CastorError, EvaluationError, LimitError, SceneError
 from castor.language.expressions import FUNCTIONS, arity_message, evaluate
+from castor.language.lalr import Failed, Token
 from castor.language.reader import Chunk
 from castor.language.vocabulary import PRIMITIVES, TRANSFORMS
-from castor.language.syntax_errors import DEFINED, syntax_error
 from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, Facetize, NamedNode, Number, ObjectDef, Param,
                     ParamDef, PrimitiveNode, Repeat, Step, Tables, TransformedNode, Unary)
 
@@ -296,17 +293,38 @@ class Builder:
 _local = threading.local()
 
 
-def _lark_and_builder(tables: Tables) -> tuple[Lark, Builder]:
-    """One LALR parser for each thread: from the tables shipped in the package
-    (castor.language.tables), else built (the slow part of start-up; lark then
-    caches its tables in the temporary directory between runs).
-    Its builder is handed each Parser's tables before each parse, so that
-    parsers made one after another, or in other threads, never mix up scenes."""
+def _parser_and_builder(tables: Tables):
+    """One parser for each thread, and its builder: castor's own driver
+    (castor.language.lalr) on the plain tables shipped in the package or kept in
+    the temporary directory, which reads a scene without importing lark; lark's
+    parser where there are none yet (the first run of a checkout, which keeps
+    them for the next). The builder is handed each Parser's tables before each
+    parse, so that parsers made one after another, or in other threads, never mix
+    up scenes."""
     shared = getattr(_local, "shared", None)
     if shared is None:
         from castor.language import tables as saved
 
         builder = Builder(tables)
+        parser = saved.load_plain(grammar_text(), builder)
+        if parser is None:
+            parser = _lark(builder)
+            saved.save_plain(saved.cached_plain(), parser, grammar_text())
+        shared = _local.shared = (parser, builder)
+    return shared
+
+
+def _lark(builder: Builder):
+    """This thread's lark parser, calling ``builder`` as it reduces: from the tables
+    shipped in the package (castor.language.tables), else built (lark then caches
+    its tables in the temporary directory between runs). castor runs it on what
+    its own driver refuses: lark's exception words the syntax error."""
+    lark = getattr(_local, "lark", None)
+    if lark is None:
+        from lark import Lark
+
+        from castor.language import tables as saved
+
         grammar = grammar_text()
         lark = saved.load(grammar, builder)  # the tables made when the package was built
         if lark is None:
@@ -314,8 +332,8 @@ def _lark_and_builder(tables: Tables) -> tuple[Lark, Builder]:
                 lark = Lark(grammar, transformer=builder, cache=True, **saved.OPTIONS)
             except OSError:  # an unwritable temporary directory: build without the cache
                 lark = Lark(grammar, transformer=builder, **saved.OPTIONS)
-        shared = _local.shared = (lark, builder)
-    return shared
+        _local.lark = lark
+    return lark
 
 
 class Parser:
@@ -327,11 +345,11 @@ class Parser:
 
     def _ready(self):
         """This thread's parser, its builder working on this Parser's tables."""
-        lark, builder = _lark_and_builder(self.tables)
+        parser, builder = _parser_and_builder(self.tables)
         builder.tables = self.tables
         builder._param_sets = self.param_sets
         self.builder = builder
-        return lark
+        return parser
 
     def parameter_names(self) -> set[str]:
         """Every parameter name the statements parsed so far assign or use."""
@@ -340,7 +358,7 @@ class Parser:
     def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | Facetize | CastorError"]:
         """Parse one chunk. A missing ';' is reported, the statement is taken as if it
         were there, and parsing resumes with the next line."""
-        lark = self._ready()
+        parser = self._ready()
         pending = [chunk]
         patched: set[int] = set()  # chunks given their missing ';': never patched twice
         while pending:
@@ -348,11 +366,20 @@ class Parser:
             self.builder.chunk = chunk
             self.builder.faults = []
             try:
-                statement = lark.parse(chunk.text, start="statement")
+                try:
+                    statement = parser.parse(chunk.text, start="statement")
+                except Failed:  # not a statement: lark says why, in its exception
+                    self.builder.faults = []
+                    statement = _lark(self.builder).parse(chunk.text, start="statement")
             except LimitError as exc:
                 yield exc
                 continue
-            except UnexpectedInput as exc:
+            except RecursionError:
+                yield LimitError("statement nested too deeply", chunk.location(1, 1))
+                continue
+            except _lark_errors() as exc:  # a syntax error, as lark saw it
+                from castor.language.syntax_errors import DEFINED, syntax_error
+
                 error, head, rest = syntax_error(exc, chunk, self.builder.tables)
                 yield error
                 defined = DEFINED.match(chunk.text)
@@ -363,9 +390,6 @@ class Parser:
                     patched.add(id(head))
                     rest = [head] + rest
                 pending[:0] = rest
-                continue
-            except RecursionError:
-                yield LimitError("statement nested too deeply", chunk.location(1, 1))
                 continue
             yield from self._deliver(statement, self.builder.faults)
 
@@ -395,14 +419,14 @@ class Parser:
                 for item in self._deliver(statement, faults):
                     execute(item)
 
-            lark = self._ready()
+            parser = self._ready()
             self.builder.chunk = _combined(batch)
             self.builder.faults = []
             self.builder.on_statement = on_statement
             try:
-                lark.parse(self.builder.chunk.text, start="program")
+                parser.parse(self.builder.chunk.text, start="program")
                 return
-            except (UnexpectedInput, LimitError, RecursionError):
+            except (Failed, LimitError, RecursionError) + _lark_errors():
                 pass  # the chunk where it failed is parsed again below, alone
             finally:
                 self.builder.on_statement = None
@@ -410,6 +434,14 @@ class Parser:
             for item in self.parse(chunks[failed]):
                 execute(item)
             first = failed + 1
+
+
+def _lark_errors() -> tuple:
+    """lark's syntax error, where lark runs (it is imported): a parse by lark fails with it."""
+    import sys
+
+    exceptions = sys.modules.get("lark.exceptions")
+    return (exceptions.UnexpectedInput,) if exceptions is not None else ()
 
 
 def assignment_value(name: str, expr: str, parameters: dict[str, float]) -> float:

@@ -11,15 +11,27 @@ and the editor files read this table and keep none of their own.
 from __future__ import annotations
 
 import importlib
-import pkgutil
+import os
 
 from castor.primitives.base import FLAT, Argument, Mesh, Primitive
 
 
+def _module_names() -> list[str]:
+    """The modules of this package (its NAME.py files: pkgutil's listing, without
+    importing pkgutil at start-up)."""
+    names = set()
+    for directory in __path__:
+        for entry in os.listdir(directory):
+            name, dot, suffix = entry.partition(".")
+            if suffix == "py" and name.isidentifier() and not name.startswith("_"):
+                names.add(name)
+    return sorted(names)
+
+
 def _gathered() -> dict[str, Primitive]:
     found = []
-    for module in pkgutil.iter_modules(__path__):
-        declared = getattr(importlib.import_module(f"{__name__}.{module.name}"), "PRIMITIVE", None)
+    for name in _module_names():
+        declared = getattr(importlib.import_module(f"{__name__}.{name}"), "PRIMITIVE", None)
         if isinstance(declared, Primitive):
             found.append(declared)
     return {p.name: p for p in sorted(found, key=lambda p: p.place)}
