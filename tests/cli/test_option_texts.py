@@ -64,7 +64,7 @@ def cpp_or_not(option):
     return [] if option in ("-D", "-U", "-I") else ["--no-cpp"]
 
 
-@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(option=st.sampled_from(OPTIONS), text=TEXT)
 def test_whole_runs_end_with_a_known_status(option, text):
     if "\x00" in text:
