@@ -24,7 +24,7 @@ from pathlib import Path
 from _common import runs_from_env, table
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent / "tests"))
+sys.path.insert(0, str(HERE.parent / "tests" / "preview"))
 from test_lsp import Client  # noqa: E402
 
 
