@@ -347,7 +347,7 @@ def _remembered(key: tuple, settings: tuple) -> _Pass | None:
     name, text = key[0][0]
     try:
         patched = _patched(base, name, text)
-    except (IndexError, ValueError):  # a layout it did not expect: a full pass
+    except (LookupError, ValueError):  # a layout it did not expect: a full pass
         patched = None
     if patched is not None:
         _remember(key, settings, patched)
@@ -357,6 +357,9 @@ def _remembered(key: tuple, settings: tuple) -> _Pass | None:
 _MAIN_MARKER = re.compile(r'#line (\d+) "((?:[^"\\]|\\.)*)"$')
 _IDENTIFIER = re.compile(r"[A-Za-z_]\w*")
 _UNSAFE = ("#", "\\", '"', "'", "/*", "*/", "\r", "??", "\f", "\v")
+
+
+_COMMENT_MARKS = re.compile(r"/\*|\*/|//")
 
 
 def _plain(line: str, macros: frozenset) -> bool:
@@ -382,12 +385,24 @@ def _patched(base: _Pass, name: str, new_text: str) -> _Pass | None:
     if not removed and not added:
         return None
     macros = base.macro_names()
-    if not all(_plain(line, macros) for line in removed + added):
+    marks = [_COMMENT_MARKS.findall(line) for line in removed]
+    if any(marks):  # comments kept as they were (a value changed before its comment)
+        if len(added) != len(removed) or marks != [_COMMENT_MARKS.findall(line)
+                                                   for line in added]:
+            return None
+        if any(line != line.rstrip() for line in removed + added):
+            return None
+        removed_plain = [_COMMENT_MARKS.sub(" ", line).rstrip() for line in removed]
+        added_plain = [_COMMENT_MARKS.sub(" ", line).rstrip() for line in added]
+    else:
+        removed_plain, added_plain = removed, added
+    if not all(_plain(line, macros) for line in removed_plain + added_plain):
         return None
     shift = len(added) - len(removed)
     if shift and "__LINE__" in new_text:
         return None
-    # the nearest lines that are not blank on either side must be plain too
+    # the nearest lines that are not blank on either side: plain lines, or
+    # whole directives (an #include, an #endif) that cannot reach into the change
     before = first - 1
     while before >= 0 and not old[before].strip():
         before -= 1
@@ -396,27 +411,62 @@ def _patched(base: _Pass, name: str, new_text: str) -> _Pass | None:
     after = len(old) - tail
     while after < len(old) and not old[after].strip():
         after += 1
+    directives = set()
     for k in (before, after):
-        if k < len(old) and not _plain(_uncommented(old[k]), macros):
+        if k >= len(old) or _plain(_uncommented(old[k]), macros):
+            continue
+        if not _whole_directive(old[k]):
             return None
+        directives.add(k)
     lines = base.text.split("\n")
     found = _main_lines(lines)
     if found is None:
         return None
     marker, where = found
     # from one side to the other, each line is in the output as it is, in order
-    low, high = before, min(after, len(old) - 1)
     previous = None
-    for k in range(low, high + 1):
+    for k in range(before, min(after, len(old) - 1) + 1):
+        if k in directives:
+            previous = None
+            continue
         at = where.get(k + 1)
+        if at is None and not old[k].strip():
+            previous = None  # an empty line pcpp gave as a #line marker
+            continue
         if at is None or lines[at] != old[k] or (previous is not None and at != previous + 1):
             return None
         previous = at
+    # and the change is among lines that are given (not in a block #if leaves out):
+    # next to a plain line, or in place of one that is not blank
+    if not (before not in directives or (after < len(old) and after not in directives)
+            or any(line.strip() for line in removed)):
+        return None
     if shift and any(location.file == _unescaped(marker) and location.line > first
                      for location in base.p.definitions.values()):
         return None  # a #define after the change would have moved
-    start = where[first + 1] if first < len(old) else where[first] + 1
-    out = lines[:start] + added + lines[start + len(removed):]
+    if removed or (first < len(old) and first not in directives and first + 1 in where):
+        start = where[first + 1]
+    elif first - 1 not in directives and first in where:
+        start = where[first] + 1
+    else:
+        return None
+    rest = lines[start + len(removed):]
+    if any(line.strip() for line in rest):
+        if all(line.startswith("#") for line in rest if line.strip()):
+            return None
+        out = lines[:start] + added + rest
+        if not added and start > 0 and out[start - 1].startswith("#") and \
+                out[start].startswith("#"):
+            del out[start - 1]  # a marker for lines no longer there, as pcpp leaves none
+    else:  # the end of the output, whose empty lines pcpp drops
+        if rest != ["", ""]:
+            return None
+        out = lines[:start] + added
+        while out and not out[-1].strip():
+            out.pop()
+        if not out or out[-1].startswith("#"):
+            return None
+        out += rest
     if shift:
         for k in range(start + len(added), len(out)):
             line = out[k]
@@ -442,6 +492,14 @@ def _uncommented(line: str) -> str:
     for comment in _COMMENTS:
         line = comment.sub(" ", line)
     return line.rstrip()
+
+
+def _whole_directive(line: str) -> bool:
+    """A directive that ends on its line: no continuation, no comment left open."""
+    if not line.lstrip().startswith("#") or "\\" in line or "\r" in line:
+        return False
+    rest = _COMMENTS[1].sub(" ", _COMMENTS[0].sub(" ", line))
+    return "/*" not in rest and "*/" not in rest
 
 
 def _lines(text: str) -> list[str]:
