@@ -259,7 +259,8 @@ def _server():
 
     def analyse_later(document: _Document) -> None:
         worker.submit(document, {other.path: other.text for other in documents.values()
-                                 if other.path is not None and other is not document})
+                                 if other.path is not None and other is not document
+                                 and len(other.text) <= MAX_BUFFER})
 
     def including_scenes(document: _Document) -> list[_Document]:
         """The open scenes whose last analysis #included this document's file: the
