@@ -171,13 +171,15 @@ def frames(source: Source, *, reading: ReadSettings = ReadSettings(),
            evaluation: EvaluationSettings | None = None, mesh: MeshSettings | None = None,
            quiet: bool = False, on_mesh: Callable | None = None,
            cancelled: Callable[[], bool] = lambda: False,
-           reporter: CollectingReporter | None = None) -> Checked:
+           reporter: CollectingReporter | None = None,
+           interpreter: Callable | None = None) -> Checked:
     """Evaluate ``source`` in this process and, with ``mesh``, facetize each frame
     (its errors, such as too many polygons, become diagnostics); nothing is
     written. ``on_mesh`` is given each mesh frame as it is made (and then the
     result keeps none: a long animation is not held whole); ``cancelled()``
     is asked between statements and frames (True raises Overtaken); ``reporter``:
-    the caller's, to ask after the run where a place was written (through macros)."""
+    the caller's, to ask after the run where a place was written (through macros);
+    ``interpreter``: as for ``evaluate``."""
     started = time.perf_counter()
     reporter = reporter if reporter is not None else CollectingReporter(quiet)
     trees: list = []
@@ -209,7 +211,8 @@ def frames(source: Source, *, reading: ReadSettings = ReadSettings(),
 
     try:
         evaluate(source, reporter, on_frame, reading=reading, evaluation=evaluation,
-                 included=included, unreadable=reporter.unreadable, cancelled=cancelled)
+                 included=included, unreadable=reporter.unreadable, cancelled=cancelled,
+                 interpreter=interpreter)
     except Overtaken:
         raise
     except Exception:

@@ -10,6 +10,10 @@ from __future__ import annotations
 import io
 import os
 import re
+import threading
+from collections import OrderedDict
+from contextlib import contextmanager
+from dataclasses import dataclass
 
 from castor.diagnostics import Location, PreprocessError, Reporter
 
@@ -50,12 +54,14 @@ class SourceLines:
     def line(self, file: str, number: int) -> str | None:
         lines = self.files.get(file)
         if lines is None:
-            try:
-                with open(file, encoding="utf-8", errors="replace") as handle:
-                    lines = handle.read().split("\n")
-            except OSError:
-                lines = []
-            self.files[file] = lines
+            text = _unsaved_text(file)
+            if text is None:
+                try:
+                    with open(file, encoding="utf-8", errors="replace") as handle:
+                        text = handle.read()
+                except OSError:
+                    text = ""
+            lines = self.files[file] = text.split("\n") if text else []
         return lines[number - 1] if 0 < number <= len(lines) else None
 
 
@@ -75,6 +81,8 @@ def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict
             self.definitions: dict[str, Location] = {}  # macro -> where it was #defined
             self.redefinitions: list[tuple[str, Location]] = []  # of -D macros
             self.unreadable: list[str] = []
+            self.opened: list[tuple[str, str]] = []  # (path, text) of each file #included
+            self.missing: list[str] = []  # paths looked for, not there (for the cache)
 
         def on_error(self, file, line, msg):
             self.return_code += 1
@@ -133,9 +141,12 @@ def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict
             if len(self.temp_path) > MAX_INCLUDE_DEPTH:
                 raise IncludeTooDeep(includepath)
             try:
-                with open(includepath, encoding="utf-8") as handle:
-                    text = handle.read()
+                text = _unsaved_text(includepath)
+                if text is None:
+                    with open(includepath, encoding="utf-8") as handle:
+                        text = handle.read()
             except FileNotFoundError:
+                self.missing.append(includepath)
                 raise
             except IsADirectoryError:
                 self.unreadable.append("it is a directory")
@@ -151,6 +162,7 @@ def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict
                 raise OSError(str(exc)) from None
             if included is not None:  # for the live preview, which watches them
                 included.append(includepath)
+            self.opened.append((includepath, text))
             return io.StringIO(text[1:] if text.startswith("\ufeff") else text)
 
         def on_directive_handle(self, directive, toks, ifpassthru, precedingtoks):
@@ -224,16 +236,338 @@ def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict
 _DIRECTIVE = re.compile(r"^[ \t]*#", re.M)
 
 
+# --- remembered passes -------------------------------------------------------
+#
+# A live preview evaluates the same text again at each slider change, and a
+# language server analyses the buffer again at each keystroke, most of which
+# touch no directive and no macro. pcpp is pure Python and takes a large part
+# of an analysis, so a pass that said nothing (no error, no warning) is kept:
+# the same sources again, with every #included file's text unchanged (and no
+# file appeared where one was looked for), give its output at once; a new text
+# of a single source whose changed lines, and the lines around them, hold no
+# directive, no macro name, no quote, comment mark or backslash is the old
+# output with those lines replaced (and the main file's later #line markers
+# moved). Anything else is a full pass.
+
+CACHED_PASSES = 4
+
+
+@dataclass
+class _Pass:
+    """What one pass gave and what it depended on."""
+
+    text: str  # the output
+    opened: tuple[tuple[str, str], ...]  # (path, text) of each #included file, in order
+    missing: tuple[str, ...]  # paths looked for and not found
+    p: object  # the preprocessor at the end (its macros, where they were defined)
+    finder: object  # the reporter's expansions (_expansion_finder)
+    given: dict  # the -D macros
+    sources: tuple = ()
+    _names: frozenset | None = None
+    _lines: dict | None = None
+
+    def macro_names(self) -> frozenset:
+        """Every name that is, or was at some point, a macro."""
+        if self._names is None:
+            self._names = frozenset(self.p.macros) | frozenset(self.p.definitions) | frozenset(
+                self.given) | {"defined"}
+        return self._names
+
+    def fresh(self) -> bool:
+        """Whether every file it #included reads the same (an editor's unsaved
+        buffer first) and no file it looked for has appeared."""
+        for path, text in self.opened:
+            now = _unsaved_text(path)
+            if now is None:
+                try:
+                    with open(path, encoding="utf-8") as handle:
+                        now = handle.read()
+                except (OSError, ValueError):
+                    return False
+            if now != text:
+                return False
+        return not any(os.path.exists(path) for path in self.missing)
+
+
+_cache: "OrderedDict[tuple, _Pass]" = OrderedDict()
+_latest: dict[tuple, tuple] = {}  # (name, settings) -> the key of the last pass of that source
+_cache_lock = threading.Lock()
+
+
 def preprocess(sources: list[tuple[str, str]], defines: list[str], undefines: list[str],
                include_dirs: list[str], reporter: Reporter,
                included: list[str] | None = None) -> str:
     """Run the sources, in order, through one preprocessor; return its output.
 
-    ``included``, when given, receives the path of every file that #include opened."""
+    ``included``, when given, receives the path of every file that #include opened.
+    A pass is not run again when a remembered one gives the same output (see above)."""
     if not defines and not any(_DIRECTIVE.search(text) or "\\\n" in text for _, text in sources):
         # No directive and no -D: cpp would change nothing (castor keeps the
         # comments), so skip the pure-Python pass and mark each file's start.
         return "".join(f'#line 1 "{_escape(_shown(name))}"\n{text}\n' for name, text in sources)
+    settings = (tuple(defines), tuple(undefines), tuple(include_dirs), os.getcwd())
+    key = (tuple(sources),) + settings
+    kept = _remembered(key, settings)
+    if kept is not None:
+        if included is not None:
+            included.extend(path for path, _ in kept.opened)
+        reporter.expansions = kept.finder
+        return kept.text
+    said = (reporter.errors, reporter.warnings)
+    text, done = _run(sources, defines, undefines, include_dirs, reporter, included)
+    if done is not None and (reporter.errors, reporter.warnings) == said and not any(
+            "__TIME__" in t or "__DATE__" in t for _, t in sources + list(done.opened)):
+        done.sources = tuple(sources)
+        _remember(key, settings, done)
+    return text
+
+
+def _remember(key: tuple, settings: tuple, done: _Pass) -> None:
+    with _cache_lock:
+        _cache[key] = done
+        _cache.move_to_end(key)
+        while len(_cache) > CACHED_PASSES:
+            _cache.popitem(last=False)
+        if len(key[0]) == 1:
+            _latest[(key[0][0][0],) + settings] = key
+
+
+def _remembered(key: tuple, settings: tuple) -> _Pass | None:
+    """A remembered pass that gives these sources' output, or one patched from the
+    last pass of the same single source; None: run the preprocessor."""
+    with _cache_lock:
+        kept = _cache.get(key)
+        base = None
+        if kept is None and len(key[0]) == 1:
+            base = _cache.get(_latest.get((key[0][0][0],) + settings))
+    if kept is not None:
+        return kept if kept.fresh() else None
+    if base is None or not base.fresh():
+        return None
+    name, text = key[0][0]
+    try:
+        patched = _patched(base, name, text)
+    except (LookupError, ValueError):  # a layout it did not expect: a full pass
+        patched = None
+    if patched is not None:
+        _remember(key, settings, patched)
+    return patched
+
+
+_MAIN_MARKER = re.compile(r'#line (\d+) "((?:[^"\\]|\\.)*)"$')
+_IDENTIFIER = re.compile(r"[A-Za-z_]\w*")
+_UNSAFE = ("#", "\\", '"', "'", "/*", "*/", "\r", "??", "\f", "\v")
+
+
+_COMMENT_MARKS = re.compile(r"/\*|\*/|//")
+
+
+def _plain(line: str, macros: frozenset) -> bool:
+    """A line the preprocessor gives as it is, wherever it stands among plain lines."""
+    if any(mark in line for mark in _UNSAFE) or line != line.rstrip():
+        return False  # (pcpp drops the blanks at the end of a line in a comment)
+    return not any(word in macros or word.startswith("__") for word in _IDENTIFIER.findall(line))
+
+
+def _patched(base: _Pass, name: str, new_text: str) -> _Pass | None:
+    """The output for ``new_text`` from the pass of the source's previous text,
+    when the lines that changed are plain among plain lines (see above)."""
+    old, new = _lines(base.sources[0][1]), _lines(new_text)
+    if not old or not new:
+        return None
+    first = 0
+    while first < min(len(old), len(new)) and old[first] == new[first]:
+        first += 1
+    tail = 0
+    while tail < min(len(old), len(new)) - first and old[-1 - tail] == new[-1 - tail]:
+        tail += 1
+    removed, added = old[first:len(old) - tail], new[first:len(new) - tail]
+    if not removed and not added:
+        return None
+    macros = base.macro_names()
+    marks = [_COMMENT_MARKS.findall(line) for line in removed]
+    if any(marks):  # comments kept as they were (a value changed before its comment)
+        if len(added) != len(removed) or marks != [_COMMENT_MARKS.findall(line)
+                                                   for line in added]:
+            return None
+        if any(line != line.rstrip() for line in removed + added):
+            return None
+        removed_plain = [_COMMENT_MARKS.sub(" ", line).rstrip() for line in removed]
+        added_plain = [_COMMENT_MARKS.sub(" ", line).rstrip() for line in added]
+    else:
+        removed_plain, added_plain = removed, added
+    if not all(_plain(line, macros) for line in removed_plain + added_plain):
+        return None
+    shift = len(added) - len(removed)
+    if shift and "__LINE__" in new_text:
+        return None
+    # the nearest lines that are not blank on either side: plain lines, or
+    # whole directives (an #include, an #endif) that cannot reach into the change
+    before = first - 1
+    while before >= 0 and not old[before].strip():
+        before -= 1
+    if before < 0:
+        return None  # (pcpp drops the empty lines at a file's start)
+    after = len(old) - tail
+    while after < len(old) and not old[after].strip():
+        after += 1
+    directives = set()
+    for k in (before, after):
+        if k >= len(old) or _plain(_uncommented(old[k]), macros):
+            continue
+        if not _whole_directive(old[k]):
+            return None
+        directives.add(k)
+    lines = base.text.split("\n")
+    found = _main_lines(lines)
+    if found is None:
+        return None
+    marker, where = found
+    # from one side to the other, each line is in the output as it is, in order
+    previous = None
+    for k in range(before, min(after, len(old) - 1) + 1):
+        if k in directives:
+            previous = None
+            continue
+        at = where.get(k + 1)
+        if at is None and not old[k].strip():
+            previous = None  # an empty line pcpp gave as a #line marker
+            continue
+        if at is None or lines[at] != old[k] or (previous is not None and at != previous + 1):
+            return None
+        previous = at
+    # and the change is among lines that are given (not in a block #if leaves out):
+    # next to a plain line, or in place of one that is not blank
+    if not (before not in directives or (after < len(old) and after not in directives)
+            or any(line.strip() for line in removed)):
+        return None
+    if shift and any(location.file == _unescaped(marker) and location.line > first
+                     for location in base.p.definitions.values()):
+        return None  # a #define after the change would have moved
+    if removed or (first < len(old) and first not in directives and first + 1 in where):
+        start = where[first + 1]
+    elif first - 1 not in directives and first in where:
+        start = where[first] + 1
+    else:
+        return None
+    rest = lines[start + len(removed):]
+    if any(line.strip() for line in rest):
+        if all(line.startswith("#") for line in rest if line.strip()):
+            return None
+        out = lines[:start] + added + rest
+        if not added and start > 0 and out[start - 1].startswith("#") and \
+                out[start].startswith("#"):
+            del out[start - 1]  # a marker for lines no longer there, as pcpp leaves none
+    else:  # the end of the output, whose empty lines pcpp drops
+        if rest != ["", ""]:
+            return None
+        out = lines[:start] + added
+        while out and not out[-1].strip():
+            out.pop()
+        if not out or out[-1].startswith("#"):
+            return None
+        out += rest
+    if shift:
+        for k in range(start + len(added), len(out)):
+            line = out[k]
+            if line.startswith("#"):
+                match = _MAIN_MARKER.match(line)
+                if match is None:
+                    return None
+                if match[2] == marker:
+                    out[k] = f'#line {int(match[1]) + shift} "{marker}"'
+    sources = ((name, new_text),)
+    finder = _expansion_finder(base.p, SourceLines(list(sources)))
+    return _Pass("\n".join(out), base.opened, base.missing, base.p, finder, base.given, sources)
+
+
+_COMMENTS = (re.compile(r"/\*.*?\*/"), re.compile(r"//.*$"), re.compile(r"^.*?\*/"),
+             re.compile(r"/\*.*$"))
+
+
+def _uncommented(line: str) -> str:
+    """A line without its comments (what a comment that goes on from the line
+    before ends, what one that goes on to the next begins): a macro's name in a
+    comment beside a change is harmless."""
+    for comment in _COMMENTS:
+        line = comment.sub(" ", line)
+    return line.rstrip()
+
+
+def _whole_directive(line: str) -> bool:
+    """A directive that ends on its line: no continuation, no comment left open."""
+    if not line.lstrip().startswith("#") or "\\" in line or "\r" in line:
+        return False
+    rest = _COMMENTS[1].sub(" ", _COMMENTS[0].sub(" ", line))
+    return "/*" not in rest and "*/" not in rest
+
+
+def _lines(text: str) -> list[str]:
+    """A source's lines without the empty ones at its end (which pcpp drops)."""
+    lines = text.split("\n")
+    while lines and not lines[-1]:
+        lines.pop()
+    return lines
+
+
+def _unescaped(name: str) -> str:
+    return re.sub(r"\\(.)", r"\1", name)
+
+
+def _main_lines(lines: list[str]) -> tuple[str, dict[int, int]] | None:
+    """The first file's name in the output's markers, and for each of its lines
+    the output line that holds it; None when the output has other directives."""
+    if not lines:
+        return None
+    first = _MAIN_MARKER.match(lines[0])
+    if first is None:
+        return None
+    marker = first[2]
+    where: dict[int, int] = {}
+    current, number = marker, 0
+    for k, line in enumerate(lines):
+        if line.startswith("#"):
+            match = _MAIN_MARKER.match(line)
+            if match is None:
+                return None
+            current, number = match[2], int(match[1])
+            continue
+        if current == marker:
+            where[number] = k
+        number += 1
+    return marker, where
+
+
+# --- an editor's unsaved buffers ---------------------------------------------
+
+_overlay = threading.local()
+
+
+@contextmanager
+def unsaved(texts: dict[str, str]):
+    """While in the block, in this thread, ``#include`` of one of these files (by
+    path) reads the text given here instead of the file: the unsaved buffers of an
+    editor, as a C language server reads them."""
+    previous = getattr(_overlay, "texts", None)
+    _overlay.texts = {os.path.realpath(path): text for path, text in texts.items()}
+    try:
+        yield
+    finally:
+        _overlay.texts = previous
+
+
+def _unsaved_text(path: str) -> str | None:
+    texts = getattr(_overlay, "texts", None)
+    if not texts:
+        return None
+    return texts.get(os.path.realpath(path))
+
+
+def _run(sources: list[tuple[str, str]], defines: list[str], undefines: list[str],
+         include_dirs: list[str], reporter: Reporter,
+         included: list[str] | None = None) -> tuple[str, "_Pass | None"]:
+    """The pass itself: its output, and what the cache keeps of it (None: the
+    pass was cut short)."""
     originals = SourceLines(sources)
     given = {}
     for definition in defines:
@@ -260,14 +594,18 @@ def preprocess(sources: list[tuple[str, str]], defines: list[str], undefines: li
             reporter.error(PreprocessError(
                 f"#include nested more than {MAX_INCLUDE_DEPTH} deep (does '{exc}' include itself?)",
                 Location(getattr(token, "source", name) or name, getattr(token, "lineno", 0) or 0, 1)))
-            return ""
+            return "", None
         except RecursionError:
             reporter.error(PreprocessError("macros or includes nested too deeply", Location(name, 1, 1)))
-            return ""
+            return "", None
         out.write("\n")
     p.warn_redefinitions()
-    reporter.expansions = _expansion_finder(p, originals)
-    return out.getvalue()
+    finder = _expansion_finder(p, originals)
+    reporter.expansions = finder
+    text = out.getvalue()
+    return text, _Pass(text, tuple(p.opened), tuple(p.missing), p, finder, given)
+
+
 
 
 _ORIGINAL_TOKEN = re.compile(r'//.*|/\*.*?\*/|"(?:[^"\\]|\\.)*"|[A-Za-z_]\w*|.')
@@ -279,12 +617,24 @@ def _expansion_finder(p, originals: SourceLines):
     out on demand: a scene of many lines pays nothing for its macros."""
     from castor.diagnostics import LineExpansions
 
+    found: dict[tuple, object] = {}  # kept with the pass: a slider asks the same again
+    lock = threading.Lock()  # pcpp's expansion is not made for two threads at once
+
     def find(file: str, number: int, expanded: str | None):
+        key = (file, number, expanded)
+        if key in found:
+            return found[key]
         original = originals.line(file, number)
         if original is None or expanded is None or original == expanded:
-            return None
-        mapped = _expansions_of(expanded, original, p) or _difference(expanded, original, p)
-        return LineExpansions(original, tuple(mapped)) if mapped else None
+            result = None
+        else:
+            with lock:
+                mapped = _expansions_of(expanded, original, p) or _difference(expanded, original,
+                                                                               p)
+            result = LineExpansions(original, tuple(mapped)) if mapped else None
+        if len(found) < 100_000:
+            found[key] = result
+        return result
 
     return find
 

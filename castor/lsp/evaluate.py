@@ -108,8 +108,8 @@ def analyse(source: Source, reading: ReadSettings = ReadSettings(),
     A file that cannot be read goes to ``unreadable`` (None: UsageError)."""
     import time
 
-    from castor.interpreter import Interpreter
     from castor.language.scene import Facetize, ObjectDef, ParamDef
+    from castor.lsp.reuse import ReusingInterpreter
 
     started = time.perf_counter()
     reporter = _Collector(quiet)
@@ -117,7 +117,7 @@ def analyse(source: Source, reading: ReadSettings = ReadSettings(),
     shown = _shown(files[0]) if files else "<stdin>"
     analysis = Analysis(shown, texts={shown: source.text} if source.text is not None else {})
 
-    class Recording(Interpreter):
+    class Recording(ReusingInterpreter):
         def check_annotation(self, statement) -> None:
             pass  # parameters() says it, against the text as written
 

@@ -39,8 +39,9 @@ class Worker:
     def __init__(self, publish):
         self.publish = publish  # publish(document, analysis or None, problem)
         self.lock = threading.Condition()
-        self.pending: dict[str, tuple[_Document, int, str]] = {}
-        self.latest: dict[str, int] = {}
+        self.pending: dict[str, tuple] = {}
+        self.latest: dict[str, int] = {}  # uri -> the number of its newest submission
+        self.submitted = 0
         self.stopped = False
         from castor.pipeline import STACK_BYTES
 
@@ -52,10 +53,15 @@ class Worker:
             threading.stack_size(size)
         self.thread.start()
 
-    def submit(self, document: _Document) -> None:
+    def submit(self, document: _Document, unsaved: dict[str, str] | None = None) -> None:
+        """Analyse the document's text as it is now, with ``unsaved``, the buffers
+        of the other open files (path -> text), read instead of those files by
+        its #include (castor.language.preprocess.unsaved)."""
         with self.lock:
-            self.latest[document.uri] = document.version
-            self.pending[document.uri] = (document, document.version, document.text)
+            self.submitted += 1
+            self.latest[document.uri] = self.submitted
+            self.pending[document.uri] = (document, document.version, document.text,
+                                          dict(unsaved or {}), self.submitted)
             self.lock.notify()
 
     def stop(self) -> None:
@@ -63,11 +69,12 @@ class Worker:
             self.stopped = True
             self.lock.notify()
 
-    def _overtaken(self, uri: str, version: int) -> bool:
-        return self.stopped or self.latest.get(uri) != version
+    def _overtaken(self, uri: str, number: int) -> bool:
+        return self.stopped or self.latest.get(uri) != number
 
     def _run(self) -> None:
-        from castor.lsp.evaluate import Overtaken, analyse
+        from castor.language.preprocess import unsaved
+        from castor.lsp.evaluate import Overtaken, _shown, analyse
         from castor.settings import Source
 
         while True:
@@ -76,10 +83,16 @@ class Worker:
                     self.lock.wait()
                 if self.stopped:
                     return
-                uri, (document, version, text) = self.pending.popitem()
+                uri, (document, version, text, buffers, number) = self.pending.popitem()
             try:
-                analysis = analyse(Source(text=text, name=document.path),
-                                   cancelled=lambda: self._overtaken(uri, version))
+                with unsaved(buffers):
+                    analysis = analyse(Source(text=text, name=document.path),
+                                       cancelled=lambda: self._overtaken(uri, number))
+                by_path = {os.path.realpath(path): text for path, text in buffers.items()}
+                for path in analysis.included:  # ranges and hovers read the buffers too
+                    if os.path.realpath(path) in by_path:
+                        analysis.texts[path] = analysis.texts[_shown(path)] = \
+                            by_path[os.path.realpath(path)]
             except Overtaken:
                 continue
             except MemoryError:
@@ -89,7 +102,7 @@ class Worker:
                 self.publish(document, None, f"castor: internal error: {type(exc).__name__}: "
                              f"{exc} (please report it with the scene)", version)
                 continue
-            if not self._overtaken(uri, version):
+            if not self._overtaken(uri, number):
                 self.publish(document, analysis, None, version)
 
 
@@ -122,6 +135,7 @@ def _server():
 
     from castor import __version__
     from castor.lsp import knowledge
+    from castor.lsp.evaluate import _shown
 
     server = LanguageServer("castor", __version__, protocol_cls=_protocol_class(),
                             text_document_sync_kind=types.TextDocumentSyncKind.Full)
@@ -208,7 +222,7 @@ def _server():
         return any(real == root or real.startswith(root.rstrip(os.sep) + os.sep)
                    for root in roots)
 
-    def open_document(uri: str, version: int, text: str) -> None:
+    def open_document(uri: str, version: int, text: str, opening: bool = False) -> None:
         document = documents.get(uri)
         if document is None:
             path = to_fs_path(uri) if uri.startswith("file:") else None
@@ -233,22 +247,34 @@ def _server():
                      f"typing (at most {MAX_BUFFER / 1e6:g} MB); castor --check reads it",
                      version)
             return
-        including = including_scene(document)
-        if including is not None:
-            return  # its scene's analysis speaks for it (on each save: see did_save)
-        worker.submit(document)
+        scenes = including_scenes(document)
+        if not scenes:
+            analyse_later(document)
+            return
+        # an included file is analysed as part of each scene that includes it,
+        # with its unsaved text (as a C language server reads an unsaved header)
+        for other in scenes:
+            if not opening or other.analysis.source_text(_shown(document.path)) != text:
+                analyse_later(other)
+
+    def analyse_later(document: _Document) -> None:
+        worker.submit(document, {other.path: other.text for other in documents.values()
+                                 if other.path is not None and other is not document
+                                 and len(other.text) <= MAX_BUFFER})
+
+    def including_scenes(document: _Document) -> list[_Document]:
+        """The open scenes whose last analysis #included this document's file: the
+        file is analysed as part of them, with their macros and parameters, not alone."""
+        if document.path is None:
+            return []
+        mine = os.path.realpath(document.path)
+        return [other for other in documents.values()
+                if other is not document and other.analysis is not None and any(
+                    os.path.realpath(f) == mine for f in other.analysis.included)]
 
     def including_scene(document: _Document) -> _Document | None:
-        """An open scene whose last analysis #included this document's file: the
-        file is analysed as part of it, with its macros and parameters, not alone."""
-        if document.path is None:
-            return None
-        mine = os.path.realpath(document.path)
-        for other in documents.values():
-            if other is not document and other.analysis is not None and any(
-                    os.path.realpath(f) == mine for f in other.analysis.included):
-                return other
-        return None
+        scenes = including_scenes(document)
+        return scenes[0] if scenes else None
 
     @server.feature(types.INITIALIZE)
     def initialize(ls, params: types.InitializeParams):
@@ -267,7 +293,7 @@ def _server():
     @server.feature(types.TEXT_DOCUMENT_DID_OPEN)
     def did_open(ls, params: types.DidOpenTextDocumentParams):
         doc = params.text_document
-        open_document(doc.uri, doc.version, doc.text)
+        open_document(doc.uri, doc.version, doc.text, opening=True)
 
     @server.feature(types.TEXT_DOCUMENT_DID_CHANGE)
     def did_change(ls, params: types.DidChangeTextDocumentParams):
@@ -283,17 +309,24 @@ def _server():
             if other is not document and other.analysis is not None and any(
                     os.path.realpath(f) == os.path.realpath(document.path)
                     for f in other.analysis.included):
-                worker.submit(other)
+                analyse_later(other)
         if including_scene(document) is None:
-            worker.submit(document)  # the files it includes may have changed
+            analyse_later(document)  # the files it includes may have changed
 
     @server.feature(types.TEXT_DOCUMENT_DID_CLOSE)
     def did_close(ls, params: types.DidCloseTextDocumentParams):
-        document = documents.pop(params.text_document.uri, None)
-        if document is not None:
-            for uri in document.published | {document.uri}:
-                server.text_document_publish_diagnostics(
-                    types.PublishDiagnosticsParams(uri=uri, diagnostics=[]))
+        document = documents.get(params.text_document.uri)
+        if document is None:
+            return
+        scenes = including_scenes(document)
+        documents.pop(params.text_document.uri)
+        if scenes:  # its unsaved text is gone: the file on disk is the one included again
+            for other in scenes:
+                analyse_later(other)
+            return
+        for uri in document.published | {document.uri}:
+            server.text_document_publish_diagnostics(
+                types.PublishDiagnosticsParams(uri=uri, diagnostics=[]))
 
     def at(uri: str, pos: types.Position):
         """The analysis for a request, and the cursor as castor's (file, line, column)."""
@@ -310,8 +343,6 @@ def _server():
                     analysis = other.analysis
         if analysis is None or path is None:
             return None, None
-        from castor.lsp.evaluate import _shown
-
         file = analysis.file if document is not None and document.analysis is analysis \
             else _shown(path)
         return analysis, (file, pos.line + 1, pos.character + 1)

@@ -72,13 +72,14 @@ def evaluate(watched: Watched, cancelled: Callable[[], bool] = lambda: False) ->
     ``cancelled()`` says so (between statements and between frames). Each face
     knows where its primitive is written (FILE:LINE:COL, through macros)."""
     from castor.lsp.evaluate import primitive_places
+    from castor.lsp.reuse import ReusingInterpreter
 
     shown: list[DrawnFrame] = []
     reporter = CollectingReporter(watched.quiet)
     checked = frames(watched.source, reading=watched.reading, evaluation=watched.evaluation,
                      mesh=MeshSettings(), quiet=watched.quiet,
                      on_mesh=lambda mesh: shown.append(drawn(mesh)), cancelled=cancelled,
-                     reporter=reporter)
+                     reporter=reporter, interpreter=ReusingInterpreter)
     trees = {tree.number: tree for tree in checked.trees}
     placed = tuple(replace(frame, sources=primitive_places(trees[frame.number], reporter))
                    if frame.number in trees else frame for frame in shown)
