@@ -11,7 +11,13 @@ import numpy as np
 
 from castor.mesh.arrays import cross, same_place
 
-_FLAT = 1e-10
+# A triangle whose height is at most this fraction of its longest side is
+# flat. Its plane is then no better known than its coordinates' rounding
+# (about 1e-16 of their size) over that fraction: below about 1e-9 a needle
+# the engine leaves among coplanar faces (a turned row of cubes: two
+# corners 9e-9 apart, 5e-11 high over 0.06) is no plane at all, written as a
+# polygon of its own. 1e-8 keeps a margin of ten.
+_FLAT = 1e-8
 
 
 def flat_triangles(vertices: np.ndarray, triangles: np.ndarray, chunk: int = 1 << 20) -> np.ndarray:
@@ -166,15 +172,19 @@ def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
     where flipping leaves flat twins (two flat triangles on the same three
     vertices, turned against each other: a closed fin of no area, which the
     flips of a run of flat triangles along one edge can make), both go and
-    the rest is flipped again."""
-    for _ in range(4):
+    the rest is flipped again, while each pass leaves fewer."""
+    left = int(flat.sum())
+    for _ in range(8):
         triangles, origin_ids, face_ids = _flipped(vertices, triangles, origin_ids, face_ids, flat)
         flat = flat_triangles(vertices, triangles)
         if not flat.any():
             break
         twins = _coincident(triangles[flat])
         if twins is None:
-            break
+            if flat.sum() >= left:
+                break
+            left = int(flat.sum())
+            continue
         keep = np.ones(len(triangles), bool)
         keep[np.flatnonzero(flat)[twins]] = False
         triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
