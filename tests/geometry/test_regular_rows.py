@@ -3,6 +3,9 @@ the engine leaves needles in them, triangles a few 1e-11 high whose plane
 the coordinates cannot tell (found by the oracle's wide generator). No
 polygon of the frame may be one."""
 
+import subprocess
+import sys
+
 import numpy as np
 
 from meshcheck import _newell, check_closed, check_convex_planar, frames_of, polygon_defects, \
@@ -30,3 +33,40 @@ def test_a_turned_row_of_overlapping_cubes_has_no_needle():
     assert regularity_defects(frame) == []
     assert [i for i, p in enumerate(frame.polygons) if polygon_defects(p)] == []
     assert min(_thinness(p) for p in frame.polygons) > 1e-8
+
+
+
+# castor run with each batch's regularized triangles counted for flat ones
+_FLAT_LEFT = """
+import sys
+from castor.mesh import facetize, flat
+from castor.mesh.regularize import regular_triangles
+left = []
+def counted(tri, parts):
+    out = regular_triangles(tri, parts)
+    left.append(int(flat.flat_triangles(out.vertices, out.triangles).sum()))
+    return out
+facetize.regular_triangles = counted
+from castor.cli import main
+sys.argv = ['castor', '-q', '-o', sys.argv[1], sys.argv[2]]
+main()
+print('flat left', left, file=sys.stderr)
+"""
+
+
+def test_no_flat_triangle_is_left_inside_a_face(tmp_path):
+    """In the same row, four corners inside U2's top face: two of them
+    1.6e-5 apart, each in line with a third corner, so either diagonal of
+    the four leaves a flat triangle and flips only trade one for the other.
+    The vertex inside a plane of triangles is collapsed onto its neighbour
+    instead: no flat triangle is left for merging to hide (or to write as a
+    polygon of zero area where no neighbour takes it in)."""
+    scene = tmp_path / "row.cas"
+    scene.write_text("> @r(1.0, 1.0, -1.0, 13.0) $U[W = 0, 10](@t(0.1 * W, 0, 0) "
+                     "!cu(0.0, 0.0, 0.5));\n")
+    done = subprocess.run([sys.executable, "-c", _FLAT_LEFT, str(tmp_path / "row.off"),
+                           str(scene)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    line = [x for x in done.stderr.splitlines() if x.startswith("flat left")][-1]
+    counts = [int(c) for c in line[len("flat left ["):-1].split(",")]
+    assert counts and max(counts) == 0
