@@ -321,11 +321,13 @@ def _flipped(vertices, triangles, origin_ids, face_ids, flat):
             todo.insert(0, i)
             todo.append(n)
             continue
+        first, second = (m, u, x), (w, m, x)
+        if _turns_over(point, tris[n], first, second):
+            continue
         waiting.discard(i)
         for tri in (t, tris[n]):
             for e in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
                 owner.pop(e, None)
-        first, second = (m, u, x), (w, m, x)
         tris[i], tris[n] = first, second
         origin[i], face[i] = origin[n], face[n]
         for j, tri in ((i, first), (n, second)):
@@ -337,6 +339,21 @@ def _flipped(vertices, triangles, origin_ids, face_ids, flat):
     triangles = triangles.copy()
     triangles[rows] = np.array([tris[r] for r in rows.tolist()], np.int64)
     return triangles, origin, face
+
+
+def _turns_over(point, neighbour, first, second) -> bool:
+    """Whether a flip would turn a triangle over: the flat triangle's area
+    is none, so the two triangles it makes with its neighbour face as the
+    neighbour does, unless its middle corner is off the line by more than
+    the neighbour can take (across an edge of the solid, a corner a little
+    off it puts a new triangle on its other side)."""
+    p = point[list(neighbour)]
+    facing = np.cross(p[1] - p[0], p[2] - p[0])
+    for tri in (first, second):
+        q = point[list(tri)]
+        if float(np.cross(q[1] - q[0], q[2] - q[0]) @ facing) <= 0:
+            return True
+    return False
 
 
 def _long_edge_elsewhere(point, tri, u, w) -> bool:

@@ -70,3 +70,18 @@ def test_no_flat_triangle_is_left_inside_a_face(tmp_path):
     line = [x for x in done.stderr.splitlines() if x.startswith("flat left")][-1]
     counts = [int(c) for c in line[len("flat left ["):-1].split(",")]
     assert counts and max(counts) == 0
+
+
+def test_a_flip_across_an_edge_of_the_solid_turns_nothing_over():
+    """Eleven cubes 0.25 apart, mirrored and turned by 356.731° about
+    (1, 1, 1) (wide oracle, seed 20): a triangle nearly flat on one face
+    beside an edge, flipped with its neighbour on the other face, put a
+    triangle of U2 on the wrong side (a polygon facing inward). A flip whose
+    triangles would not face as the neighbour does is not made."""
+    (frame,) = frames_of("> @h(-1.0, 1.0, 0.5) @r(1.0, 1.0, 1.0, 356.731) $U[W = 0, 10]"
+                         "(@t(0.25 * W, 0.0, 0.0) !cu(0.5, 1.0, 0.5));\n")
+    check_closed(frame)
+    check_convex_planar(frame)
+    assert abs(frame.volume() - 1.75) < 1e-9
+    assert regularity_defects(frame) == []
+    assert min(_thinness(p) for p in frame.polygons) > 1e-8
