@@ -347,6 +347,8 @@ def _turns_over(point, neighbour, first, second) -> bool:
     neighbour does, unless its middle corner is off the line by more than
     the neighbour can take (across an edge of the solid, a corner a little
     off it puts a new triangle on its other side)."""
+    if flat_triangles(point, np.array([neighbour]))[0]:
+        return False  # (a run of flat triangles along one line: no side to keep)
     p = point[list(neighbour)]
     facing = np.cross(p[1] - p[0], p[2] - p[0])
     for tri in (first, second):

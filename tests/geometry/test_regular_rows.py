@@ -85,3 +85,18 @@ def test_a_flip_across_an_edge_of_the_solid_turns_nothing_over():
     assert abs(frame.volume() - 1.75) < 1e-9
     assert regularity_defects(frame) == []
     assert min(_thinness(p) for p in frame.polygons) > 1e-8
+
+
+def test_a_run_of_flat_triangles_along_one_line_is_flipped_away():
+    """Nine cubes 0.1 apart turned by 33.173° about (-1, 1, 0.3) (wide
+    oracle, seed 20): flat triangles side by side along one line, each the
+    other's neighbour. A flat neighbour faces no way, so the flips are
+    made (a check against turning over refused them: polygons of zero
+    area were written)."""
+    (frame,) = frames_of("> @r(-1.0, 1.0, 0.3, 33.173) $U[W = 0, 8](@t(0.1 * W, 0.0, 0.0) "
+                         "!cu(1.0, 0.5, 0.5));\n")
+    check_closed(frame)
+    check_convex_planar(frame)
+    assert abs(frame.volume() - 1.8) < 1e-9
+    assert regularity_defects(frame) == []
+    assert min(_thinness(p) for p in frame.polygons) > 1e-8
