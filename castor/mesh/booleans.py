@@ -111,18 +111,18 @@ def _twins_renamed(solids: list, distinguished: list) -> bool:
         for s, d in zip(solids, distinguished))
 
 
-def _better(first, again):
+def _better(first, again, made=lambda result: result):
     """The result of a boolean whose operands' twins were renamed
     (``first``: a function giving the engine's result), or, if that is off
     its faces (checks.off_faces), the same boolean of the operands as they
     were (``again``) when it has fewer triangles off; each gives (result,
-    solids)."""
+    solids), and ``made`` picks from a result what the engine made."""
     result, solids = first()
-    wrong = _off(result)
+    wrong = _off(made(result))
     if not wrong:
         return result, solids
     other, other_solids = again()
-    return (other, other_solids) if _off(other) < wrong else (result, solids)
+    return (other, other_solids) if _off(made(other)) < wrong else (result, solids)
 
 
 def _off(result) -> int:
@@ -323,7 +323,8 @@ def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
     distinguished = _distinguished([a, b])
     if _twins_renamed([a, b], distinguished):
         parts, operands = _better(lambda: made(distinguished),
-                                  lambda: made(_distinguished([a, b], rename=False)))
+                                  lambda: made(_distinguished([a, b], rename=False)),
+                                  lambda parts: [parts[i] for i in touched])
     else:
         parts, operands = made(distinguished)
     for i in touched:
