@@ -16,8 +16,9 @@ from castor.mesh.arrays import cross, same_place
 # (about 1e-16 of their size) over that fraction: below about 1e-9 a needle
 # the engine leaves among coplanar faces (a turned row of cubes: two
 # corners 9e-9 apart, 5e-11 high over 0.06) is no plane at all, written as a
-# polygon of its own. 1e-8 keeps a margin of ten.
-_FLAT = 1e-8
+# polygon of its own. (1e-8 flipped triangles that are faces, a few 1e-9
+# high, across edges of the solid: wide oracle, seed 22.)
+_FLAT = 1e-9
 
 
 def flat_triangles(vertices: np.ndarray, triangles: np.ndarray, chunk: int = 1 << 20) -> np.ndarray:
