@@ -24,7 +24,8 @@ def test_a_turned_row_of_overlapping_cubes_has_no_needle():
     engine's union holds a triangle of U2's face with two corners 9e-9
     apart and a height of 5e-11 (twice its area 8e-10 of its extent
     squared), written as a polygon of its own that is not planar to its
-    own coordinates. Its corners stand for one point: welded, it is gone."""
+    own coordinates. Flat by its height (under 1e-9 of its length), it is
+    flipped away."""
     (frame,) = frames_of("> @r(1.0, 1.0, -1.0, 13.0) $U[W = 0, 10](@t(0.1 * W, 0, 0) "
                          "!cu(0.0, 0.0, 0.5));\n")
     check_closed(frame)
