@@ -910,7 +910,7 @@ def scenes(count: int, seed: int, wide: bool = False, smooth: bool = False) -> l
 def kind_of(problem: str) -> str:
     for word in ("zero area", "volume", "area", "box", "closed", "outward", "repeated",
                  "winds", "planar", "convex", "shell", "winding", "names no", "colour",
-                 "lies on no", "empty"):
+                 "lies on no", "faces the other way", "empty"):
         if word in problem:
             return word
     return problem[:20]

@@ -4,7 +4,10 @@ Only operands whose boxes meet go to the engine (castor.mesh.broadphase);
 each result is checked and, if need be, computed again another way
 (castor.mesh.checks), then regularized (castor.mesh.regularize). Uses of one
 template at one place in two operands are first told apart (``_distinguished``),
-so that provenance can still name each.
+so that provenance can still name each; where renaming the runs of a twin
+inside a result of the engine leads the engine astray (a result off its
+faces), the boolean is computed again without it, and provenance tells the
+twins apart by the way their triangles face (provenance.facing_twins).
 """
 
 from __future__ import annotations
@@ -22,14 +25,15 @@ from castor.mesh.regularize import mark_plain, planes_meet, regular
 from castor.mesh.solid import EMPTY, Solid, of_parts
 
 
-def _distinguished(solids: list) -> list:
+def _distinguished(solids: list, rename: bool = True) -> list:
     """The operands of one boolean, with every use of a primitive that stands
     where a use in an earlier operand stands given an ID of its own (its
     triangles would otherwise be told apart by neither ID nor placement: a
     cube cut away and the same cube added back have different paths and
     colours). A use not yet in the engine takes a copy of its template under
     a new ID; a use inside a result of the engine, its runs renamed
-    (``_renamed_runs``) when no use of the clash is still outside it."""
+    (``_renamed_runs``) when no use of the clash is still outside it, and
+    ``rename`` is true."""
     if len(solids) < 2 or not _may_clash(solids):
         return solids
     keys = [s.origins.keys() for s in solids]
@@ -39,7 +43,7 @@ def _distinguished(solids: list) -> list:
         for key in operand_keys:
             owners.setdefault(key, []).append(k)
     renew: list[set] = [set() for _ in solids]
-    rename: list[set] = [set() for _ in solids]
+    inside: list[set] = [set() for _ in solids]
     for key, where in owners.items():
         if len(where) < 2:
             continue
@@ -49,9 +53,9 @@ def _distinguished(solids: list) -> list:
         keep = fixed[0] if fixed else where[0]
         for k in where:
             if k != keep:
-                (renew if key in placed[k] else rename)[k].add(key)
+                (renew if key in placed[k] else inside)[k].add(key)
     out = []
-    for solid, wanted, renamed in zip(solids, renew, rename):
+    for solid, wanted, renamed in zip(solids, renew, inside):
         if wanted:
             parts, changes = [], {}
             for part in solid.parts:
@@ -60,7 +64,7 @@ def _distinguished(solids: list) -> list:
                     changes[key] = part.id
                 parts.append(part)
             solid = Solid(tuple(parts), solid.origins.renamed(changes))
-        if renamed:
+        if renamed and rename:
             solid = _renamed_runs(solid, renamed)
         out.append(solid)
     return out
@@ -98,6 +102,36 @@ def _renamed_runs(solid: Solid, wanted: set) -> Solid:
     return Solid(tuple(parts), solid.origins.renamed(new_ids))
 
 
+def _twins_renamed(solids: list, distinguished: list) -> bool:
+    """Whether telling the operands' twins apart renamed runs inside results
+    of the engine (a round trip of their meshes, which the engine was seen to
+    treat otherwise in the boolean that follows)."""
+    return any(d.parts is not s.parts and any(
+        type(a) is not Placed and a is not b for a, b in zip(s.parts, d.parts))
+        for s, d in zip(solids, distinguished))
+
+
+def _better(first, again, made=lambda result: result):
+    """The result of a boolean whose operands' twins were renamed
+    (``first``: a function giving the engine's result), or, if that is off
+    its faces (checks.off_faces), the same boolean of the operands as they
+    were (``again``) when it has fewer triangles off; each gives (result,
+    solids), and ``made`` picks from a result what the engine made."""
+    result, solids = first()
+    wrong = _off(made(result))
+    if not wrong:
+        return result, solids
+    other, other_solids = again()
+    return (other, other_solids) if _off(made(other)) < wrong else (result, solids)
+
+
+def _off(result) -> int:
+    """Triangles off their faces in a result of the engine, or in a list of
+    parts (placed primitives are whole)."""
+    parts = result if isinstance(result, (list, tuple)) else [result]
+    return sum(off_faces(p) for p in parts if type(p) is not Placed)
+
+
 def _may_clash(solids: list) -> bool:
     """Whether two operands may have a use of one template at one place: one
     number per entry (its ID and rounded placement, hashed), sorted."""
@@ -121,7 +155,22 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
         return EMPTY
     if len(solids) == 1:
         return solids[0]
-    solids = _distinguished(solids)
+    distinguished = _distinguished(solids)
+    if not _twins_renamed(solids, distinguished):
+        return _union(distinguished, counter)
+    # a union of every group, or none, with renamed twins: one table of origins
+    counted = counter.booleans
+    result = _union(distinguished, counter)
+    wrong = _off(result.parts)
+    if not wrong:
+        return result
+    counter.booleans = counted
+    again = _union(_distinguished(solids, rename=False), counter)
+    return again if _off(again.parts) < wrong else result
+
+
+def _union(solids: list[Solid], counter: Counter) -> Solid:
+    """The union of operands whose twins are told apart."""
     parts = [part for s in solids for part in s.parts]
     fill_boxes(parts)
     boxes = np.array([part.bounding_box() for part in parts], dtype=np.float64).reshape(-1, 2, 3)
@@ -231,11 +280,20 @@ def intersection(solids: list[Solid], counter: Counter) -> Solid:
     if np.any(lo >= hi):
         return EMPTY
     counter.booleans += 1
-    solids = [s.in_engine() for s in _distinguished(solids)]
-    wholes = [s.whole() for s in solids]
-    manifold = regular(checked(adapter.intersect_all(wholes),
-                               lambda: adapter.intersect_all(wholes[::-1])))
-    return of_parts([manifold], merged_origins(solids))
+
+    def made(operands):
+        operands = [s.in_engine() for s in operands]
+        wholes = [s.whole() for s in operands]
+        return checked(adapter.intersect_all(wholes),
+                       lambda: adapter.intersect_all(wholes[::-1])), operands
+
+    distinguished = _distinguished(solids)
+    if _twins_renamed(solids, distinguished):
+        manifold, solids = _better(lambda: made(distinguished),
+                                   lambda: made(_distinguished(solids, rename=False)))
+    else:
+        manifold, solids = made(distinguished)
+    return of_parts([regular(manifold)], merged_origins(solids))
 
 
 def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
@@ -248,14 +306,27 @@ def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
     if not touched:
         return a
     counter.booleans += 1
-    a, b = _distinguished([a, b])
-    a = a.in_engine(touched)
-    b = b.in_engine()
-    cutter = b.whole()
-    parts = list(a.parts)
+
+    def made(operands):
+        a, b = operands
+        a = a.in_engine(touched)
+        b = b.in_engine()
+        cutter = b.whole()
+        parts = list(a.parts)
+        for i in touched:
+            part = parts[i]
+            # (A + B) - B is A - B, computed otherwise
+            parts[i] = checked(adapter.subtract(part, cutter), lambda part=part:
+                               adapter.subtract(adapter.add(part, cutter), cutter))
+        return parts, (a, b)
+
+    distinguished = _distinguished([a, b])
+    if _twins_renamed([a, b], distinguished):
+        parts, operands = _better(lambda: made(distinguished),
+                                  lambda: made(_distinguished([a, b], rename=False)),
+                                  lambda parts: [parts[i] for i in touched])
+    else:
+        parts, operands = made(distinguished)
     for i in touched:
-        part = parts[i]
-        # (A + B) - B is A - B, computed otherwise
-        parts[i] = regular(checked(adapter.subtract(part, cutter), lambda part=part:
-                                   adapter.subtract(adapter.add(part, cutter), cutter)))
-    return of_parts(parts, merged_origins((a, b)))
+        parts[i] = regular(parts[i])
+    return of_parts(parts, merged_origins(operands))

@@ -11,7 +11,14 @@ import numpy as np
 
 from castor.mesh.arrays import cross, same_place
 
-_FLAT = 1e-10
+# A triangle whose height is at most this fraction of its longest side is
+# flat. Its plane is then no better known than its coordinates' rounding
+# (about 1e-16 of their size) over that fraction: below about 1e-9 a needle
+# the engine leaves among coplanar faces (a turned row of cubes: two
+# corners 9e-9 apart, 5e-11 high over 0.06) is no plane at all, written as a
+# polygon of its own. (1e-8 flipped triangles that are faces, a few 1e-9
+# high, across edges of the solid: wide oracle, seed 22.)
+_FLAT = 1e-9
 
 
 def flat_triangles(vertices: np.ndarray, triangles: np.ndarray, chunk: int = 1 << 20) -> np.ndarray:
@@ -166,15 +173,28 @@ def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
     where flipping leaves flat twins (two flat triangles on the same three
     vertices, turned against each other: a closed fin of no area, which the
     flips of a run of flat triangles along one edge can make), both go and
-    the rest is flipped again."""
-    for _ in range(4):
+    the rest is flipped again, while each pass leaves fewer. A flat triangle
+    that every flip leaves flat (its middle corner and a neighbour's both in
+    line with it) loses its shortest edge instead (``_collapsed``)."""
+    left = int(flat.sum())
+    for _ in range(8):
         triangles, origin_ids, face_ids = _flipped(vertices, triangles, origin_ids, face_ids, flat)
         flat = flat_triangles(vertices, triangles)
         if not flat.any():
             break
         twins = _coincident(triangles[flat])
         if twins is None:
-            break
+            if flat.sum() >= left:
+                collapsed = _collapsed(vertices, triangles, flat)
+                if collapsed is None:
+                    break
+                triangles, origin_ids, face_ids = (collapsed[0], origin_ids[collapsed[1]],
+                                                   face_ids[collapsed[1]])
+                flat = flat_triangles(vertices, triangles)
+                if not flat.any():
+                    break
+            left = int(flat.sum())
+            continue
         keep = np.ones(len(triangles), bool)
         keep[np.flatnonzero(flat)[twins]] = False
         triangles, origin_ids, face_ids = triangles[keep], origin_ids[keep], face_ids[keep]
@@ -182,6 +202,82 @@ def _flip_flat(vertices, triangles, origin_ids, face_ids, flat):
         if not flat.any():
             break
     return triangles, origin_ids, face_ids
+
+
+def _collapsed(vertices, triangles, flat):
+    """The surface with the shortest edge of flat triangles collapsed, where
+    that changes nothing but the triangulation: the vertex that goes is
+    moved onto the other end, every triangle around it lies in one plane
+    (so the surface stays where it was: the engine leaves such vertices a
+    rounding apart inside a face, 1.6e-5 apart in a turned row of cubes),
+    the two ends have no other common neighbour than the corners across
+    the edge (so the surface stays a 2-manifold), and no triangle turns
+    over. Returns (triangles, the rows kept), or None if no edge could go."""
+    triangles = triangles.copy()
+    keep = np.ones(len(triangles), bool)
+    corners = np.unique(triangles[flat])
+    near = np.flatnonzero(np.isin(triangles, corners).any(axis=1))
+    around: dict[int, set[int]] = {}
+    for i in near.tolist():
+        for v in triangles[i].tolist():
+            around.setdefault(v, set()).add(i)
+    scale = max(1.0, float(np.abs(vertices[corners]).max()))
+    done = False
+    for i in np.flatnonzero(flat).tolist():
+        if not keep[i]:
+            continue
+        t = triangles[i].tolist()
+        p = vertices[t]
+        lengths = [float(np.dot(p[(k + 1) % 3] - p[k], p[(k + 1) % 3] - p[k])) for k in range(3)]
+        k = int(np.argmin(lengths))
+        a, b = t[k], t[(k + 1) % 3]
+        for gone, stays in ((b, a), (a, b)):
+            if _collapse(vertices, triangles, keep, around, gone, stays, scale):
+                done = True
+                break
+    if not done:
+        return None
+    rows = np.flatnonzero(keep)
+    return triangles[rows], rows
+
+
+def _collapse(vertices, triangles, keep, around, gone, stays, scale) -> bool:
+    """Collapse the edge (gone, stays) onto ``stays``, if it changes nothing
+    but the triangulation (see _collapsed)."""
+    ring = [j for j in around.get(gone, ()) if keep[j]]
+    if not ring:
+        return False
+    shared = [j for j in ring if stays in triangles[j]]
+    if len(shared) != 2:
+        return False
+    tips = {int(x) for j in shared for x in triangles[j] if x != gone and x != stays}
+    neighbours_gone = {int(x) for j in ring for x in triangles[j]} - {gone}
+    neighbours_stays = {int(x) for j in around.get(stays, ()) if keep[j]
+                        for x in triangles[j]} - {stays}
+    if (neighbours_gone & neighbours_stays) != tips:
+        return False
+    # every triangle around ``gone`` in one plane: that of the largest
+    p = vertices[triangles[ring]]
+    normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    areas = np.linalg.norm(normals, axis=1)
+    unit = normals[int(np.argmax(areas))] / max(float(areas.max()), 1e-300)
+    offset = float(unit @ vertices[stays])
+    if np.abs(p.reshape(-1, 3) @ unit - offset).max() > 1e-9 * scale:
+        return False
+    moved = [j for j in ring if j not in shared]
+    after = triangles[moved].copy()
+    after[after == gone] = stays
+    q = vertices[after]
+    turned = np.cross(q[:, 1] - q[:, 0], q[:, 2] - q[:, 0]) @ unit
+    if np.any(turned <= 0) or flat_triangles(vertices, after).any():
+        return False
+    triangles[moved] = after
+    for j in shared:
+        keep[j] = False
+    for j in moved:
+        around.setdefault(stays, set()).add(j)
+    around[gone] = set()
+    return True
 
 
 def _flipped(vertices, triangles, origin_ids, face_ids, flat):
@@ -226,11 +322,13 @@ def _flipped(vertices, triangles, origin_ids, face_ids, flat):
             todo.insert(0, i)
             todo.append(n)
             continue
+        first, second = (m, u, x), (w, m, x)
+        if _turns_over(point, tris[n], first, second):
+            continue
         waiting.discard(i)
         for tri in (t, tris[n]):
             for e in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
                 owner.pop(e, None)
-        first, second = (m, u, x), (w, m, x)
         tris[i], tris[n] = first, second
         origin[i], face[i] = origin[n], face[n]
         for j, tri in ((i, first), (n, second)):
@@ -242,6 +340,23 @@ def _flipped(vertices, triangles, origin_ids, face_ids, flat):
     triangles = triangles.copy()
     triangles[rows] = np.array([tris[r] for r in rows.tolist()], np.int64)
     return triangles, origin, face
+
+
+def _turns_over(point, neighbour, first, second) -> bool:
+    """Whether a flip would turn a triangle over: the flat triangle's area
+    is none, so the two triangles it makes with its neighbour face as the
+    neighbour does, unless its middle corner is off the line by more than
+    the neighbour can take (across an edge of the solid, a corner a little
+    off it puts a new triangle on its other side)."""
+    if flat_triangles(point, np.array([neighbour]))[0]:
+        return False  # (a run of flat triangles along one line: no side to keep)
+    p = point[list(neighbour)]
+    facing = np.cross(p[1] - p[0], p[2] - p[0])
+    for tri in (first, second):
+        q = point[list(tri)]
+        if float(np.cross(q[1] - q[0], q[2] - q[0]) @ facing) <= 0:
+            return True
+    return False
 
 
 def _long_edge_elsewhere(point, tri, u, w) -> bool:

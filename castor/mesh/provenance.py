@@ -31,6 +31,7 @@ use is ``origin_ids[source]`` — where a per-face attribute of the templates
 
 from __future__ import annotations
 
+import re
 from typing import NamedTuple
 
 import numpy as np
@@ -38,7 +39,8 @@ import numpy as np
 from castor.mesh import adapter
 from castor.mesh.arrays import row_hash
 from castor.mesh.frame import Origin
-from castor.mesh.instances import Placed
+from castor.mesh.caches import PROCESS
+from castor.mesh.instances import Placed, moved_planes
 
 
 class Origins:
@@ -51,7 +53,7 @@ class Origins:
     every run. Two uses at one place give the same triangles, and either name
     is true of them."""
 
-    __slots__ = ("_ids", "_matrices", "table", "_index", "_one")
+    __slots__ = ("_ids", "_matrices", "table", "_index", "_one", "_twins")
 
     def __init__(self, ids: np.ndarray | None, matrices: np.ndarray | None, table: tuple,
                  one: tuple | None = None):
@@ -60,6 +62,7 @@ class Origins:
         self.table = table  # E Origins
         self._index = None  # for find: sorted keys, and sorted IDs, made once
         self._one = one  # (ID, matrix) of a single entry whose arrays are not made yet
+        self._twins = None  # for twins: each entry's group of entries at one place, or -1
 
     @property
     def ids(self) -> np.ndarray:
@@ -158,6 +161,95 @@ class Origins:
                     distance = np.abs(wanted[chunk][:, None, :] - flat[candidates][None]).max(axis=2)
                     found[chunk] = candidates[np.argmin(distance, axis=1)]
         return found
+
+
+    def twins(self) -> np.ndarray | None:
+        """For each entry, the number of its group of twins (entries of one
+        ID at one placement, to 10⁻⁹: one primitive at one place, used in
+        two operands), or -1 if it has none; None if no entry has a twin."""
+        if self._twins is None:
+            if len(self.table) < 2:
+                self._twins = False
+            else:
+                key = row_hash(np.column_stack([self.ids, np.round(
+                    self.matrices.reshape(-1, 12) * 1e9)]))
+                _, group, count = np.unique(key, return_inverse=True, return_counts=True)
+                group = group.ravel()
+                self._twins = np.where(count[group] > 1, group, -1) if np.any(count > 1) else False
+        return None if self._twins is False else self._twins
+
+
+def cut_parity(origin: Origin) -> int:
+    """How many times, odd or even, a use is cut away on its path: it is the
+    second or a later operand of that many differences (``D2``, ``D3``, …),
+    and each turns its faces inside out. What is left of the use's surface
+    faces outward where the parity is even, inward where it is odd."""
+    return sum(int(k) >= 2 for k in _CUT.findall(origin.path)) % 2
+
+
+_CUT = re.compile(r"(?:^|[.)])D(\d+)")
+
+
+def facing_twins(origins: Origins, vertices: np.ndarray, triangles: np.ndarray,
+                 origin_ids: np.ndarray, face_ids: np.ndarray) -> np.ndarray:
+    """Each triangle's entry, chosen among twins by the way it faces.
+
+    The engine names a triangle by its template's ID and placement; where two
+    uses of a primitive stand at one place in two operands (twins) and their
+    runs could not be renamed apart (booleans._renamed_runs), both have that
+    ID and placement, and ``find`` gave either. What is left of a use's face
+    faces as the face does (outward) if the use is cut away an even number of
+    times on its path, and inward if odd (``cut_parity``): a triangle facing
+    against its face comes from a twin of odd parity, one facing with it from
+    one of even parity. Twins of one parity give the same triangles on a
+    shared face, turned the same way, and either name is true of them; so the
+    engine's choice stays unless it faces the wrong way, and a triangle too
+    thin to face either way (rounding) keeps it too."""
+    twins = origins.twins()
+    if twins is None:
+        return origin_ids
+    rows = np.flatnonzero(twins[origin_ids] >= 0)
+    if not len(rows):
+        return origin_ids
+    entries = origin_ids[rows]
+    p = vertices[triangles[rows]]
+    normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    length = np.linalg.norm(normal, axis=1)
+    facing = np.zeros(len(rows))
+    for entry in np.unique(entries).tolist():
+        template = PROCESS.engine_ids.get(int(origins.ids[entry]))
+        if template is None:
+            continue
+        mine = np.flatnonzero(entries == entry)
+        planes = template.planes
+        try:
+            face_normal, _, _ = moved_planes(planes[np.minimum(face_ids[rows[mine]],
+                                                               len(planes) - 1)],
+                                             origins.matrices[entry])
+        except np.linalg.LinAlgError:
+            continue
+        facing[mine] = np.einsum("ij,ij->i", normal[mine], face_normal)
+    # turned with its face or against it, beyond rounding (half the angle's cosine)
+    want = np.where(facing > 0.5 * length, 0, np.where(facing < -0.5 * length, 1, -1))
+    parity = {}
+    groups: dict[int, list[int]] = {}
+    for e in np.flatnonzero(twins >= 0).tolist():
+        groups.setdefault(int(twins[e]), []).append(e)
+    out = origin_ids.copy()
+    for k, (entry, wanted) in enumerate(zip(entries.tolist(), want.tolist())):
+        if wanted < 0:
+            continue
+        if entry not in parity:
+            parity[entry] = cut_parity(origins[entry])
+        if parity[entry] == wanted:
+            continue
+        for other in groups[int(twins[entry])]:
+            if other not in parity:
+                parity[other] = cut_parity(origins[other])
+            if parity[other] == wanted:
+                out[rows[k]] = other
+                break
+    return out
 
 
 def _coarse_keys(ids: np.ndarray, flat: np.ndarray) -> np.ndarray:
@@ -274,10 +366,10 @@ def _part_triangles(part, origins: Origins) -> Triangles:
         tris = remap[tris]
     entries = origins.find(mesh.run_ids, mesh.placements)
     counts = np.diff(mesh.run_index)
-    origin_ids = np.repeat(entries, counts)
+    origin_ids = facing_twins(origins, vertices, tris, np.repeat(entries, counts), mesh.face_ids)
     # one number for each flat face of each use of a primitive: the rank of its
     # entry in this part, then its face. Copies of one object (whose entries
     # keep their order) number their faces alike, so their polygons can be reused.
-    rank = np.searchsorted(np.unique(entries), entries)
-    faces = (np.repeat(rank, counts) << 32) | mesh.face_ids
+    rank = np.searchsorted(np.unique(origin_ids), origin_ids)
+    faces = (rank << 32) | mesh.face_ids
     return Triangles(vertices, tris, origin_ids, faces)
