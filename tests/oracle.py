@@ -849,7 +849,8 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
                             f"{candidates[0].colour}")
         if not any(u.faces is None or lies_on_face(p.points, u, tol) for u in candidates):
             problems.append(f"polygon {i} of {p.path} lies on no face of that primitive")
-        elif not any(faces_the_right_way(p.points, u, tol, cut_parity(p.path)) for u in candidates):
+        elif not any(u.faces is None or faces_the_right_way(p.points, u, tol, cut_parity(p.path))
+                     for u in candidates):  # (a smooth solid's use: no flat face to face)
             problems.append(f"polygon {i} of {p.path} faces the other way from that primitive's "
                             "face: it comes from another use")
     return problems
