@@ -147,6 +147,7 @@ def _surfaces(picture: Picture, normals: np.ndarray) -> np.ndarray:
         curved = curved_kinds([path.rpartition("!")[2] for path in picture.paths])
         curved |= _smooth_paths(origin[p], origin[q], ends, normals[p], normals[q],
                                 len(picture.paths))
+        curved |= _unmerged_paths(picture, first, second, normals, len(picture.paths))
     else:  # a mesh file: no paths
         origin = np.zeros(count, np.int64)
         curved = np.ones(1, bool)
@@ -183,6 +184,43 @@ def _smooth_paths(path_a, path_b, ends, normal_a, normal_b, count: int) -> np.nd
     pairs, turning = np.unique(path * (int(vertex.max()) + 1) + vertex, return_counts=True)
     corners = pairs[turning >= 4] // (int(vertex.max()) + 1)
     return np.bincount(corners, minlength=count)[:count] >= SMOOTH_CORNERS
+
+
+def _unmerged_paths(picture: Picture, first, second, normals, count: int) -> np.ndarray:
+    """For each path, whether it holds ``SMOOTH_CORNERS`` pairs of neighbouring
+    polygons that lie in one plane, have one colour and would make a convex
+    polygon together: castor merges the pieces of a flat face while the
+    result stays convex (castor.mesh.merge), never the facets of a curved
+    surface, so such pairs are the facets of a smooth solid curved one way
+    only (the side of a smoothed prism between its creases), which
+    ``_smooth_paths`` cannot tell from a prism of many sides. ``first`` and
+    ``second`` start the shared edges in their two polygons."""
+    polygon = np.repeat(np.arange(picture.polygon_count), np.diff(picture.offsets))
+    p, q = polygon[first], polygon[second]
+    path = picture.path_of
+    flat = np.einsum("ij,ij->i", normals[p], normals[q]) >= 1 - COPLANAR
+    keep = flat & (path[p] == path[q]) & np.all(picture.colours[p] == picture.colours[q], axis=1)
+    if not keep.any():
+        return np.zeros(count, bool)
+    first, second, p = first[keep], second[keep], p[keep]
+    offsets = picture.offsets
+    nxt = np.arange(len(picture.points)) + 1
+    nxt[offsets[1:] - 1] = offsets[:-1]
+    before = np.empty_like(nxt)
+    before[nxt] = np.arange(len(nxt))
+    pts, normal = picture.points, normals[p]
+    scale = np.linalg.norm(pts[nxt[first]] - pts[first], axis=1)
+
+    def convex(a, corner, b):  # the turn at ``corner`` from a to b, clearly convex
+        turn = np.einsum("ij,ij->i", np.cross(pts[corner] - pts[a], pts[b] - pts[corner]), normal)
+        return turn > 1e-6 * scale ** 2
+
+    # in the union, the first polygon's edge a -> b is gone: before a comes
+    # its own point before a, after a the second polygon's point after a;
+    # before b the second polygon's point before b, after b the first's after b
+    a, b = first, nxt[first]
+    union = convex(before[a], a, nxt[nxt[second]]) & convex(before[second], b, nxt[b])
+    return np.bincount(path[p][union], minlength=count)[:count] >= SMOOTH_CORNERS
 
 
 def _shared_edges(picture: Picture):
