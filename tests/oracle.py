@@ -437,7 +437,10 @@ class Oracle:
                 below = below @ step_matrix(kind, [_value(a, env) for a in args])
             child = child.child
         solid = None
-        if isinstance(child, Prim) and node.angle != 0:
+        # an extrusion of a non-convex outline: castor's control mesh has its
+        # caps cut into convex polygons, the oracle's whole caps (another,
+        # equally good, limit surface): judged as one it cannot make
+        if isinstance(child, Prim) and node.angle != 0 and convex_caps(child):
             solid = smooth_solid(child, below, node.angle)
             if solid is None:  # every edge a crease: the primitive itself
                 return self.evaluate(node.child, env, matrix, path, uses)
@@ -451,6 +454,17 @@ class Oracle:
         self.smooth = True
         uses.append(Use(f"{path}!{child.kind}", tuple(child.colour), None))
         return solid
+
+
+def convex_caps(prim: Prim) -> bool:
+    """Whether every face of the primitive is convex (an extrusion's outline
+    may not be)."""
+    if prim.kind != "ex":
+        return True
+    outline = np.array(prim.args, dtype=float).reshape(-1, 2)
+    edge = np.roll(outline, -1, axis=0) - outline
+    turn = edge[:, 0] * np.roll(edge, -1, axis=0)[:, 1] - edge[:, 1] * np.roll(edge, -1, axis=0)[:, 0]
+    return bool((turn > 0).all() or (turn < 0).all())
 
 
 def smooth_solid(prim: Prim, matrix: np.ndarray, angle: float):
