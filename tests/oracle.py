@@ -800,7 +800,9 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
     not make; which of its objects hold one it made): the oracle's smooth solids are four levels of its own
     subdivision, castor's refined to its tolerance, so volume, area and box
     agree to within those (0.012 + 0.003 x the frame's size, times the area
-    for the volume; 3 % of the area); with one it could not make, only the
+    for the volume; 5 % of the area: the unit cube @s(170) at a tolerance of
+    0.015 to 0.057, two levels, falls 3.2 % short of its limit's area, as
+    the contract allows); with one it could not make, only the
     surface is judged (closed, regular, paths and colours).
 
     The stream does not say where one object of a '>' command ends and the
@@ -842,7 +844,7 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
     if not sure:
         UNSURE.append(frame.number)
     got_area = frame.area()
-    if sure and abs(got_area - area) > 1e-7 * size ** 2 + (0.03 * area if made else 0):
+    if sure and abs(got_area - area) > 1e-7 * size ** 2 + (0.05 * area if made else 0):
         truth = exact()[1] if exact is not None else None
         if truth is not None and abs(got_area - truth) <= 1e-7 * size ** 2:
             ORACLE_WRONG.append(frame.number)  # manifold3d's surface, not castor's
