@@ -797,8 +797,8 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
     """Every way ``frame`` (read from castor's stream) differs from the oracle.
 
     ``smooth`` (the frame holds a smooth solid the oracle made; one it could
-    not make; which of its objects hold one it made): the oracle's smooth solids are four levels of its own
-    subdivision, castor's refined to its tolerance, so volume, area and box
+    not make; which of its objects hold one it made): the oracle's smooth
+    solids are four levels of its own subdivision, castor's refined to its tolerance, so volume, area and box
     agree to within those (0.012 + 0.003 x the frame's size, times the area
     for the volume; 5 % of the area: the unit cube @s(170) at a tolerance of
     0.015 to 0.057, two levels, falls 3.2 % short of its limit's area, as
