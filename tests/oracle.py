@@ -367,7 +367,13 @@ class Oracle:
         for nodes, env, self.objects in frame_commands(self.scene):
             self.smooth = self.loose = False
             uses: list[Use] = []
-            results = [self.evaluate(node, dict(env), np.eye(4), "", uses) for node in nodes]
+            results, self.smooth_objects = [], []  # which objects hold a smooth solid it made
+            for node in nodes:
+                before = self.smooth
+                self.smooth = False
+                results.append(self.evaluate(node, dict(env), np.eye(4), "", uses))
+                self.smooth_objects.append(self.smooth)
+                self.smooth = self.smooth or before
             yield results, uses
 
     def evaluate(self, node, env, matrix, path, uses) -> manifold3d.Manifold:
@@ -431,7 +437,10 @@ class Oracle:
                 below = below @ step_matrix(kind, [_value(a, env) for a in args])
             child = child.child
         solid = None
-        if isinstance(child, Prim) and node.angle != 0:
+        # an extrusion of a non-convex outline: castor's control mesh has its
+        # caps cut into convex polygons, the oracle's whole caps (another,
+        # equally good, limit surface): judged as one it cannot make
+        if isinstance(child, Prim) and node.angle != 0 and convex_caps(child):
             solid = smooth_solid(child, below, node.angle)
             if solid is None:  # every edge a crease: the primitive itself
                 return self.evaluate(node.child, env, matrix, path, uses)
@@ -445,6 +454,17 @@ class Oracle:
         self.smooth = True
         uses.append(Use(f"{path}!{child.kind}", tuple(child.colour), None))
         return solid
+
+
+def convex_caps(prim: Prim) -> bool:
+    """Whether every face of the primitive is convex (an extrusion's outline
+    may not be)."""
+    if prim.kind != "ex":
+        return True
+    outline = np.array(prim.args, dtype=float).reshape(-1, 2)
+    edge = np.roll(outline, -1, axis=0) - outline
+    turn = edge[:, 0] * np.roll(edge, -1, axis=0)[:, 1] - edge[:, 1] * np.roll(edge, -1, axis=0)[:, 0]
+    return bool((turn > 0).all() or (turn < 0).all())
 
 
 def smooth_solid(prim: Prim, matrix: np.ndarray, angle: float):
@@ -562,9 +582,11 @@ class Generator:
     def node(self, depth: int, rep_param: str | None = None):
         r = self.rng
         if self.smooth and r.random() < 0.3:
-            # angles apart from the primitives' (90, 120, 72, 60, 45...): no
-            # edge is a crease by a rounding; over one primitive mostly
-            angle = r.choice([0.0, 30.0, 100.0, 135.0, 170.0, 180.0])
+            # angles apart from the primitives' turns (90, 120, 72, 60, 45, a
+            # wedge's 135, a pyramid's 101.5 to 132.7...): no edge is a crease
+            # by a rounding (135 was one: castor and the oracle each rounded a
+            # wedge's slope their own way); over one primitive mostly
+            angle = r.choice([0.0, 30.0, 100.0, 140.0, 170.0, 180.0])
             if r.random() < 0.7:
                 prim = self.primitive()
                 while prim.kind == "ex":  # non-convex faces: castor cuts them up
@@ -775,10 +797,12 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
     """Every way ``frame`` (read from castor's stream) differs from the oracle.
 
     ``smooth`` (the frame holds a smooth solid the oracle made; one it could
-    not make): the oracle's smooth solids are four levels of its own
-    subdivision, castor's refined to its tolerance, so volume, area and box
+    not make; which of its objects hold one it made): the oracle's smooth
+    solids are four levels of its own subdivision, castor's refined to its tolerance, so volume, area and box
     agree to within those (0.012 + 0.003 x the frame's size, times the area
-    for the volume; 3 % of the area); with one it could not make, only the
+    for the volume; 5 % of the area: the unit cube @s(170) at a tolerance of
+    0.015 to 0.057, two levels, falls 3.2 % short of its limit's area, as
+    the contract allows); with one it could not make, only the
     surface is judged (closed, regular, paths and colours).
 
     The stream does not say where one object of a '>' command ends and the
@@ -794,7 +818,7 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
         b = np.array(boxes).reshape(-1, 2, 3)
         box = np.array([b[:, 0].min(axis=0), b[:, 1].max(axis=0)])
         size = max(1.0, float(np.abs(box).max()))
-    made, loose = smooth
+    made, loose = smooth[:2]
     distance = 0.012 + 0.003 * size if made else 0.0
     if loose:
         volume, area, boxes = frame.volume(), frame.area(), []
@@ -813,12 +837,14 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
             problems.append(f"volume {got:.9g}, oracle {volume:.9g}"
                             + (f", exact {truth:.9g}" if truth is not None else ""))
     # (the oracle's smooth solids are closed quad meshes it made: no sheet to
-    # look for, and thousands of triangles the winding test would take long over)
-    sure = sure and (made or not any(has_sheets(s) for s in solids))
+    # look for, and thousands of triangles the winding test would take long
+    # over; the other objects of the frame are looked at)
+    smooth_objects = smooth[2] if len(smooth) > 2 else [made] * len(solids)
+    sure = sure and not any(has_sheets(s) for s, m in zip(solids, smooth_objects) if not m)
     if not sure:
         UNSURE.append(frame.number)
     got_area = frame.area()
-    if sure and abs(got_area - area) > 1e-7 * size ** 2 + (0.03 * area if made else 0):
+    if sure and abs(got_area - area) > 1e-7 * size ** 2 + (0.05 * area if made else 0):
         truth = exact()[1] if exact is not None else None
         if truth is not None and abs(got_area - truth) <= 1e-7 * size ** 2:
             ORACLE_WRONG.append(frame.number)  # manifold3d's surface, not castor's
@@ -849,7 +875,8 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
                             f"{candidates[0].colour}")
         if not any(u.faces is None or lies_on_face(p.points, u, tol) for u in candidates):
             problems.append(f"polygon {i} of {p.path} lies on no face of that primitive")
-        elif not any(faces_the_right_way(p.points, u, tol, cut_parity(p.path)) for u in candidates):
+        elif not any(u.faces is None or faces_the_right_way(p.points, u, tol, cut_parity(p.path))
+                     for u in candidates):  # (a smooth solid's use: no flat face to face)
             problems.append(f"polygon {i} of {p.path} faces the other way from that primitive's "
                             "face: it comes from another use")
     return problems
@@ -894,7 +921,7 @@ def check_scenes(scenes: list[Scene], sheets: bool = True,
         for number, (solids, uses) in enumerate(oracle.frames(), 1):
             problems = judge(frames[k], solids, uses, sheets,
                              (lambda n=number: truth(n)) if exact else None,
-                             (oracle.smooth, oracle.loose))
+                             (oracle.smooth, oracle.loose, oracle.smooth_objects))
             k += 1
             if problems:
                 failures.append((scene, number, problems))

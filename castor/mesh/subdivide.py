@@ -19,12 +19,18 @@ level is the arrays of one quad mesh, its vertices, its quads' corners, the
 control face each quad comes from, and which of its edges are creases.
 
 Refinement: after each level the vertices are pushed to their limit positions
-and the facets of that level are compared with the next level's limit points
-at the middle of every edge and of every face (both diagonals, since the
-written facets are triangles); the greatest gap is the level's distance to
-the limit surface. A level is written once that distance, or a third of the
-previous level's (the distance falls by about four a level), is within the
-tolerance. The caller's limit on triangles is checked before a level is made.
+and each quad of that level (two triangles) is compared with the next
+level's limit points at the middle of its edges and of its two diagonals;
+the greatest gap is the quad's distance to the limit surface. A quad within
+the tolerance is written as it is; the others are looked at in the next
+level, and a level's quads are all written once their distance, or a third
+of it (the distance falls by about four a level), is within the tolerance.
+So a control mesh that is already fine in places (a smooth solid in a
+boolean smoothed again) is refined only where it is still far from the
+limit. Where a quad meets finer ones, its side takes their vertices and it
+becomes a fan from its centre: no crack. The levels themselves are made
+whole (each a uniform Catmull–Clark step), and the caller's limit on
+triangles is checked before a level is made.
 """
 
 from __future__ import annotations
@@ -219,13 +225,13 @@ def limit_positions(level: _Level) -> np.ndarray:
     return np.where((count == 2)[:, None], crease, np.where((count >= 3)[:, None], v, smooth))
 
 
-def _distance(coarse: _Level, coarse_limit: np.ndarray, fine_limit: np.ndarray) -> float:
-    """How far the triangles of ``coarse`` (vertices at their limit) are from the
-    limit surface: the gap, across the surface, between the middle of each
-    edge and of each quad's two diagonals and the limit point the next level
-    puts there. Only the part along the normal counts: on a flat face around
-    a vertex of 3 or 5 edges the points keep sliding along the plane from
-    level to level, which moves no facet off the surface."""
+def _quad_gaps(coarse: _Level, coarse_limit: np.ndarray, fine_limit: np.ndarray) -> np.ndarray:
+    """How far each quad of ``coarse`` (its two triangles, vertices at their
+    limit) is from the limit surface: the gap, across the surface, between
+    the middle of each of its edges and of its two diagonals and the limit
+    point the next level puts there. Only the part along the normal counts:
+    on a flat face around a vertex of 3 or 5 edges the points keep sliding
+    along the plane from level to level, which moves no facet off the surface."""
     nv, ne = len(coarse.vertices), len(coarse.edges)
     quads = coarse.indices.reshape(-1, 4)
     p = coarse_limit
@@ -235,25 +241,89 @@ def _distance(coarse: _Level, coarse_limit: np.ndarray, fine_limit: np.ndarray) 
     edge_normal /= np.maximum(np.linalg.norm(edge_normal, axis=1), 1e-300)[:, None]
     a, b = coarse.edges[:, 0], coarse.edges[:, 1]
     gap = fine_limit[nv:nv + ne] - (p[a] + p[b]) / 2
-    gaps = [np.abs(np.einsum("ij,ij->i", gap, edge_normal)).max(initial=0.0)]
+    edge_gap = np.abs(np.einsum("ij,ij->i", gap, edge_normal))
+    gaps = edge_gap[coarse.edge_of].reshape(-1, 4).max(axis=1)
     centre = fine_limit[nv + ne:]
     for i, j in ((0, 2), (1, 3)):
         gap = centre - (p[quads[:, i]] + p[quads[:, j]]) / 2
-        gaps.append(np.abs(np.einsum("ij,ij->i", gap, normal)).max(initial=0.0))
-    return float(max(gaps))
+        gaps = np.maximum(gaps, np.abs(np.einsum("ij,ij->i", gap, normal)))
+    return gaps
 
 
-def _triangles(level: _Level, positions: np.ndarray):
+def _triangles(quads: np.ndarray, positions: np.ndarray) -> np.ndarray:
     """Each quad as two triangles, cut along its shorter diagonal."""
-    quads = level.indices.reshape(-1, 4)
     p = positions
     first = np.linalg.norm(p[quads[:, 0]] - p[quads[:, 2]], axis=1)
     second = np.linalg.norm(p[quads[:, 1]] - p[quads[:, 3]], axis=1)
     along_first = (first <= second)[:, None]
     t0 = np.where(along_first, quads[:, [0, 1, 2]], quads[:, [1, 2, 3]])
     t1 = np.where(along_first, quads[:, [0, 2, 3]], quads[:, [3, 0, 1]])
-    triangles = np.stack([t0, t1], axis=1).reshape(-1, 3)
-    return triangles, np.repeat(level.faces, 2)
+    return np.stack([t0, t1], axis=1).reshape(-1, 3)
+
+
+def _leaf_triangles(levels: list, leaves: list, positions: np.ndarray):
+    """The triangles of the quads chosen at each level (``leaves[k]``, a mask
+    over the quads of ``levels[k]``; a quad is chosen, or its children are
+    looked at, or an ancestor was chosen), without cracks: where a chosen
+    quad meets finer ones across a side, that side carries their vertices
+    too, and the quad is a fan from its centre (the face point of the next
+    level, on the limit surface). Vertices are numbered once for all
+    levels (a level's vertices keep their numbers in the next), so the
+    pieces meet at the same points."""
+    count = len(levels)
+    split = []  # which quads of each level have children that are looked at
+    active = np.ones(len(levels[0].faces), bool)
+    for k in range(count):
+        split.append(active & ~leaves[k])
+        active = np.repeat(split[-1], 4)
+    # every side of every chosen quad, as segments (quad, from, to) that are
+    # cut in two while the edge they lie on is cut on the other side
+    quad_ids, starts, ends, edge, level_of = [], [], [], [], []
+    offset = 0
+    for k, level in enumerate(levels):
+        chosen = np.flatnonzero(leaves[k])
+        corners = (4 * chosen[:, None] + np.arange(4)).ravel()
+        quads = level.indices.reshape(-1, 4)
+        quad_ids.append(offset + np.repeat(chosen, 4))
+        starts.append(level.indices[corners])
+        ends.append(quads[chosen][:, [1, 2, 3, 0]].ravel())
+        edge.append(level.edge_of[corners])
+        level_of.append(np.full(len(corners), k))
+        offset += len(quads)
+    quad_ids, starts, ends, edge, level_of = map(np.concatenate, (quad_ids, starts, ends, edge,
+                                                                  level_of))
+    for k, level in enumerate(levels[:-1]):
+        cut_edges = np.zeros(len(level.edges), bool)
+        corners = (4 * np.flatnonzero(split[k])[:, None] + np.arange(4)).ravel()
+        cut_edges[level.edge_of[corners]] = True
+        cut = (level_of == k) & cut_edges[np.where(level_of == k, edge, 0)]
+        if not cut.any():
+            continue
+        e, a, b = edge[cut], starts[cut], ends[cut]
+        middle = len(level.vertices) + e
+        low = level.edges[e, 0]
+        quad_ids = np.concatenate([quad_ids[~cut], quad_ids[cut], quad_ids[cut]])
+        starts = np.concatenate([starts[~cut], a, middle])
+        ends = np.concatenate([ends[~cut], middle, b])
+        edge = np.concatenate([edge[~cut], 2 * e + (a != low), 2 * e + (b != low)])
+        level_of = np.concatenate([level_of[~cut], np.full(2 * len(e), k + 1)])
+    pieces = np.bincount(quad_ids, minlength=offset)
+    triangles, faces = [], []
+    offset = 0
+    for k, level in enumerate(levels):
+        quads = level.indices.reshape(-1, 4)
+        whole = leaves[k] & (pieces[offset:offset + len(quads)] == 4)
+        triangles.append(_triangles(quads[whole], positions))
+        faces.append(np.repeat(level.faces[whole], 2))
+        offset += len(quads)
+    fan = pieces[quad_ids] > 4
+    first_quad = np.cumsum([0] + [len(level.faces) for level in levels])
+    k = np.searchsorted(first_quad, quad_ids[fan], side="right") - 1
+    local = quad_ids[fan] - first_quad[k]
+    centre = np.array([len(level.vertices) + len(level.edges) for level in levels])[k] + local
+    triangles.append(np.column_stack([centre, starts[fan], ends[fan]]))
+    faces.append(np.concatenate([level.faces for level in levels])[quad_ids[fan]])
+    return np.concatenate(triangles), np.concatenate(faces)
 
 
 def has_smooth_edges(vertices, offsets, indices, angle: float) -> bool:
@@ -289,21 +359,32 @@ def smooth(vertices, offsets, indices, angle: float, tolerance: float,
 
     current = checked_refine(level)
     current_limit = limit_positions(current)
-    levels = 1
+    levels, leaves = [], []
+    active = np.ones(len(current.faces), bool)  # quads whose ancestors are all too far
+    gap = 0.0
     while True:
         following = checked_refine(current)
         following_limit = limit_positions(following)
-        distance = _distance(current, current_limit, following_limit)
-        if distance <= tolerance or not math.isfinite(distance):
-            chosen, positions, gap, depth = current, current_limit, distance, levels
+        gaps = np.where(active, _quad_gaps(current, current_limit, following_limit), 0.0)
+        levels.append(current)
+        worst = float(gaps.max(initial=0.0))
+        near = active & (gaps <= tolerance)
+        if worst <= tolerance or not math.isfinite(worst):
+            leaves.append(active)
+            gap = max(gap, worst)
             break
-        if distance / 3 <= tolerance:
-            chosen, positions, gap, depth = following, following_limit, distance / 3, levels + 1
+        leaves.append(near)
+        gap = max(gap, float(gaps[near].max(initial=0.0)))
+        active = np.repeat(active & ~near, 4)
+        if worst / 3 <= tolerance:
+            levels.append(following)
+            leaves.append(active)
+            gap = max(gap, worst / 3)
             break
         current, current_limit = following, following_limit
-        levels += 1
-    triangles, faces = _triangles(chosen, positions)
-    return Smoothed(positions, triangles, faces, depth, gap)
+    triangles, faces = _leaf_triangles(levels, leaves, following_limit)
+    used, triangles = np.unique(triangles, return_inverse=True)
+    return Smoothed(following_limit[used], triangles.reshape(-1, 3), faces, len(levels), gap)
 
 
 def patches(vertices, offsets, indices, angle: float) -> np.ndarray:

@@ -54,6 +54,10 @@ class MeshRays:
         # the surface each triangle lies on, for the edges of pictures: its own
         # until told (smooth_leaf names each one's smooth patch)
         self.surfaces = np.arange(len(self.triangles), dtype=np.int64)
+        # the smooth surface each triangle lies on, for its normals (None:
+        # each triangle its own plane); the normals at its corners, made once
+        self.smooth_groups: np.ndarray | None = None
+        self._corner_normals: np.ndarray | None = None
         self._scene = rtcore_scene.EmbreeScene(robust=True)  # watertight: no ray slips between two triangles
         if len(self.triangles):
             TriangleMesh(scene=self._scene,
@@ -64,8 +68,21 @@ class MeshRays:
         return self.low.copy(), self.high.copy()
 
     def normal(self, points: np.ndarray, face: np.ndarray) -> np.ndarray:
-        """The outward (unnormalised) normal of the triangles ``face``."""
-        return self.normals[np.asarray(face, dtype=np.int64) & FACE_MASK]
+        """The outward (unnormalised) normal at ``points`` on the triangles
+        ``face``: the triangle's own, or, once ``smooth_groups`` says which
+        triangles are facets of one smooth surface, the normals at its
+        corners interpolated across it (Phong's normals: a smooth solid
+        shaded as smooth as its limit surface, its creases and flat faces
+        kept sharp)."""
+        face = np.asarray(face, dtype=np.int64) & FACE_MASK
+        if self.smooth_groups is None:
+            return self.normals[face]
+        if self._corner_normals is None:
+            self._corner_normals = corner_normals(self.vertices, self.triangles, self.normals,
+                                                  self.smooth_groups)
+        p = self.vertices[self.triangles[face]]
+        weights = _barycentric(np.asarray(points, dtype=np.float64), p)
+        return np.einsum("ij,ijk->ik", weights, self._corner_normals[face])
 
     def crossings(self, origins: np.ndarray, directions: np.ndarray):
         """(t, triangle), each (n, K), sorted along each ray; t = inf past a ray's last.
@@ -166,6 +183,38 @@ class MeshRays:
         return kept_t, kept_face
 
 
+def corner_normals(vertices, triangles, normals, groups) -> np.ndarray:
+    """(T, 3, 3) unit normals at each triangle's corners: at a vertex, the
+    mean of the normals (weighted by area) of the triangles around it of the
+    same ``groups`` number; a vertex on a crease, or on the edge of a flat
+    face, has one normal for each side."""
+    n = len(vertices)
+    key = np.asarray(groups, dtype=np.int64)[:, None] * n + triangles
+    unique, slot = np.unique(key.ravel(), return_inverse=True)
+    total = np.zeros((len(unique), 3))
+    for axis in range(3):
+        total[:, axis] = np.bincount(slot, weights=np.repeat(normals[:, axis], 3),
+                                     minlength=len(unique))
+    total /= np.maximum(np.linalg.norm(total, axis=1), 1e-300)[:, None]
+    return total[slot].reshape(-1, 3, 3)
+
+
+def _barycentric(points: np.ndarray, corners: np.ndarray) -> np.ndarray:
+    """(n, 3) weights of the corners (n, 3, 3) of triangles for points on (or
+    next to) them, clipped into the triangle."""
+    v0, v1 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+    v2 = points - corners[:, 0]
+    d00, d01, d11 = (np.einsum("ij,ij->i", a, b) for a, b in ((v0, v0), (v0, v1), (v1, v1)))
+    d20, d21 = np.einsum("ij,ij->i", v2, v0), np.einsum("ij,ij->i", v2, v1)
+    denominator = d00 * d11 - d01 * d01
+    denominator = np.where(np.abs(denominator) > 0, denominator, 1.0)
+    v = (d11 * d20 - d01 * d21) / denominator
+    w = (d00 * d21 - d01 * d20) / denominator
+    weights = np.clip(np.column_stack([1 - v - w, v, w]), 0, None)
+    total = weights.sum(axis=1, keepdims=True)
+    return np.where(total > 0, weights / np.where(total > 0, total, 1), 1 / 3)
+
+
 _FACETIZER = []
 
 
@@ -189,6 +238,7 @@ def smooth_leaf(node, matrix: np.ndarray, leaves: list, make_leaf):
     table, group = np.unique(colours[tri.origin_ids], axis=0, return_inverse=True)
     rays = MeshRays(tri.vertices, tri.triangles, group.ravel())
     rays.surfaces = _surfaces(solid.origins, tri.origin_ids, tri.face_ids)
+    rays.smooth_groups = _smooth_groups(solid.origins, tri.origin_ids, tri.face_ids)
     inverse = np.linalg.inv(matrix)[:3, :]
     low, high = rays.box()
     corners = np.array([[x, y, z, 1.0] for x in (low[0], high[0]) for y in (low[1], high[1])
@@ -204,10 +254,9 @@ def smooth_leaf(node, matrix: np.ndarray, leaves: list, make_leaf):
     return first
 
 
-def _surfaces(origins, origin_ids: np.ndarray, face_ids: np.ndarray) -> np.ndarray:
-    """For each triangle of a smooth solid, a number for the surface it lies on
-    (castor.mesh.smooth): its smooth patch, or its flat control face, of its
-    origin; numbered from 0, equal only within one surface."""
+def _patches(origins, origin_ids: np.ndarray, face_ids: np.ndarray):
+    """For each triangle of a smooth solid, its face number and its smooth
+    patch (castor.mesh.smooth), -1 on a flat control face."""
     face = face_ids & 0xFFFFFFFF
     patch = np.full(len(face), -1, np.int64)
     for entry in np.unique(origin_ids):
@@ -217,6 +266,22 @@ def _surfaces(origins, origin_ids: np.ndarray, face_ids: np.ndarray) -> np.ndarr
             table = surfaces.of_face
             known = face[rows] < len(table)
             patch[rows] = np.where(known, table[np.minimum(face[rows], len(table) - 1)], -1)
+    return face, patch
+
+
+def _smooth_groups(origins, origin_ids: np.ndarray, face_ids: np.ndarray) -> np.ndarray:
+    """For each triangle of a smooth solid, the surface its normals are
+    shared on: its smooth patch, whatever the origin (a smoothed union is
+    smooth across the seam of its colours), or its flat face."""
+    face, patch = _patches(origins, origin_ids, face_ids)
+    return np.where(patch < 0, -1 - face, patch)
+
+
+def _surfaces(origins, origin_ids: np.ndarray, face_ids: np.ndarray) -> np.ndarray:
+    """For each triangle of a smooth solid, a number for the surface it lies on
+    (castor.mesh.smooth): its smooth patch, or its flat control face, of its
+    origin; numbered from 0, equal only within one surface."""
+    face, patch = _patches(origins, origin_ids, face_ids)
     flat = patch < 0
     surface = np.where(flat, face, patch)
     _, number = np.unique(np.column_stack([origin_ids, flat, surface]), axis=0,

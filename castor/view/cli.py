@@ -32,6 +32,7 @@ def _triple(text: str, parser, option: str):
 
 def _arguments(argv):
     from castor import __version__
+    from castor.options import VIEW_NAMES, parse_view
     from castor.view.scene import readable_suffixes
 
     mesh_suffixes = " ".join(readable_suffixes(("mesh",)))
@@ -44,7 +45,7 @@ def _arguments(argv):
     p.add_argument("--size", default="800x600", metavar="WxH", help="image size (800x600)")
     p.add_argument("--view", default="-60,25", metavar="AZ,EL|NAME",
                    help="camera direction in degrees: azimuth around z, elevation (-60,25); "
-                        "or top, bottom, front, back, left, right (orthographic)")
+                        f"or {', '.join(VIEW_NAMES)} (orthographic)")
     p.add_argument("--eye", metavar="X,Y,Z", help="camera position (with --look)")
     p.add_argument("--look", metavar="X,Y,Z", help="point the camera looks at (with --eye)")
     p.add_argument("--wire", action="store_true", help="wireframe (fil de fer)")
@@ -62,8 +63,6 @@ def _arguments(argv):
     if not size or not (1 <= int(size[1]) <= 16384 and 1 <= int(size[2]) <= 16384):
         p.error(f"--size takes WxH such as 800x600, not '{args.size}'")
     args.width, args.height = int(size[1]), int(size[2])
-    from castor.options import parse_view
-
     try:
         args.view = parse_view(args.view)
     except ValueError as exc:

@@ -17,7 +17,7 @@ import dataclasses
 
 import numpy as np
 
-from castor.mesh.creases import curved_kinds, guessed_same_surface
+from castor.mesh.creases import COPLANAR, curved_kinds, guessed_same_surface
 from castor.pictures.camera import Camera
 from castor.view.scene import Picture
 
@@ -25,6 +25,7 @@ BACKGROUND = np.array([1.0, 1.0, 1.0])
 EDGE_COLOUR = np.array([0.12, 0.12, 0.14])
 SUPERSAMPLE = 2  # drawn at this many times the size on each side, then averaged
 _BATCH_PIXELS = 400_000
+SMOOTH_CORNERS = 8  # see _smooth_paths
 
 
 def _normals(picture: Picture) -> np.ndarray:
@@ -121,7 +122,7 @@ def _outline_edges(picture: Picture, normals: np.ndarray) -> np.ndarray:
     count = len(picture.points)
     if count == 0:
         return np.zeros(0, bool)
-    first, second, polygon = _shared_edges(picture)
+    first, second, polygon, _ends = _shared_edges(picture)
     turn = np.einsum("ij,ij->i", normals[polygon[first]], normals[polygon[second]])
     flat = np.abs(turn) > 1 - 1e-9
     draw = np.ones(count, bool)
@@ -139,11 +140,14 @@ def _surfaces(picture: Picture, normals: np.ndarray) -> np.ndarray:
     label = np.arange(count)
     if len(picture.points) == 0:
         return label
-    first, second, polygon = _shared_edges(picture)
+    first, second, polygon, ends = _shared_edges(picture)
     p, q = polygon[first], polygon[second]
     if picture.path_of is not None:
         origin = picture.path_of
         curved = curved_kinds([path.rpartition("!")[2] for path in picture.paths])
+        curved |= _smooth_paths(origin[p], origin[q], ends, normals[p], normals[q],
+                                len(picture.paths))
+        curved |= _unmerged_paths(picture, first, second, normals, len(picture.paths))
     else:  # a mesh file: no paths
         origin = np.zeros(count, np.int64)
         curved = np.ones(1, bool)
@@ -162,9 +166,67 @@ def _surfaces(picture: Picture, normals: np.ndarray) -> np.ndarray:
     return label
 
 
+def _smooth_paths(path_a, path_b, ends, normal_a, normal_b, count: int) -> np.ndarray:
+    """For each path, whether its polygons are the facets of a smooth solid
+    (``@s``, LANGUAGE.md §7.1), whose path ends in the kind of a flat
+    primitive: at a vertex of a flat primitive at most three of the edges
+    between its own faces turn (a corner of a cube, a prism or an extrusion;
+    the pieces of one face meet flat), save the apex of a pyramid; on a
+    smooth solid four or more turn at nearly every vertex. A path with
+    ``SMOOTH_CORNERS`` such vertices is taken for a smooth solid (a frame
+    may hold a few pyramids of one path; a smooth solid has hundreds). ``path_a``, ``path_b``,
+    ``ends`` (vertex numbers) and the normals are those of the shared edges."""
+    same = (path_a == path_b) & (np.einsum("ij,ij->i", normal_a, normal_b) < 1 - COPLANAR)
+    if not same.any():
+        return np.zeros(count, bool)
+    path = np.repeat(path_a[same], 2)
+    vertex = ends[same].ravel()
+    pairs, turning = np.unique(path * (int(vertex.max()) + 1) + vertex, return_counts=True)
+    corners = pairs[turning >= 4] // (int(vertex.max()) + 1)
+    return np.bincount(corners, minlength=count)[:count] >= SMOOTH_CORNERS
+
+
+def _unmerged_paths(picture: Picture, first, second, normals, count: int) -> np.ndarray:
+    """For each path, whether it holds ``SMOOTH_CORNERS`` pairs of neighbouring
+    polygons that lie in one plane, have one colour and would make a convex
+    polygon together: castor merges the pieces of a flat face while the
+    result stays convex (castor.mesh.merge), never the facets of a curved
+    surface, so such pairs are the facets of a smooth solid curved one way
+    only (the side of a smoothed prism between its creases), which
+    ``_smooth_paths`` cannot tell from a prism of many sides. ``first`` and
+    ``second`` start the shared edges in their two polygons."""
+    polygon = np.repeat(np.arange(picture.polygon_count), np.diff(picture.offsets))
+    p, q = polygon[first], polygon[second]
+    path = picture.path_of
+    flat = np.einsum("ij,ij->i", normals[p], normals[q]) >= 1 - COPLANAR
+    keep = flat & (path[p] == path[q]) & np.all(picture.colours[p] == picture.colours[q], axis=1)
+    if not keep.any():
+        return np.zeros(count, bool)
+    first, second, p = first[keep], second[keep], p[keep]
+    offsets = picture.offsets
+    nxt = np.arange(len(picture.points)) + 1
+    nxt[offsets[1:] - 1] = offsets[:-1]
+    before = np.empty_like(nxt)
+    before[nxt] = np.arange(len(nxt))
+    pts, normal = picture.points, normals[p]
+    scale = np.linalg.norm(pts[nxt[first]] - pts[first], axis=1)
+
+    def convex(a, corner, b):  # the turn at ``corner`` from a to b, clearly convex
+        turn = np.einsum("ij,ij->i", np.cross(pts[corner] - pts[a], pts[b] - pts[corner]), normal)
+        return turn > 1e-6 * scale ** 2
+
+    # in the union, the first polygon's edge a -> b is gone: before a comes
+    # its own point before a, after a the second polygon's point after a;
+    # before b the second polygon's point before b, after b the first's after b
+    a, b = first, nxt[first]
+    union = convex(before[a], a, nxt[nxt[second]]) & convex(before[second], b, nxt[b])
+    return np.bincount(path[p][union], minlength=count)[:count] >= SMOOTH_CORNERS
+
+
 def _shared_edges(picture: Picture):
     """The edges two polygons share: for each, the point that starts it in
-    one polygon and in the other, and every point's polygon."""
+    one polygon and in the other, every point's polygon, and the edges' two
+    vertices (points numbered once for all the polygons they are in)."""
     count = len(picture.points)
     scale = max(float(np.abs(picture.points).max()), 1.0) * 1e-9
     quantized = np.round(picture.points / scale).astype(np.int64)
@@ -183,7 +245,8 @@ def _shared_edges(picture: Picture):
     single[1:] &= pair[1:] != pair[:-1] + 1
     single[:-1] &= pair[:-1] + 1 != pair[1:]
     pair = pair[single]
-    return order[pair], order[pair + 1], polygon
+    first = order[pair]
+    return first, order[pair + 1], polygon, np.column_stack([a[first], b[first]])
 
 
 def _rasterize(screen, z, tris, polygon, width, height, depth, owner, orthographic=False):

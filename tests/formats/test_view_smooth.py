@@ -1,0 +1,92 @@
+"""castor-view on smooth solids (LANGUAGE.md §7.1: drawings show a smooth
+solid's creases and silhouette, never the lines between its facets) and its
+help, which names the views from the one table (castor.options)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from meshcheck import run
+
+
+def pictures(scene: str, mode: str, view=(-60.0, 25.0)):
+    """castor's stream of ``scene``, drawn by castor-view's renderer: one
+    image per frame, 240 x 180."""
+    from castor.formats.cps import load
+    from castor.options import View
+    from castor.pictures.camera import make_camera
+    from castor.view.render import render
+
+    status, stream, err = run("--no-cpp", "-q", stdin=scene)
+    assert status == 0, err
+    images = []
+    for picture in load(iter(stream.splitlines(keepends=True))):
+        camera = make_camera(picture.points.min(axis=0), picture.points.max(axis=0), (240, 180),
+                             View(None, *view), None, None)
+        images.append(render(picture, camera, 240, 180, mode))
+    return images
+
+
+def lines_inside(scene: str) -> list[float]:
+    """For each frame: the share of the pixels well inside the outline that
+    ``--edges`` darkens (lines drawn across the surface)."""
+    shares = []
+    for plain, edged in zip(pictures(scene, "shaded"), pictures(scene, "edges")):
+        covered = np.any(plain != 255, axis=2)
+        # the outline and a band of 6 pixels inside it left out
+        inside = covered.copy()
+        for _ in range(6):
+            inside[1:-1, 1:-1] &= inside[:-2, 1:-1] & inside[2:, 1:-1] & inside[1:-1, :-2] \
+                & inside[1:-1, 2:]
+        darker = plain.astype(int).sum(axis=2) - edged.astype(int).sum(axis=2) > 60
+        shares.append(float(darker[inside].mean()))
+    return shares
+
+
+def test_a_smooth_solid_is_drawn_without_its_facets_lines():
+    smooth, sphere, blob = lines_inside(
+        "> @s(120) @h(2, 2, 1) !cu(0.8, 0.6, 0.4);\n> !sp(0.8, 0.6, 0.4);\n"
+        "> @s(180) $U(@h(2, 1, 1) !cu(0.8, 0.6, 0.4), @t(0.5, 0.5, 0.5) @h(0.5, 0.5, 1) "
+        "!cy(0.2, 0.4, 0.9));")
+    # (lines between the facets darkened 42 % of the smooth cube, 52 % of the blob)
+    assert smooth < 0.005 and sphere < 0.005
+    # the union smoothed: its two colours meet along a seam (drawn, as the
+    # edge between two solids is), its facets draw nothing
+    assert blob < 0.03
+
+
+def test_a_surface_curved_one_way_is_drawn_without_its_facets_lines():
+    # @s(65) on a hexagonal prism: the rims stay creases, the side is curved
+    # around only; its facets, in vertical strips, are never merged by castor
+    # as a flat face's pieces are (10 % of the picture was lines before; the
+    # 1.4 % left is the front rim, a crease, inside the outline)
+    side, = lines_inside("> @s(65) @h(1, 1, 1.5) !pr(0.6, 0.8, 0.4, 6);")
+    assert side < 0.025
+    # a prism of 24 sides keeps its 24 edges (test_flat_solids_keep_their_edges)
+
+
+def test_flat_solids_keep_their_edges():
+    # a cube's edges, and the hips of a pyramid of 32 sides (turning by a
+    # few degrees: the apex, where 32 edges meet, is one such vertex, a
+    # smooth solid has hundreds), a prism of 24 sides
+    cube, pyramid, prism = lines_inside("> !cu(0.8, 0.6, 0.4);\n> !py(0.8, 0.6, 0.4, 32);\n"
+                                        "> !pr(0.8, 0.6, 0.4, 24);")
+    assert cube > 0.01 and pyramid > 0.05 and prism > 0.05
+
+
+def test_the_help_names_every_view_of_the_table():
+    from castor.options import VIEW_NAMES
+
+    status, out, _ = run_view("--help")
+    assert status == 0
+    text = " ".join(out.split())
+    assert f"or {', '.join(VIEW_NAMES)} (orthographic)" in text
+
+
+def run_view(*args):
+    import subprocess
+    import sys
+
+    result = subprocess.run([sys.executable, "-m", "castor.view.cli", *args], capture_output=True,
+                            text=True, timeout=60)
+    return result.returncode, result.stdout, result.stderr
