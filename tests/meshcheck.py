@@ -129,6 +129,15 @@ def check_solid(frame: Frame) -> None:
         assert frame.volume() > 0, "surface is not outward oriented"
 
 
+def hear_ctrl_c() -> None:
+    """For ``preexec_fn``: the castor a test starts hears Ctrl-C (SIGINT) even when
+    the tests themselves were started as a background job of a shell, which
+    starts them with SIGINT ignored and would pass that on to castor."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def run(*args, stdin: str | None = None, cwd=None, check_status=None):
     """Run castor; returns (status, stdout, stderr)."""
     # run outside the source tree, so that the installed package is what runs

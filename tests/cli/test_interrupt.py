@@ -9,6 +9,8 @@ import time
 
 import pytest
 
+from meshcheck import hear_ctrl_c
+
 # two frames, each long enough to be caught in the middle of its making
 BIG = "a = $U(" + ", ".join(f"@t({i * 0.7:g}, 0, 0) !sp(1, 0, 0)" for i in range(41)) + ");\n" \
       ">[T = 0, 1] @f(0.0005) a;\n"
@@ -50,7 +52,8 @@ def test_an_interrupt_ends_every_process_and_leaves_no_file(tmp_path, signum, wh
     (tmp_path / "big.cas").write_text(BIG)
     castor = subprocess.Popen([sys.executable, "-m", "castor", "--jobs", "2", "-o", "big-%d.glb",
                                "big.cas"], cwd=tmp_path, stdout=subprocess.PIPE,
-                              stderr=subprocess.PIPE, start_new_session=True)
+                              stderr=subprocess.PIPE, start_new_session=True,
+                              preexec_fn=hear_ctrl_c)
     try:
         _workers_started(castor.pid, 4)  # castor, the forkserver and two workers at least
         time.sleep(2)  # the workers are in the middle of their frames

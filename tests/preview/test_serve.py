@@ -21,6 +21,7 @@ from castor.settings import Source
 from castor.serve import server as server_module
 from castor.serve.scene import Overtaken, Watched, evaluate
 from castor.serve.server import PreviewServer
+from meshcheck import hear_ctrl_c
 
 BOX = "boite = @h({x}, 3, 4) !cu(0.25, 0.45, 0.85);\n> boite;\n"
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -333,7 +334,7 @@ def start_castor(args: list[str], cwd) -> tuple[subprocess.Popen, str]:
     env = dict(os.environ, PYTHONPATH=ROOT)
     process = subprocess.Popen([sys.executable, "-m", "castor", "--serve", *args], cwd=cwd,
                                stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, env=env,
-                               text=True)
+                               text=True, preexec_fn=hear_ctrl_c)
     line = process.stderr.readline()
     return process, line
 
