@@ -65,7 +65,7 @@ def _fresh(name: str, text: str, defines=()):
 
 def _counting(monkeypatch) -> dict:
     counts = {"runs": 0, "patched": 0}
-    run, patched = pp._run, pp._patched
+    run, patched = pp.run_pass, pp._patched
 
     def counted_run(*args):
         counts["runs"] += 1
@@ -76,7 +76,7 @@ def _counting(monkeypatch) -> dict:
         counts["patched"] += found is not None
         return found
 
-    monkeypatch.setattr(pp, "_run", counted_run)
+    monkeypatch.setattr(pp, "run_pass", counted_run)
     monkeypatch.setattr(pp, "_patched", counted_patched)
     return counts
 
