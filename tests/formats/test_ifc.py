@@ -68,8 +68,10 @@ def _volumes_and_colours(model):
 @pytest.fixture(scope="module")
 def house(tmp_path_factory):
     where = tmp_path_factory.mktemp("house")
+    # run from a directory of its own: castor names a file inside the directory it
+    # runs in relatively (as cpp does), and the checkout may lie inside the default one
     run("-o", str(where / "house.ifc"), "--summary", str(where / "house.json"), str(HOUSE),
-        check_status=0)
+        check_status=0, cwd=where)
     return _open(where / "house.ifc"), _summary(where / "house.json")[0], where
 
 
