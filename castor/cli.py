@@ -18,7 +18,7 @@ from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
 from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
                             DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
                             parse_point, parse_scale, parse_section, parse_size, parse_sun,
-                            parse_sheet, parse_view, OPTION_OUTPUTS)
+                            parse_sheet, parse_view, OPTION_OUTPUTS, VIEW_NAMES)
 
 
 class _NotGiven(list):
@@ -101,8 +101,8 @@ def _arguments(argv):
     pictures.add_argument("--size", default="%dx%d" % DEFAULT_SIZE, metavar="WxH",
                           help="picture size in pixels (default %(default)s)")
     pictures.add_argument("--view", default="%g,%g" % DEFAULT_VIEW, metavar="AZ,EL|NAME",
-                          help="camera direction in degrees, or top, bottom, front, back, "
-                               "left, right (orthographic)")
+                          help="camera direction in degrees, or "
+                               f"{', '.join(VIEW_NAMES)} (orthographic)")
     pictures.add_argument("--eye", metavar="X,Y,Z", help="camera position (with --look)")
     pictures.add_argument("--look", metavar="X,Y,Z", help="the point the camera looks at")
     pictures.add_argument("--sun", default=None, metavar="AZ,EL|none",
