@@ -1,8 +1,6 @@
 """What a new user meets (issue 9): output errors, pipes, and messages that name
 the real cause. Golden text where the text is the contract (diagnostics)."""
 
-import contextlib
-import io
 import json
 import os
 import re
@@ -14,7 +12,7 @@ import tempfile
 import pytest
 from hypothesis import HealthCheck, event, given, settings, strategies as st
 
-from meshcheck import parse_stream, run
+from meshcheck import parse_stream, run, run_here
 
 CUBE = "!cu(0.5, 0.5, 0.5)"
 SCENE = f"> {CUBE};\n"
@@ -399,18 +397,9 @@ LOCATION = re.compile(r"^<stdin>:(\d+):(\d+): (?:error|warning|note): ", re.M)
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.data())
 def test_macro_positions_stay_on_the_line_as_written(data):
-    from castor.cli import main
-
     scene = _macro_scene(data)
     lines = scene.split("\n")
-    stdin, err, out = sys.stdin, io.StringIO(), io.StringIO()
-    sys.stdin = io.StringIO(scene)
-    try:
-        with contextlib.redirect_stderr(err), contextlib.redirect_stdout(out):
-            status = main(["--max-polygons", "20000"])
-    finally:
-        sys.stdin = stdin
-    text = err.getvalue()
+    status, _, text = run_here("--max-polygons", "20000", stdin=scene)
     assert status in (0, 1) and "internal error" not in text, (scene, text)
     if "note: in expansion of macro" in text:
         event("an error inside an expansion")

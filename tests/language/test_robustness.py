@@ -5,7 +5,6 @@ garbage and on mutations of real scenes; a failing case found here is kept
 below as a regression test.
 """
 
-import io
 import os
 import re
 import sys
@@ -14,8 +13,8 @@ from pathlib import Path
 
 from hypothesis import HealthCheck, example, given, settings, strategies as st
 
-from castor.cli import main
 from castor.pipeline import RECURSION_LIMIT
+from meshcheck import run_here
 
 # castor raises the recursion limit for deep scenes; raise it before hypothesis
 # looks, so that running castor in-process does not change it under its feet.
@@ -35,17 +34,10 @@ MESSAGE = re.compile(r"^(<stdin>|[^:\s]+):\d+:\d+: (error|warning): ", re.M)
 
 
 def run_inprocess(text: str, *args: str):
-    stdin, stdout, stderr = sys.stdin, sys.stdout, sys.stderr
-    sys.stdin, sys.stdout, sys.stderr = io.StringIO(text), io.StringIO(), io.StringIO()
-    try:
-        started = time.perf_counter()
-        status = main(["--max-polygons", "20000", *args])
-        elapsed = time.perf_counter() - started
-        return status, sys.stdout.getvalue(), sys.stderr.getvalue(), elapsed
-    except SystemExit as exc:  # usage errors exit through argparse
-        return exc.code, sys.stdout.getvalue(), sys.stderr.getvalue(), 0.0
-    finally:
-        sys.stdin, sys.stdout, sys.stderr = stdin, stdout, stderr
+    """castor in this process (meshcheck.run_here), and how long it took."""
+    started = time.perf_counter()
+    status, out, err = run_here("--max-polygons", "20000", *args, stdin=text)
+    return status, out, err, time.perf_counter() - started
 
 
 def check(text: str, *args: str) -> None:

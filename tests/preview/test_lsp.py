@@ -131,14 +131,20 @@ def scene(tmp_path: Path) -> Path:
     return tmp_path
 
 
-@pytest.fixture
-def client(scene: Path):
-    c = Client(scene)
-    c.start(scene)
+def started_client(workspace: Path):
+    """A client of a server started in ``workspace``; the server killed after
+    the test if it has not ended (for a fixture to ``yield from``)."""
+    c = Client(workspace)
+    c.start(workspace)
     yield c
     if c.process.poll() is None:
         c.process.kill()
         c.process.wait()
+
+
+@pytest.fixture
+def client(scene: Path):
+    yield from started_client(scene)
 
 
 def _line(text: str, start: str) -> int:

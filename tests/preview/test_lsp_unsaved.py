@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from test_lsp import Client, _line
+from test_lsp import Client, _line, started_client
 
 
 @pytest.fixture
@@ -23,11 +23,7 @@ def workspace(tmp_path: Path) -> Path:
 
 @pytest.fixture
 def client(workspace: Path):
-    c = Client(workspace)
-    c.start(workspace)
-    yield c
-    if c.process.poll() is None:
-        c.process.kill()
+    yield from started_client(workspace)
 
 
 def _settled(client: Client, uri: str, wanted, timeout: float = 30) -> list:

@@ -152,18 +152,10 @@ def test_values_from_the_page_are_checked_numbers(house):
 def test_a_face_shows_where_its_primitive_is_written_and_a_click_copies_it(page, house):
     import re
 
-    from test_serve_browser import BAR, REVEAL
+    from test_serve_browser import inside_reveal
 
     path, _ = house
-    image = picture(page, "source")
-    blue = near(image, REVEAL)
-    inner = blue.copy()  # away from the reveal's edges
-    for dy in (-2, 0, 2):
-        for dx in (-2, 0, 2):
-            inner &= np.roll(np.roll(blue, dy, axis=0), dx, axis=1)
-    ys, xs = np.nonzero(inner)
-    x, y = int(xs[len(xs) // 2]), int(ys[len(ys) // 2]) + BAR
-    page.mouse.move(x, y)
+    page.mouse.move(*inside_reveal(picture(page, "source")))
     page.wait_for_selector("#pointed:not([hidden])", timeout=5000)
     source = page.inner_text("#pointed-source")
     match = re.fullmatch(r"house\.cas:(\d+):(\d+): !cu", source)

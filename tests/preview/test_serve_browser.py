@@ -154,16 +154,21 @@ def test_an_error_is_listed_beside_the_last_good_picture(page, house):
     assert (outline(good, 200) != outline(shown, 200)).mean() < 0.002
 
 
-def test_pointing_at_a_blue_reveal_names_its_primitive(page):
-    image = picture(page, "point")
+def inside_reveal(image: np.ndarray) -> tuple[int, int]:
+    """A point of the page well inside the blue window reveals of a picture of the
+    view (away from their edges), in page pixels."""
     blue = near(image, REVEAL)
-    inner = blue.copy()  # away from the reveal's edges
+    inner = blue.copy()
     for dy in (-2, 0, 2):
         for dx in (-2, 0, 2):
             inner &= np.roll(np.roll(blue, dy, axis=0), dx, axis=1)
     ys, xs = np.nonzero(inner)
     assert len(ys) > 20
-    page.mouse.move(int(xs[len(xs) // 2]), int(ys[len(ys) // 2]) + BAR)
+    return int(xs[len(xs) // 2]), int(ys[len(ys) // 2]) + BAR
+
+
+def test_pointing_at_a_blue_reveal_names_its_primitive(page):
+    page.mouse.move(*inside_reveal(picture(page, "point")))
     page.wait_for_selector("#pointed:not([hidden])", timeout=5000)
     picture(page, "pointed")
     path = page.inner_text("#pointed-path")
