@@ -129,6 +129,14 @@ def check_solid(frame: Frame) -> None:
         assert frame.volume() > 0, "surface is not outward oriented"
 
 
+def write(tmp_path, name, text):
+    """Write a test's file (its folders made as needed); its path."""
+    path = tmp_path / name
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    return path
+
+
 def hear_ctrl_c() -> None:
     """For ``preexec_fn``: the castor a test starts hears Ctrl-C (SIGINT) even when
     the tests themselves were started as a background job of a shell, which

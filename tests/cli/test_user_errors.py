@@ -12,17 +12,10 @@ import tempfile
 import pytest
 from hypothesis import HealthCheck, event, given, settings, strategies as st
 
-from meshcheck import parse_stream, run, run_here
+from meshcheck import parse_stream, run, run_here, write
 
 CUBE = "!cu(0.5, 0.5, 0.5)"
 SCENE = f"> {CUBE};\n"
-
-
-def write(tmp_path, name, text):
-    path = tmp_path / name
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text)
-    return path
 
 
 def last_line(err):

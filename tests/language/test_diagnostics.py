@@ -5,17 +5,10 @@ import subprocess
 
 import pytest
 
-from meshcheck import parse_stream, run
+from meshcheck import parse_stream, run, write
 from castor.language.vocabulary import TRANSFORMS
 
 CUBE = "!cu(0.5, 0.5, 0.5)"
-
-
-def write(tmp_path, name, text):
-    path = tmp_path / name
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text)
-    return path
 
 
 def test_error_between_two_good_frames(tmp_path):
