@@ -115,37 +115,35 @@ class Facetizer:
 
     def _smooth(self, node: tree.Smooth) -> Solid:
         """A smooth solid, made once per key (castor.mesh.smooth) and moved."""
-        cached = self.caches.solids.get(node.key)
-        if cached is not None:
-            solid = cached[0]
-            self.primitive_count += cached[1]
-        else:
-            before = self.primitive_count
-            solid = smooth.smoothed(self.solid(node.operand), node, self.max_polygons)
-            self.caches.solids.put(node.key, (solid, self.primitive_count - before),
-                                   solid.triangle_count())
+        solid = self._once(node.key, lambda: smooth.smoothed(self.solid(node.operand), node,
+                                                              self.max_polygons))
         if node.matrix != tree.IDENTITY and not solid.empty:
             solid = solid.transformed(node.matrix)
         return solid
 
     def _use(self, use: tree.Use) -> Solid:
         shared = use.shared
-        cached = self.caches.solids.get(shared.key)
         # the engine's own solid, as it was computed: never a copy rebuilt from
         # its mesh, which the engine may rebuild differently
-        if cached is not None:
-            solid = cached[0]
-            self.primitive_count += cached[1]
-        else:
-            before = self.primitive_count
-            solid = self.solid(shared.child)
-            self.caches.solids.put(shared.key, (solid, self.primitive_count - before),
-                                   solid.triangle_count())
+        solid = self._once(shared.key, lambda: self.solid(shared.child))
         solid = solid.prefixed(f"({shared.name})")
         if use.path:
             solid = solid.prefixed(use.path)
         if use.matrix != tree.IDENTITY and not solid.empty:
             solid = solid.transformed(use.matrix)
+        return solid
+
+    def _once(self, key, make) -> Solid:
+        """The solid cached under ``key``, or ``make()``'s, cached with the
+        primitives it counted (a cached solid counts them again, as made)."""
+        cached = self.caches.solids.get(key)
+        if cached is not None:
+            self.primitive_count += cached[1]
+            return cached[0]
+        before = self.primitive_count
+        solid = make()
+        self.caches.solids.put(key, (solid, self.primitive_count - before),
+                               solid.triangle_count())
         return solid
 
     def _boolean(self, node: tree.Boolean) -> Solid:
