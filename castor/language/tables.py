@@ -18,7 +18,8 @@ there, for the runs after it.
 
 This module imports nothing from castor at its top (the driver, only to load
 tables at run time), so that the build can run it from the source tree by its
-path.
+path; and it names files with os.path, not pathlib, which would import urllib
+and ipaddress for nothing at every start (issue 18).
 """
 
 from __future__ import annotations
@@ -27,12 +28,11 @@ import hashlib
 import marshal
 import os
 import sys
-from pathlib import Path
 
-HERE = Path(__file__).resolve().parent
-GRAMMAR = HERE / "castor.lark"
-TABLES = HERE / "castor.tables"
-PLAIN = HERE / "castor.lalr"
+HERE = os.path.dirname(os.path.realpath(__file__))
+GRAMMAR = os.path.join(HERE, "castor.lark")
+TABLES = os.path.join(HERE, "castor.tables")
+PLAIN = os.path.join(HERE, "castor.lalr")
 
 # the parser's options: the same for the tables saved and a parser built
 OPTIONS = {"parser": "lalr", "lexer": "contextual", "start": ["statement", "program"],
@@ -55,14 +55,17 @@ def save(target: str | os.PathLike, grammar: str | None = None) -> None:
     """Build the parser and write its tables to ``target`` (beside, then renamed)."""
     from lark import Lark
 
-    grammar = GRAMMAR.read_text(encoding="utf-8") if grammar is None else grammar
+    if grammar is None:
+        with open(GRAMMAR, encoding="utf-8") as handle:
+            grammar = handle.read()
     parser = Lark(grammar, **OPTIONS)
     temporary = f"{target}.{os.getpid()}.tmp"
     with open(temporary, "wb") as handle:
         handle.write(_MAGIC + _key(grammar) + b"\n")
         parser.save(handle)
     os.replace(temporary, target)
-    save_plain(Path(target).with_name(PLAIN.name), parser, grammar)
+    save_plain(os.path.join(os.path.dirname(os.fspath(target)), os.path.basename(PLAIN)),
+               parser, grammar)
 
 
 def load(grammar: str, transformer, source: str | os.PathLike = TABLES):
@@ -184,7 +187,7 @@ def save_plain(target: str | os.PathLike, parser, grammar: str) -> bool:
     return True
 
 
-def cached_plain() -> Path:
+def cached_plain() -> str:
     """Where a checkout keeps the plain tables between runs: the temporary
     directory (as tempfile finds it from TMPDIR, TEMP or TMP, without importing
     it: this is read at every start), one file a user, as lark's own cache."""
@@ -197,7 +200,7 @@ def cached_plain() -> Path:
 
         directory = tempfile.gettempdir()
     user = os.getuid() if hasattr(os, "getuid") else 0
-    return Path(directory) / f"castor-lalr-{user}.tables"
+    return os.path.join(directory, f"castor-lalr-{user}.tables")
 
 
 def load_plain(grammar: str, transformer, sources=None):
@@ -226,4 +229,4 @@ def load_plain(grammar: str, transformer, sources=None):
 
 
 if __name__ == "__main__":  # python castor/language/tables.py DIRECTORY
-    save(Path(sys.argv[1]) / TABLES.name)
+    save(os.path.join(sys.argv[1], os.path.basename(TABLES)))
