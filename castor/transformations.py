@@ -15,11 +15,12 @@ declaration and a matrix of a few lines, and the nine read best side by side.
 from __future__ import annotations
 
 import math
-from typing import Callable, NamedTuple
-
-import numpy as np
+from typing import TYPE_CHECKING, Callable, NamedTuple
 
 from castor.diagnostics import GeometryError, Location
+
+if TYPE_CHECKING:  # numpy is imported where a matrix is made: reading a scene needs none
+    import numpy as np
 
 
 class Transformation(NamedTuple):
@@ -41,6 +42,8 @@ def _cos_sin(degrees: float) -> tuple[float, float]:
 
 
 def translation(x: float, y: float, z: float) -> np.ndarray:
+    import numpy as np
+
     m = np.eye(4)
     m[:3, 3] = (x, y, z)
     return m
@@ -48,6 +51,8 @@ def translation(x: float, y: float, z: float) -> np.ndarray:
 
 def rotation(axis: tuple[float, float, float], degrees: float, location: Location) -> np.ndarray:
     """Right-hand rotation by ``degrees`` about ``axis`` through the origin."""
+    import numpy as np
+
     x, y, z = axis
     length = math.sqrt(x * x + y * y + z * z)
     if length == 0 or not math.isfinite(length):
@@ -65,6 +70,8 @@ def rotation(axis: tuple[float, float, float], degrees: float, location: Locatio
 
 
 def _axis_rotation(axis: int, degrees: float) -> np.ndarray:
+    import numpy as np
+
     c, s = _cos_sin(degrees)
     i, j = [(1, 2), (2, 0), (0, 1)][axis]
     m = np.eye(4)
@@ -73,6 +80,8 @@ def _axis_rotation(axis: int, degrees: float) -> np.ndarray:
 
 
 def _scaling(values, location, path):
+    import numpy as np
+
     factors = values * 3 if len(values) == 1 else values
     for axis, k in zip("xyz", factors):
         if k == 0:
@@ -83,6 +92,8 @@ def _scaling(values, location, path):
 
 
 def _affine(values, location, path):
+    import numpy as np
+
     m = np.eye(4)
     m[:3, :] = np.array(values, dtype=float).reshape(3, 4)
     linear = m[:3, :3]
