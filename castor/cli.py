@@ -235,8 +235,6 @@ PIPE_CLOSED = 128 + 13
 
 def settings_of(args, overrides: dict[str, float]):
     """The settings of each stage, from the parsed options (castor.settings)."""
-    from dataclasses import replace
-
     from castor.options import acts_on
     from castor.settings import (BimSettings, DrawingSettings, EvaluationSettings, FrameSettings,
                                  MeshSettings, OutputSettings, PictureSettings, ReadSettings,
@@ -257,7 +255,7 @@ def settings_of(args, overrides: dict[str, float]):
         bim=BimSettings(classes=args.ifc_classes))
     if "--scale" in args.given and acts_on("--scale", args.format, "mesh"):
         # a model's scale (3MF): 1 scene unit = 1000/N mm (OUTPUT.md)
-        frame = replace(frame, output=replace(frame.output, model_scale=1 / args.scale))
+        frame = frame.replace(output=frame.output.replace(model_scale=1 / args.scale))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)
     return source, reading, evaluation, frame, how

@@ -1,12 +1,13 @@
-"""Plain records: what the scene graph (castor.language.scene) and the evaluated
-tree (castor.csg.tree) are made of, without dataclasses.
+"""Plain records: what the scene graph (castor.language.scene), the evaluated
+tree (castor.csg.tree) and the settings (castor.settings) are made of, without
+dataclasses.
 
-Those two modules declared 22 dataclasses, and making a dataclass runs Python's
-code generator for each of its methods: about 0.6 ms a class, some 14 ms of
-every start-up of castor (issue 18), for classes whose ``__init__`` is one line.
-Their classes now write their ``__slots__`` and ``__init__`` by hand and take
-equality, hashing and their text from ``Record``, from the fields named in
-``__slots__``.
+Those two modules and the settings (castor.settings) declared 32 dataclasses,
+and making a dataclass runs Python's code generator for each of its methods:
+about 0.6 ms a class, some 20 ms of every start-up of castor (issue 18), for
+classes whose ``__init__`` is a few lines. Their classes now write their
+``__slots__`` and ``__init__`` by hand and take equality, hashing, ``replace``
+and their text from ``Record``, from the fields named in ``__slots__``.
 """
 
 from __future__ import annotations
@@ -37,6 +38,12 @@ class Record:
 
     def __hash__(self) -> int:
         return hash(self._values())
+
+    def replace(self, **changes):
+        """A copy with ``changes`` made to its fields (as ``dataclasses.replace``)."""
+        values = {name: getattr(self, name) for name in self._fields()}
+        values.update(changes)
+        return type(self)(**values)
 
     def __repr__(self) -> str:
         fields = ", ".join(f"{name}={getattr(self, name)!r}" for name in self._fields())

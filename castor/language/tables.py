@@ -24,10 +24,10 @@ and ipaddress for nothing at every start (issue 18).
 
 from __future__ import annotations
 
-import hashlib
 import marshal
 import os
 import sys
+import zlib
 
 HERE = os.path.dirname(os.path.realpath(__file__))
 GRAMMAR = os.path.join(HERE, "castor.lark")
@@ -45,6 +45,8 @@ PLAIN_LAYOUT = 1
 
 def _key(grammar: str) -> bytes:
     """What the tables depend on: the grammar, the options and lark's version."""
+    import hashlib
+
     import lark
 
     text = f"{grammar}\0{sorted(OPTIONS.items())!r}\0{lark.__version__}"
@@ -88,9 +90,12 @@ _PLAIN_MAGIC = b"castor-lalr-tables "
 
 def _plain_key(grammar: str) -> bytes:
     """What the plain tables depend on: the grammar, the options and their layout
-    (not lark's version: castor.language.lalr runs them without lark)."""
-    text = f"{grammar}\0{sorted(OPTIONS.items())!r}\0{PLAIN_LAYOUT}"
-    return hashlib.sha256(text.encode("utf-8")).hexdigest().encode("ascii")
+    (not lark's version: castor.language.lalr runs them without lark). A CRC-32
+    and the length, not a SHA-256: it tells tables of another grammar apart (no one
+    forges them: a file in the temporary directory must be the user's own), and
+    hashlib (OpenSSL) took a few milliseconds of every start."""
+    text = f"{grammar}\0{sorted(OPTIONS.items())!r}\0{PLAIN_LAYOUT}".encode("utf-8")
+    return f"{zlib.crc32(text):08x}-{len(text)}".encode("ascii")
 
 
 def export(parser) -> dict:
