@@ -39,8 +39,9 @@ OPTIONS = {"parser": "lalr", "lexer": "contextual", "start": ["statement", "prog
            "maybe_placeholders": True}
 _MAGIC = b"castor-lark-tables "
 # the plain tables' layout, as castor.language.lalr reads it: bumped when it changes,
-# so that tables of another layout are not read
-PLAIN_LAYOUT = 1
+# so that tables of another layout are not read (2: the root lexer, and each
+# lexer's terminals)
+PLAIN_LAYOUT = 2
 
 
 def _key(grammar: str) -> bytes:
@@ -148,15 +149,22 @@ def export(parser) -> dict:
     lexers: dict = {}
     lexer_of = {}
     terminals = set()
+
+    def lexer_data(lexer) -> tuple:
+        """Its patterns (lark's alternation of its terminals, in lark's order of
+        them, the same in every lexer), the types it skips, those that may hold
+        newlines, and its terminals."""
+        scanner = lexer.scanner
+        if lexer.callback or lexer.user_callbacks:
+            raise ValueError("a lexer with callbacks (keywords the driver cannot tell apart)")
+        return (tuple((m.pattern, int(m.flags)) for m in scanner._mres),
+                tuple(sorted(lexer.ignore_types)), tuple(sorted(lexer.newline_types)),
+                tuple(sorted(t.name for t in lexer.terminals)))
+
     for state, lexer in frontend.lexer.lexers.items():
         if id(lexer) not in lexers:
-            scanner = lexer.scanner
-            if lexer.callback or lexer.user_callbacks:
-                raise ValueError("a lexer with callbacks (keywords the driver cannot tell apart)")
             terminals.update(t.name for t in lexer.terminals)
-            lexers[id(lexer)] = (len(lexers), (
-                tuple((m.pattern, int(m.flags)) for m in scanner._mres),
-                tuple(sorted(lexer.ignore_types)), tuple(sorted(lexer.newline_types))))
+            lexers[id(lexer)] = (len(lexers), lexer_data(lexer))
         lexer_of[int(state)] = lexers[id(lexer)][0]
     count = len(states)
     if sorted(states) != list(range(count)) or sorted(lexer_of) != list(range(count)):
@@ -168,6 +176,7 @@ def export(parser) -> dict:
             "rules": exported_rules,
             "lexer_of": [lexer_of[i] for i in range(count)],
             "lexers": [entry for _, entry in sorted(lexers.values())],
+            "root": lexer_data(frontend.lexer.root_lexer),
             "terminals": sorted(str(t) for t in terminals)}
 
 
