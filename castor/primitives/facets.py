@@ -92,14 +92,14 @@ def stretch_above(linear: Linear) -> tuple[float, Linear | None]:
     times a uniform scale (every direction stretched alike). A rotation R after
     the stretch changes no length, so two uses that differ by one share a
     subtree; the shape is rounded to 12 decimals for the same reason."""
-    import numpy as np
-
     gram = [linear[i] * linear[j] + linear[3 + i] * linear[3 + j] + linear[6 + i] * linear[6 + j]
             for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))]
     square = gram[0]
     if (abs(gram[1] - square) <= 1e-12 * square and abs(gram[2] - square) <= 1e-12 * square
             and max(abs(g) for g in gram[3:]) <= 1e-12 * square):
         return math.sqrt(square), None  # a rotation, a mirror, a uniform scale (the commonest)
+    import numpy as np  # here: the commonest placements above need none
+
     a = np.array(linear, dtype=np.float64).reshape(3, 3)
     _, values, turn = np.linalg.svd(a)
     largest = float(values[0])
