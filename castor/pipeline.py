@@ -160,7 +160,8 @@ class Checked(Record):
                  included: tuple[str, ...], printed: str, seconds: float):
         self.diagnostics = diagnostics
         self.trees = trees  # castor.csg.tree.FrameTree, one per frame without an error
-        self.meshes = meshes  # castor.mesh.frame.Frame, when a MeshSettings was given (and no on_mesh)
+        # castor.mesh.frame.Frame, when a MeshSettings was given (and no on_mesh)
+        self.meshes = meshes
         self.included = included  # every file that #include opened
         self.printed = printed
         self.seconds = seconds

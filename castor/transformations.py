@@ -8,8 +8,9 @@ arguments and returns its affine matrix, 3x4 row by row as the evaluated tree
 holds it (castor.csg.tree.Matrix), and the largest factor by which it
 stretches lengths (used to choose facet counts). They are made with plain
 floats, the numbers numpy made before, so that reading and checking a scene
-needs no numpy (issue 18); ``@m`` alone asks numpy for its determinant and norm. Rotations by multiples of 90
-degrees are exact, so that ``@rz(90) !cu`` has corners on whole numbers.
+needs no numpy (issue 18); ``@m`` alone asks numpy for its determinant and
+norm. Rotations by multiples of 90 degrees are exact, so that ``@rz(90) !cu``
+has corners on whole numbers.
 
 One module, not a package as the primitives are: a transformation is a
 declaration and a matrix of a few lines, and the nine read best side by side.
@@ -121,6 +122,7 @@ TRANSFORMS: dict[str, Transformation] = {t.name: t for t in (
 )}
 
 
-def step_matrix(kind: str, values: list[float], location: Location, path: object) -> tuple[Matrix, float]:
+def step_matrix(kind: str, values: list[float], location: Location,
+                path: object) -> tuple[Matrix, float]:
     """The matrix and stretch factor of one transformation step."""
     return TRANSFORMS[kind].matrix(values, location, path)
