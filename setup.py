@@ -25,7 +25,7 @@ class BuildWithTables(build_py):
         spec.loader.exec_module(tables)  # by its path: the package need not import
         target = os.path.join(self.build_lib, "castor", "language")
         os.makedirs(target, exist_ok=True)
-        tables.save(os.path.join(target, tables.TABLES.name))
+        tables.save(os.path.join(target, os.path.basename(tables.TABLES)))
 
 
 setup(cmdclass={"build_py": BuildWithTables})

@@ -27,9 +27,36 @@ class _NotGiven(list):
     that any value the command line gives is told from it."""
 
 
+def _columns() -> int:
+    """The terminal's width as shutil.get_terminal_size finds it (COLUMNS, else
+    standard output's terminal, else 80), without importing shutil (and bz2 and
+    lzma with it): argparse asks it for every option it is given, at every start."""
+    try:
+        columns = int(os.environ.get("COLUMNS", 0))
+    except ValueError:
+        columns = 0
+    if columns <= 0:
+        try:
+            columns = os.get_terminal_size(sys.__stdout__.fileno()).columns
+        except (AttributeError, ValueError, OSError):
+            columns = 0
+    return columns if columns > 0 else 80
+
+
+class _Help(argparse.HelpFormatter):
+    """argparse's help, as wide as the terminal (argparse's own less 2)."""
+
+    def __init__(self, prog, indent_increment=2, max_help_position=24, width=None):
+        super().__init__(prog, indent_increment, max_help_position,
+                         _columns() - 2 if width is None else width)
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse, whose usage errors are the one line that says what is wrong and
     a hint, never the usage text before it (CLI.md)."""
+
+    def __init__(self, **options):
+        super().__init__(formatter_class=_Help, **options)
 
     def error(self, message):
         if message.startswith("unrecognized arguments:"):
@@ -235,8 +262,6 @@ PIPE_CLOSED = 128 + 13
 
 def settings_of(args, overrides: dict[str, float]):
     """The settings of each stage, from the parsed options (castor.settings)."""
-    from dataclasses import replace
-
     from castor.options import acts_on
     from castor.settings import (BimSettings, DrawingSettings, EvaluationSettings, FrameSettings,
                                  MeshSettings, OutputSettings, PictureSettings, ReadSettings,
@@ -257,7 +282,7 @@ def settings_of(args, overrides: dict[str, float]):
         bim=BimSettings(classes=args.ifc_classes))
     if "--scale" in args.given and acts_on("--scale", args.format, "mesh"):
         # a model's scale (3MF): 1 scene unit = 1000/N mm (OUTPUT.md)
-        frame = replace(frame, output=replace(frame.output, model_scale=1 / args.scale))
+        frame = frame.replace(output=frame.output.replace(model_scale=1 / args.scale))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)
     return source, reading, evaluation, frame, how

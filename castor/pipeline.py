@@ -17,11 +17,11 @@ from __future__ import annotations
 
 import sys
 import time
-from dataclasses import dataclass
 from typing import Callable, Iterator
 
 from castor.diagnostics import (CollectingReporter, Diagnostic, Reporter, TooManyErrors,
                                 UsageError)
+from castor.records import Record
 from castor.settings import (EvaluationSettings, FrameSettings, MeshSettings, OutputSettings,
                              ReadSettings, Source)
 
@@ -149,18 +149,22 @@ def _unless(cancelled: Callable[[], bool], pieces):
         yield piece
 
 
-@dataclass(frozen=True)
-class Checked:
+class Checked(Record):
     """What a source gave, with nothing written: its diagnostics as data and as
     castor prints them, its frames' evaluated CSG trees and, when facetized,
     their mesh frames (castor.mesh.frame.Frame)."""
 
-    diagnostics: tuple[Diagnostic, ...]
-    trees: tuple  # castor.csg.tree.FrameTree, one per frame without an error
-    meshes: tuple  # castor.mesh.frame.Frame, when a MeshSettings was given (and no on_mesh)
-    included: tuple[str, ...]  # every file that #include opened
-    printed: str
-    seconds: float
+    __slots__ = ("diagnostics", "trees", "meshes", "included", "printed", "seconds")
+
+    def __init__(self, diagnostics: tuple[Diagnostic, ...], trees: tuple, meshes: tuple,
+                 included: tuple[str, ...], printed: str, seconds: float):
+        self.diagnostics = diagnostics
+        self.trees = trees  # castor.csg.tree.FrameTree, one per frame without an error
+        # castor.mesh.frame.Frame, when a MeshSettings was given (and no on_mesh)
+        self.meshes = meshes
+        self.included = included  # every file that #include opened
+        self.printed = printed
+        self.seconds = seconds
 
     @property
     def errors(self) -> int:

@@ -15,7 +15,6 @@ import os
 import sys
 import threading
 from collections import deque
-from dataclasses import replace
 
 from castor.diagnostics import CastorError, LimitError, Reporter, TooManyErrors, UsageError
 from castor.jobs import Job, Result, make
@@ -347,11 +346,11 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
     executor, workers = (None, 1) if how.check else executor_for(how.jobs, how.scheduler)
     if executor is None or (how.scheduler is None and not isinstance(executor, _process_pools())):
         # made as they are written: one piece in memory
-        settings = replace(settings, output=replace(out, pieces=True))
+        settings = settings.replace(output=out.replace(pieces=True))
     elif how.scheduler is None:
         spool = _spool_directory(out.target)
         _spools.append(spool)
-        settings = replace(settings, output=replace(out, spool=spool, spool_owner=os.getpid()))
+        settings = settings.replace(output=out.replace(spool=spool, spool_owner=os.getpid()))
     sequencer = Sequencer(reporter, output, settings, executor, window=2 * max(1, workers or 1))
     if output is not None:
         output.start()

@@ -6,24 +6,29 @@ castor.jobs, castor.run) reads them and never sees an argparse namespace.
 Each stage has its own: what the reader and the preprocessor take, what the
 evaluation takes (``EvaluationSettings``), then for each frame what the
 facetizer, the ray tracer, the drawings, a building model and the output take.
+
+They are plain records (castor.records), not dataclasses: making these ten
+dataclasses cost about 5 ms of every start-up (issue 18). ``replace`` gives a
+copy with some fields changed, as ``dataclasses.replace`` did.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_SAMPLES, DEFAULT_SCALE, DEFAULT_SIZE,
                             DEFAULT_SUN)
+from castor.records import Record
 
 
-@dataclass(frozen=True)
-class Source:
+class Source(Record):
     """What the scene is read from: files in order as one input (none or '-': standard
     input), or a text held in memory (an editor's buffer), named ``name``."""
 
-    files: tuple[str, ...] = ()
-    text: str | None = None
-    name: str = "<scene>"  # the text's file name: for messages, and #include beside it
+    __slots__ = ("files", "text", "name")
+
+    def __init__(self, files: tuple[str, ...] = (), text: str | None = None, name: str = "<scene>"):
+        self.files = files
+        self.text = text
+        self.name = name  # the text's file name: for messages, and #include beside it
 
     @property
     def streamed(self) -> bool:
@@ -31,104 +36,135 @@ class Source:
         return self.text is None and (not self.files or "-" in self.files)
 
 
-@dataclass(frozen=True)
-class ReadSettings:
+class ReadSettings(Record):
     """Reading and preprocessing: -D, -U, -I and --no-cpp."""
 
-    defines: tuple[str, ...] = ()  # NAME or NAME=VALUE
-    undefines: tuple[str, ...] = ()
-    include_dirs: tuple[str, ...] = ()
-    no_cpp: bool = False  # no preprocessor: statements run as they arrive
+    __slots__ = ("defines", "undefines", "include_dirs", "no_cpp")
+
+    def __init__(self, defines: tuple[str, ...] = (), undefines: tuple[str, ...] = (),
+                 include_dirs: tuple[str, ...] = (), no_cpp: bool = False):
+        self.defines = defines  # NAME or NAME=VALUE
+        self.undefines = undefines
+        self.include_dirs = include_dirs
+        self.no_cpp = no_cpp  # no preprocessor: statements run as they arrive
 
 
-@dataclass
-class EvaluationSettings:
+class EvaluationSettings(Record):
     """Evaluation: the parameters given on the command line and the facet tolerance."""
 
-    overrides: dict[str, float] = field(default_factory=dict)  # --set NAME=value
-    tolerance: float | None = None  # --tolerance: TOLERANCE's value, where the scene sets none
+    __slots__ = ("overrides", "tolerance")
+    __hash__ = None  # its overrides may change (the live preview's)
+
+    def __init__(self, overrides: dict[str, float] | None = None, tolerance: float | None = None):
+        self.overrides = {} if overrides is None else overrides  # --set NAME=value
+        self.tolerance = tolerance  # --tolerance: TOLERANCE's value, where the scene sets none
 
 
-@dataclass(frozen=True)
-class MeshSettings:
+class MeshSettings(Record):
     """Facetizing a frame into polygons."""
 
-    max_polygons: int = DEFAULT_MAX_POLYGONS
+    __slots__ = ("max_polygons",)
+
+    def __init__(self, max_polygons: int = DEFAULT_MAX_POLYGONS):
+        self.max_polygons = max_polygons
 
 
-@dataclass(frozen=True)
-class PictureSettings:
+class PictureSettings(Record):
     """Ray tracing a picture (castor.pictures)."""
 
-    size: tuple[int, int] = DEFAULT_SIZE
-    view: object = None  # castor.options.View
-    eye: tuple | None = None
-    look: tuple | None = None
-    sun: tuple | None = DEFAULT_SUN  # (az, el), None, or castor.options.CameraSun
-    samples: int = DEFAULT_SAMPLES
-    edges: bool = False
+    __slots__ = ("size", "view", "eye", "look", "sun", "samples", "edges")
+
+    def __init__(self, size: tuple[int, int] = DEFAULT_SIZE, view: object = None,
+                 eye: tuple | None = None, look: tuple | None = None,
+                 sun: tuple | None = DEFAULT_SUN, samples: int = DEFAULT_SAMPLES,
+                 edges: bool = False):
+        self.size = size
+        self.view = view  # castor.options.View
+        self.eye = eye
+        self.look = look
+        self.sun = sun  # (az, el), None, or castor.options.CameraSun
+        self.samples = samples
+        self.edges = edges
 
 
-@dataclass(frozen=True)
-class DrawingSettings:
+class DrawingSettings(Record):
     """Drawing a plan, section or elevation (castor.drawings)."""
 
-    section: object = None  # castor.options.Section: cut by this plane
-    view: object = None  # castor.options.View: seen from this side
-    scale: float = DEFAULT_SCALE  # 1:scale on paper
-    sheet: object = None  # castor.options.Paper (--sheet); None: paper as large as the drawing
+    __slots__ = ("section", "view", "scale", "sheet")
+
+    def __init__(self, section: object = None, view: object = None, scale: float = DEFAULT_SCALE,
+                 sheet: object = None):
+        self.section = section  # castor.options.Section: cut by this plane
+        self.view = view  # castor.options.View: seen from this side
+        self.scale = scale  # 1:scale on paper
+        self.sheet = sheet  # castor.options.Paper (--sheet); None: paper as large as the drawing
 
 
-@dataclass(frozen=True)
-class BimSettings:
+class BimSettings(Record):
     """Making a building model of the frame (castor.formats.ifc)."""
 
-    # --ifc-class NAME=CLASS: the IFC class of the objects so named, as
-    # (name, class) pairs (castor.formats.ifc.parse_ifc_classes); the others
-    # are IfcBuildingElementProxy
-    classes: tuple[tuple[str, str], ...] = ()
+    __slots__ = ("classes",)
+
+    def __init__(self, classes: tuple[tuple[str, str], ...] = ()):
+        # --ifc-class NAME=CLASS: the IFC class of the objects so named, as
+        # (name, class) pairs (castor.formats.ifc.parse_ifc_classes); the others
+        # are IfcBuildingElementProxy
+        self.classes = classes
 
 
-@dataclass(frozen=True)
-class OutputSettings:
+class OutputSettings(Record):
     """What a frame is written as, what is said about it, and how its bytes travel."""
 
-    format: str | None = "cps"  # castor.formats; None: the mesh frame only, in this process
-    target: str | None = None  # -o PATH (a pattern is filled in per frame)
-    stats: bool = False  # one line of figures per frame
-    summary: bool = False  # a quantity take-off record per frame
-    title: str | None = None  # --title: a drawing's, an IFC project's (None: its default)
-    keep_mesh: bool = False  # hand the mesh frame back (the live preview wants it)
-    model_scale: float = 1.0  # --scale 1:N of a model (3MF): its polygons times 1/N
-    # how a frame's bytes are handed on: made a piece at a time as they are
-    # written (``pieces``, in the process that writes them), written by a worker
-    # into a file in ``spool`` when the frame is large, or else as bytes
-    pieces: bool = False
-    spool: str | None = None
-    spool_owner: int = 0  # the driver's process: a worker left alone removes its file
+    __slots__ = ("format", "target", "stats", "summary", "title", "keep_mesh", "model_scale",
+                 "pieces", "spool", "spool_owner")
+
+    def __init__(self, format: str | None = "cps", target: str | None = None, stats: bool = False,
+                 summary: bool = False, title: str | None = None, keep_mesh: bool = False,
+                 model_scale: float = 1.0, pieces: bool = False, spool: str | None = None,
+                 spool_owner: int = 0):
+        self.format = format  # castor.formats; None: the mesh frame only, in this process
+        self.target = target  # -o PATH (a pattern is filled in per frame)
+        self.stats = stats  # one line of figures per frame
+        self.summary = summary  # a quantity take-off record per frame
+        self.title = title  # --title: a drawing's, an IFC project's (None: its default)
+        self.keep_mesh = keep_mesh  # hand the mesh frame back (the live preview wants it)
+        self.model_scale = model_scale  # --scale 1:N of a model (3MF): its polygons times 1/N
+        # how a frame's bytes are handed on: made a piece at a time as they are
+        # written (``pieces``, in the process that writes them), written by a worker
+        # into a file in ``spool`` when the frame is large, or else as bytes
+        self.pieces = pieces
+        self.spool = spool
+        self.spool_owner = spool_owner  # the driver's process: a worker left alone removes its file
 
 
-@dataclass(frozen=True)
-class FrameSettings:
+class FrameSettings(Record):
     """What to make of each evaluated frame, stage by stage: what travels with a
     frame's tree to the process that makes it (castor.jobs.Job)."""
 
-    output: OutputSettings = OutputSettings()
-    mesh: MeshSettings = MeshSettings()
-    picture: PictureSettings = PictureSettings()
-    drawing: DrawingSettings = DrawingSettings()
-    bim: BimSettings = BimSettings()
+    __slots__ = ("output", "mesh", "picture", "drawing", "bim")
+
+    def __init__(self, output: OutputSettings = OutputSettings(),
+                 mesh: MeshSettings = MeshSettings(), picture: PictureSettings = PictureSettings(),
+                 drawing: DrawingSettings = DrawingSettings(), bim: BimSettings = BimSettings()):
+        self.output = output
+        self.mesh = mesh
+        self.picture = picture
+        self.drawing = drawing
+        self.bim = bim
 
     @property
     def format(self) -> str | None:
         return self.output.format
 
 
-@dataclass(frozen=True)
-class RunSettings:
+class RunSettings(Record):
     """How a whole run goes (castor.run): --check, --jobs, --scheduler, --summary."""
 
-    check: bool = False  # evaluate everything, write nothing
-    jobs: int = 1  # frames made at once in worker processes (0: one per core)
-    scheduler: str | None = None  # a Dask scheduler's address
-    summary: str | None = None  # where the quantity take-off goes
+    __slots__ = ("check", "jobs", "scheduler", "summary")
+
+    def __init__(self, check: bool = False, jobs: int = 1, scheduler: str | None = None,
+                 summary: str | None = None):
+        self.check = check  # evaluate everything, write nothing
+        self.jobs = jobs  # frames made at once in worker processes (0: one per core)
+        self.scheduler = scheduler  # a Dask scheduler's address
+        self.summary = summary  # where the quantity take-off goes

@@ -4,9 +4,13 @@ which has no matrix: the evaluator handles it), and @s (a smooth solid,
 LANGUAGE.md §7.1: no matrix either, the evaluator makes a ``tree.Smooth``).
 
 A transformation's ``matrix(values, location, path)`` takes the evaluated
-arguments and returns a 4x4 affine matrix and the largest factor by which it
-stretches lengths (used to choose facet counts). Rotations by multiples of 90
-degrees are exact, so that ``@rz(90) !cu`` has corners on whole numbers.
+arguments and returns its affine matrix, 3x4 row by row as the evaluated tree
+holds it (castor.csg.tree.Matrix), and the largest factor by which it
+stretches lengths (used to choose facet counts). They are made with plain
+floats, the numbers numpy made before, so that reading and checking a scene
+needs no numpy (issue 18); ``@m`` alone asks numpy for its determinant and
+norm. Rotations by multiples of 90 degrees are exact, so that ``@rz(90) !cu``
+has corners on whole numbers.
 
 One module, not a package as the primitives are: a transformation is a
 declaration and a matrix of a few lines, and the nine read best side by side.
@@ -17,9 +21,10 @@ from __future__ import annotations
 import math
 from typing import Callable, NamedTuple
 
-import numpy as np
-
 from castor.diagnostics import GeometryError, Location
+
+# A 3x4 affine matrix, row by row (castor.csg.tree.Matrix)
+Matrix = tuple[float, ...]
 
 
 class Transformation(NamedTuple):
@@ -28,8 +33,8 @@ class Transformation(NamedTuple):
     counts: tuple[int, ...]  # allowed numbers of arguments
     form: str
     meaning: str
-    # matrix(values, location, path) -> (4x4 matrix, stretch); None for '@f' and '@s'
-    matrix: Callable[[list, Location, object], tuple[np.ndarray, float]] | None
+    # matrix(values, location, path) -> (3x4 matrix, stretch); None for '@f' and '@s'
+    matrix: Callable[[list, Location, object], tuple[Matrix, float]] | None
 
 
 def _cos_sin(degrees: float) -> tuple[float, float]:
@@ -40,13 +45,11 @@ def _cos_sin(degrees: float) -> tuple[float, float]:
     return math.cos(radians), math.sin(radians)
 
 
-def translation(x: float, y: float, z: float) -> np.ndarray:
-    m = np.eye(4)
-    m[:3, 3] = (x, y, z)
-    return m
+def translation(x: float, y: float, z: float) -> Matrix:
+    return (1.0, 0.0, 0.0, float(x), 0.0, 1.0, 0.0, float(y), 0.0, 0.0, 1.0, float(z))
 
 
-def rotation(axis: tuple[float, float, float], degrees: float, location: Location) -> np.ndarray:
+def rotation(axis: tuple[float, float, float], degrees: float, location: Location) -> Matrix:
     """Right-hand rotation by ``degrees`` about ``axis`` through the origin."""
     x, y, z = axis
     length = math.sqrt(x * x + y * y + z * z)
@@ -55,21 +58,17 @@ def rotation(axis: tuple[float, float, float], degrees: float, location: Locatio
     x, y, z = x / length, y / length, z / length
     c, s = _cos_sin(degrees)
     t = 1.0 - c
-    m = np.eye(4)
-    m[:3, :3] = [
-        [t * x * x + c, t * x * y - s * z, t * x * z + s * y],
-        [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
-        [t * x * z - s * y, t * y * z + s * x, t * z * z + c],
-    ]
-    return m
+    return (t * x * x + c, t * x * y - s * z, t * x * z + s * y, 0.0,
+            t * x * y + s * z, t * y * y + c, t * y * z - s * x, 0.0,
+            t * x * z - s * y, t * y * z + s * x, t * z * z + c, 0.0)
 
 
-def _axis_rotation(axis: int, degrees: float) -> np.ndarray:
+def _axis_rotation(axis: int, degrees: float) -> Matrix:
     c, s = _cos_sin(degrees)
     i, j = [(1, 2), (2, 0), (0, 1)][axis]
-    m = np.eye(4)
-    m[i, i], m[i, j], m[j, i], m[j, j] = c, -s, s, c
-    return m
+    m = [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+    m[4 * i + i], m[4 * i + j], m[4 * j + i], m[4 * j + j] = c, -s, s, c
+    return tuple(m)
 
 
 def _scaling(values, location, path):
@@ -79,16 +78,19 @@ def _scaling(values, location, path):
             raise GeometryError(
                 f"zero scale factor for {axis} in '@h' (flattens {path} to nothing); "
                 "use a small positive factor, or leave the object out", location)
-    return np.diag([*factors, 1.0]), max(abs(k) for k in factors)
+    kx, ky, kz = (float(k) for k in factors)
+    return (kx, 0.0, 0.0, 0.0, 0.0, ky, 0.0, 0.0, 0.0, 0.0, kz, 0.0), max(abs(k) for k in factors)
 
 
 def _affine(values, location, path):
+    import numpy as np
+
     m = np.eye(4)
     m[:3, :] = np.array(values, dtype=float).reshape(3, 4)
     linear = m[:3, :3]
     if abs(np.linalg.det(linear)) <= 1e-12 * max(1.0, float(np.abs(linear).max()) ** 3):
         raise GeometryError(f"the matrix of '@m' is not invertible (it flattens {path})", location)
-    return m, float(np.linalg.norm(linear, 2))
+    return tuple(float(x) for x in m[:3, :].ravel()), float(np.linalg.norm(linear, 2))
 
 
 def _about(axis: int):
@@ -120,6 +122,7 @@ TRANSFORMS: dict[str, Transformation] = {t.name: t for t in (
 )}
 
 
-def step_matrix(kind: str, values: list[float], location: Location, path: object) -> tuple[np.ndarray, float]:
+def step_matrix(kind: str, values: list[float], location: Location,
+                path: object) -> tuple[Matrix, float]:
     """The matrix and stretch factor of one transformation step."""
     return TRANSFORMS[kind].matrix(values, location, path)

@@ -74,10 +74,6 @@ def restored(env, name: str):
             env[name] = saved
 
 
-def _matrix(m) -> tree.Matrix:
-    return tuple(float(x) for x in m[:3, :].ravel())
-
-
 class Evaluator:
     """Walks the scene graph into evaluated trees, frame after frame.
 
@@ -212,8 +208,7 @@ class Evaluator:
                 x, y, z = values
                 m = (1.0, 0.0, 0.0, x, 0.0, 1.0, 0.0, y, 0.0, 0.0, 1.0, z)
             else:
-                full, _ = step_matrix(step.kind, values, step.location, trail)
-                m = _matrix(full)
+                m, _ = step_matrix(step.kind, values, step.location, trail)
             local = tree.compose(local, m)
         if failed:
             return None

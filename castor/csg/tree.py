@@ -24,52 +24,66 @@ Paths are relative to the nearest shared subtree above: a leaf's path holds
 the boolean steps down to it (``U1.D2!cu``; the k-th operand of a boolean is
 ``U2``, ``I1``, ``D2``), a ``Use`` holds the steps down to the shared subtree
 it places, and the subtree adds ``(name)``. ``leaves`` writes whole paths.
+
+The nodes are plain classes (castor.records), not dataclasses: making these 7
+frozen dataclasses cost about 6 ms of every start-up (issue 18). hashlib and
+struct are imported where a key is made: a scene without a named object or
+``@s`` makes none.
 """
 
 from __future__ import annotations
 
-import hashlib
-import struct
-from dataclasses import dataclass, field
 from typing import Iterator, Union
 
 from castor.diagnostics import Location
+from castor.records import Record
 
 # A 3x4 affine matrix, row by row: (a, b, c, tx, d, e, f, ty, g, h, i, tz)
 Matrix = tuple[float, ...]
 IDENTITY: Matrix = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0)
 
 
-@dataclass(frozen=True, slots=True)
-class Primitive:
-    kind: str  # "cu", "sp", ... (castor.language.vocabulary.PRIMITIVES)
-    shape: tuple[float, ...]  # the arguments after the colour
-    colour: tuple[float, float, float]
-    matrix: Matrix
-    tolerance: float  # facet tolerance in the units its matrix maps into
-    # how those units are stretched on the way to the scene's, up to a uniform
-    # scale (folded into the tolerance) and a rotation: a 3x3 matrix row by row
-    # (facets.stretch_above), None when not at all
-    metric: tuple[float, ...] | None
-    path: str  # from the nearest shared subtree down: "U2!cy"
-    location: Location = field(compare=False)
+class Primitive(Record):
+    __slots__ = ("kind", "shape", "colour", "matrix", "tolerance", "metric", "path", "location")
+    _compared = ("kind", "shape", "colour", "matrix", "tolerance", "metric", "path")
+
+    def __init__(self, kind: str, shape: tuple[float, ...], colour: tuple[float, float, float],
+                 matrix: Matrix, tolerance: float, metric: tuple[float, ...] | None, path: str,
+                 location: Location):
+        self.kind = kind  # "cu", "sp", ... (castor.language.vocabulary.PRIMITIVES)
+        self.shape = shape  # the arguments after the colour
+        self.colour = colour
+        self.matrix = matrix
+        self.tolerance = tolerance  # facet tolerance in the units its matrix maps into
+        # how those units are stretched on the way to the scene's, up to a uniform
+        # scale (folded into the tolerance) and a rotation: a 3x3 matrix row by row
+        # (facets.stretch_above), None when not at all
+        self.metric = metric
+        self.path = path  # from the nearest shared subtree down: "U2!cy"
+        self.location = location
 
 
-@dataclass(frozen=True, slots=True)
-class Boolean:
-    op: str  # "U", "I" or "D"
-    operands: tuple["TreeNode", ...]
-    location: Location = field(compare=False)
+class Boolean(Record):
+    __slots__ = ("op", "operands", "location")
+    _compared = ("op", "operands")
+
+    def __init__(self, op: str, operands: tuple["TreeNode", ...], location: Location):
+        self.op = op  # "U", "I" or "D"
+        self.operands = operands
+        self.location = location
 
 
-@dataclass(frozen=True, slots=True)
-class Shared:
+class Shared(Record):
     """A named object's subtree, one object for each key however often it is used."""
 
-    name: str
-    child: "TreeNode | None"  # None: empty
-    key: str  # a digest of the name and the content
-    location: Location = field(compare=False)
+    __slots__ = ("name", "child", "key", "location")
+    _compared = ("name", "child", "key")
+
+    def __init__(self, name: str, child: "TreeNode | None", key: str, location: Location):
+        self.name = name
+        self.child = child  # None: empty
+        self.key = key  # a digest of the name and the content
+        self.location = location
 
     def __hash__(self) -> int:
         return hash(self.key)
@@ -78,49 +92,60 @@ class Shared:
         return isinstance(other, Shared) and other.key == self.key
 
 
-@dataclass(frozen=True, slots=True)
-class Use:
-    matrix: Matrix
-    path: str  # the boolean steps from the enclosing shared subtree: "U2"
-    shared: Shared
+class Use(Record):
+    __slots__ = ("matrix", "path", "shared")
+
+    def __init__(self, matrix: Matrix, path: str, shared: Shared):
+        self.matrix = matrix
+        self.path = path  # the boolean steps from the enclosing shared subtree: "U2"
+        self.shared = shared
 
 
-@dataclass(frozen=True, slots=True)
-class Smooth:
+class Smooth(Record):
     """``@s(angle)``: the operand (evaluated in its own space, the matrices
     above it in ``matrix``) smoothed with the facet tolerance in its units;
     ``key`` is a digest of all three, so that one smoothing serves every use."""
 
-    angle: float  # degrees: an edge whose normals turn by more is a crease
-    matrix: Matrix
-    operand: "TreeNode"
-    tolerance: float
-    key: str
-    location: Location = field(compare=False)
+    __slots__ = ("angle", "matrix", "operand", "tolerance", "key", "location")
+    _compared = ("angle", "matrix", "operand", "tolerance", "key")
+
+    def __init__(self, angle: float, matrix: Matrix, operand: "TreeNode", tolerance: float,
+                 key: str, location: Location):
+        self.angle = angle  # degrees: an edge whose normals turn by more is a crease
+        self.matrix = matrix
+        self.operand = operand
+        self.tolerance = tolerance
+        self.key = key
+        self.location = location
 
 
 TreeNode = Union[Primitive, Boolean, Use, Smooth]
 
 
-@dataclass(frozen=True, slots=True)
-class Object:
+class Object(Record):
     """One object of a '>' command: a name (that of its named object, or
     ``objectK``) and its tree (None when it is empty)."""
 
-    name: str
-    root: TreeNode | None
-    where: str = ""  # FILE:LINE of its definition (a named object's) or of the '>' command
+    __slots__ = ("name", "root", "where")
+
+    def __init__(self, name: str, root: TreeNode | None, where: str = ""):
+        self.name = name
+        self.root = root
+        self.where = where  # FILE:LINE of its definition (a named object's) or of the '>' command
 
 
-@dataclass(frozen=True, slots=True)
-class FrameTree:
+class FrameTree(Record):
     """The scene of one frame: what a facetizer, a ray tracer or a drawing needs."""
 
-    number: int
-    where: str  # FILE:LINE of the '>' command
-    location: Location
-    objects: tuple[Object, ...]
-    parameters: tuple[tuple[str, float], ...] = ()  # the values in force at the '>' (not PI)
+    __slots__ = ("number", "where", "location", "objects", "parameters")
+
+    def __init__(self, number: int, where: str, location: Location, objects: tuple[Object, ...],
+                 parameters: tuple[tuple[str, float], ...] = ()):
+        self.number = number
+        self.where = where  # FILE:LINE of the '>' command
+        self.location = location
+        self.objects = objects
+        self.parameters = parameters  # the values in force at the '>' (not PI)
 
     def shared(self) -> dict[str, Shared]:
         """Every shared subtree of the frame, by key."""
@@ -185,6 +210,9 @@ def compose(a: Matrix, b: Matrix) -> Matrix:
 
 def smooth_key(angle: float, tolerance: float, operand: TreeNode) -> str:
     """The key of a smoothing: its angle, tolerance and operand's content."""
+    import hashlib
+    import struct
+
     digest = hashlib.blake2b(digest_size=16)
     digest.update(struct.pack("<2d", angle, tolerance))
     _feed(digest, operand)
@@ -194,6 +222,8 @@ def smooth_key(angle: float, tolerance: float, operand: TreeNode) -> str:
 def content_key(name: str, child: TreeNode | None) -> str:
     """The canonical key of a shared subtree: a digest of its name and content,
     the same in every process (shared subtrees below count by their own keys)."""
+    import hashlib
+
     digest = hashlib.blake2b(digest_size=16)
     digest.update(name.encode())
     if child is not None:
@@ -201,10 +231,10 @@ def content_key(name: str, child: TreeNode | None) -> str:
     return digest.hexdigest()
 
 
-_PACK = struct.Struct("<12d").pack
-
-
 def _feed(digest, node: TreeNode) -> None:
+    import struct
+
+    pack_matrix = struct.Struct("<12d").pack
     stack = [node]
     update = digest.update
     while stack:
@@ -214,7 +244,7 @@ def _feed(digest, node: TreeNode) -> None:
             update(b"P" + node.kind.encode() + node.path.encode() + b"\0")
             update(struct.pack(f"<{len(node.shape) + 4}d", *node.shape, *node.colour,
                                node.tolerance))
-            update(_PACK(*node.matrix))
+            update(pack_matrix(*node.matrix))
             if node.metric is not None:
                 update(b"M" + struct.pack("<9d", *node.metric))
         elif kind is Boolean:
@@ -222,10 +252,10 @@ def _feed(digest, node: TreeNode) -> None:
             stack.extend(reversed(node.operands))
         elif kind is Smooth:  # the operand by the smoothing's own key
             update(b"M" + node.key.encode())
-            update(_PACK(*node.matrix))
+            update(pack_matrix(*node.matrix))
         else:  # a Use: its place, and the shared subtree by its own key
             update(b"S" + node.path.encode() + b"\0" + node.shared.key.encode())
-            update(_PACK(*node.matrix))
+            update(pack_matrix(*node.matrix))
 
 
 def dump(frame: FrameTree) -> str:

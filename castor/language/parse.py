@@ -11,6 +11,7 @@ together; lark's exceptions are translated into messages in the user's words.
 from __future__ import annotations
 
 import math
+import os
 import threading
 from functools import lru_cache
 from typing import Iterator
@@ -30,9 +31,9 @@ MAX_DEPTH = 100_000
 @lru_cache(maxsize=1)
 def grammar_text() -> str:
     """The grammar, castor.lark, shipped beside this module."""
-    from pathlib import Path
-
-    return (Path(__file__).resolve().parent / "castor.lark").read_text(encoding="utf-8")
+    with open(os.path.join(os.path.dirname(os.path.realpath(__file__)), "castor.lark"),
+              encoding="utf-8") as handle:
+        return handle.read()
 
 
 def _plural(n: int, word: str) -> str:

@@ -4,18 +4,18 @@ The parser builds these bottom-up; an object reference shares the node of the
 named object, so a scene is a DAG. Every node records the free parameters it
 reads (``params``) so that the facetizer can cache a shared subgraph once per
 set of parameter values, and its nesting ``depth`` so that deep graphs are
-refused before they exhaust the stack. Nodes are never changed once made (they are not declared frozen only because
-frozen dataclasses are slow to create, and a scene has many). Behaviour lives
-elsewhere:
+refused before they exhaust the stack. Nodes are never changed once made.
+They are plain classes (castor.records), not dataclasses: making these 15
+dataclasses cost about 7 ms of every start-up of castor (issue 18). Behaviour
+lives elsewhere:
 ``expressions.py`` evaluates expressions, ``facetize.py`` turns nodes into
 solids.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from castor.diagnostics import Location
+from castor.records import Identified, Record
 
 EMPTY: frozenset[str] = frozenset()
 
@@ -23,48 +23,63 @@ EMPTY: frozenset[str] = frozenset()
 # --- expressions -----------------------------------------------------------
 
 
-@dataclass(eq=False, slots=True)
-class Number:
-    value: float
-    location: Location
-    params: frozenset[str] = EMPTY
-    depth: int = 1
+class Number(Identified):
+    __slots__ = ("value", "location", "params", "depth")
+
+    def __init__(self, value: float, location: Location, params: frozenset[str] = EMPTY,
+                 depth: int = 1):
+        self.value = value
+        self.location = location
+        self.params = params
+        self.depth = depth
 
 
-@dataclass(eq=False, slots=True)
-class Param:
-    name: str
-    location: Location
-    params: frozenset[str] = EMPTY
-    depth: int = 1
+class Param(Identified):
+    __slots__ = ("name", "location", "params", "depth")
+
+    def __init__(self, name: str, location: Location, params: frozenset[str] = EMPTY,
+                 depth: int = 1):
+        self.name = name
+        self.location = location
+        self.params = params
+        self.depth = depth
 
 
-@dataclass(eq=False, slots=True)
-class Unary:
-    op: str
-    operand: "Expr"
-    location: Location
-    params: frozenset[str] = EMPTY
-    depth: int = 1
+class Unary(Identified):
+    __slots__ = ("op", "operand", "location", "params", "depth")
+
+    def __init__(self, op: str, operand: "Expr", location: Location, params: frozenset[str] = EMPTY,
+                 depth: int = 1):
+        self.op = op
+        self.operand = operand
+        self.location = location
+        self.params = params
+        self.depth = depth
 
 
-@dataclass(eq=False, slots=True)
-class Binary:
-    op: str
-    left: "Expr"
-    right: "Expr"
-    location: Location
-    params: frozenset[str] = EMPTY
-    depth: int = 1
+class Binary(Identified):
+    __slots__ = ("op", "left", "right", "location", "params", "depth")
+
+    def __init__(self, op: str, left: "Expr", right: "Expr", location: Location,
+                 params: frozenset[str] = EMPTY, depth: int = 1):
+        self.op = op
+        self.left = left
+        self.right = right
+        self.location = location
+        self.params = params
+        self.depth = depth
 
 
-@dataclass(eq=False, slots=True)
-class Call:
-    function: str
-    args: tuple["Expr", ...]
-    location: Location
-    params: frozenset[str] = EMPTY
-    depth: int = 1
+class Call(Identified):
+    __slots__ = ("function", "args", "location", "params", "depth")
+
+    def __init__(self, function: str, args: tuple["Expr", ...], location: Location,
+                 params: frozenset[str] = EMPTY, depth: int = 1):
+        self.function = function
+        self.args = args
+        self.location = location
+        self.params = params
+        self.depth = depth
 
 
 Expr = Number | Param | Unary | Binary | Call
@@ -73,74 +88,91 @@ Expr = Number | Param | Unary | Binary | Call
 # --- scene graph nodes -----------------------------------------------------
 
 
-@dataclass(eq=False, slots=True)
-class Repeat:
+class Repeat(Identified):
     """``[I = A, B, S]``: the parameter I takes the values A, A+S, ... up to B."""
 
-    param: str
-    start: Expr
-    stop: Expr
-    step: Expr | None
-    location: Location
-    params: frozenset[str] = EMPTY
+    __slots__ = ("param", "start", "stop", "step", "location", "params")
+
+    def __init__(self, param: str, start: Expr, stop: Expr, step: Expr | None, location: Location,
+                 params: frozenset[str] = EMPTY):
+        self.param = param
+        self.start = start
+        self.stop = stop
+        self.step = step
+        self.location = location
+        self.params = params
 
 
-@dataclass(eq=False, slots=True)
-class PrimitiveNode:
+class PrimitiveNode(Identified):
     """``!cu(R, G, B)`` and friends: a unit solid with a colour."""
 
-    kind: str
-    args: tuple[Expr, ...]
-    location: Location
-    params: frozenset[str] = EMPTY
-    depth: int = 1
+    __slots__ = ("kind", "args", "location", "params", "depth")
+
+    def __init__(self, kind: str, args: tuple[Expr, ...], location: Location,
+                 params: frozenset[str] = EMPTY, depth: int = 1):
+        self.kind = kind
+        self.args = args
+        self.location = location
+        self.params = params
+        self.depth = depth
 
 
-@dataclass(eq=False, slots=True)
-class Step:
+class Step(Identified):
     """One transformation prefix such as ``@rz(90)``."""
 
-    kind: str
-    args: tuple[Expr, ...]
-    location: Location
+    __slots__ = ("kind", "args", "location")
+
+    def __init__(self, kind: str, args: tuple[Expr, ...], location: Location):
+        self.kind = kind
+        self.args = args
+        self.location = location
 
 
-@dataclass(eq=False, slots=True)
-class TransformedNode:
+class TransformedNode(Identified):
     """A run of transformation prefixes applied to one object, right to left.
 
     The run is kept flat (not one node per prefix) so that ten thousand nested
     transformations cost a loop, not ten thousand levels of recursion.
     """
 
-    steps: tuple[Step, ...]
-    child: "SceneNode"
-    location: Location
-    params: frozenset[str] = EMPTY
-    depth: int = 1
+    __slots__ = ("steps", "child", "location", "params", "depth")
+
+    def __init__(self, steps: tuple[Step, ...], child: "SceneNode", location: Location,
+                 params: frozenset[str] = EMPTY, depth: int = 1):
+        self.steps = steps
+        self.child = child
+        self.location = location
+        self.params = params
+        self.depth = depth
 
 
-@dataclass(eq=False, slots=True)
-class BooleanNode:
+class BooleanNode(Identified):
     """``$U``, ``$I`` or ``$D`` of operands, or of a repeated body."""
 
-    op: str  # 'U', 'I' or 'D'
-    operands: tuple["SceneNode", ...]
-    repeat: Repeat | None
-    location: Location
-    params: frozenset[str] = EMPTY
-    depth: int = 1
+    __slots__ = ("op", "operands", "repeat", "location", "params", "depth")
+
+    def __init__(self, op: str, operands: tuple["SceneNode", ...], repeat: Repeat | None,
+                 location: Location, params: frozenset[str] = EMPTY, depth: int = 1):
+        self.op = op  # 'U', 'I' or 'D'
+        self.operands = operands
+        self.repeat = repeat
+        self.location = location
+        self.params = params
+        self.depth = depth
 
 
-@dataclass(eq=False, slots=True)
-class NamedNode:
+class NamedNode(Identified):
     """The node an object definition creates: it knows the name pointing at it."""
 
-    name: str
-    child: "SceneNode"
-    location: Location
-    params: frozenset[str] = EMPTY
-    depth: int = 1
+    __slots__ = ("name", "child", "location", "params", "depth")
+
+    def __init__(self, name: str, child: "SceneNode", location: Location,
+                 params: frozenset[str] = EMPTY, depth: int = 1):
+        self.name = name
+        self.child = child
+        self.location = location
+        self.params = params
+        self.depth = depth
 
 
 SceneNode = PrimitiveNode | TransformedNode | BooleanNode | NamedNode
@@ -149,35 +181,44 @@ SceneNode = PrimitiveNode | TransformedNode | BooleanNode | NamedNode
 # --- statements ------------------------------------------------------------
 
 
-@dataclass(frozen=True, slots=True)
-class ParamDef:
-    name: str
-    expr: Expr
-    location: Location
+class ParamDef(Record):
+    __slots__ = ("name", "expr", "location")
+
+    def __init__(self, name: str, expr: Expr, location: Location):
+        self.name = name
+        self.expr = expr
+        self.location = location
 
 
-@dataclass(frozen=True, slots=True)
-class ObjectDef:
-    name: str
-    node: SceneNode
-    location: Location
+class ObjectDef(Record):
+    __slots__ = ("name", "node", "location")
+
+    def __init__(self, name: str, node: SceneNode, location: Location):
+        self.name = name
+        self.node = node
+        self.location = location
 
 
-@dataclass(frozen=True, slots=True)
-class Facetize:
-    objects: tuple[SceneNode, ...]
-    repeat: Repeat | None
-    location: Location
+class Facetize(Record):
+    __slots__ = ("objects", "repeat", "location")
+
+    def __init__(self, objects: tuple[SceneNode, ...], repeat: Repeat | None, location: Location):
+        self.objects = objects
+        self.repeat = repeat
+        self.location = location
 
 
 Statement = ParamDef | ObjectDef | Facetize
 
 
-@dataclass
 class Tables:
     """The two symbol tables of a scene (Python dicts are hash tables)."""
 
-    parameters: dict[str, float] = field(default_factory=dict)
-    objects: dict[str, NamedNode] = field(default_factory=dict)
-    # names whose definition failed: their uses are reported once, quietly
-    broken: set[str] = field(default_factory=set)
+    __slots__ = ("parameters", "objects", "broken")
+
+    def __init__(self, parameters: dict[str, float] | None = None,
+                 objects: dict[str, NamedNode] | None = None, broken: set[str] | None = None):
+        self.parameters = {} if parameters is None else parameters
+        self.objects = {} if objects is None else objects
+        # names whose definition failed: their uses are reported once, quietly
+        self.broken = set() if broken is None else broken

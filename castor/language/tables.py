@@ -18,33 +18,36 @@ there, for the runs after it.
 
 This module imports nothing from castor at its top (the driver, only to load
 tables at run time), so that the build can run it from the source tree by its
-path.
+path; and it names files with os.path, not pathlib, which would import urllib
+and ipaddress for nothing at every start (issue 18).
 """
 
 from __future__ import annotations
 
-import hashlib
 import marshal
 import os
 import sys
-from pathlib import Path
+import zlib
 
-HERE = Path(__file__).resolve().parent
-GRAMMAR = HERE / "castor.lark"
-TABLES = HERE / "castor.tables"
-PLAIN = HERE / "castor.lalr"
+HERE = os.path.dirname(os.path.realpath(__file__))
+GRAMMAR = os.path.join(HERE, "castor.lark")
+TABLES = os.path.join(HERE, "castor.tables")
+PLAIN = os.path.join(HERE, "castor.lalr")
 
 # the parser's options: the same for the tables saved and a parser built
 OPTIONS = {"parser": "lalr", "lexer": "contextual", "start": ["statement", "program"],
            "maybe_placeholders": True}
 _MAGIC = b"castor-lark-tables "
 # the plain tables' layout, as castor.language.lalr reads it: bumped when it changes,
-# so that tables of another layout are not read
-PLAIN_LAYOUT = 1
+# so that tables of another layout are not read (2: the root lexer, and each
+# lexer's terminals)
+PLAIN_LAYOUT = 2
 
 
 def _key(grammar: str) -> bytes:
     """What the tables depend on: the grammar, the options and lark's version."""
+    import hashlib
+
     import lark
 
     text = f"{grammar}\0{sorted(OPTIONS.items())!r}\0{lark.__version__}"
@@ -55,14 +58,17 @@ def save(target: str | os.PathLike, grammar: str | None = None) -> None:
     """Build the parser and write its tables to ``target`` (beside, then renamed)."""
     from lark import Lark
 
-    grammar = GRAMMAR.read_text(encoding="utf-8") if grammar is None else grammar
+    if grammar is None:
+        with open(GRAMMAR, encoding="utf-8") as handle:
+            grammar = handle.read()
     parser = Lark(grammar, **OPTIONS)
     temporary = f"{target}.{os.getpid()}.tmp"
     with open(temporary, "wb") as handle:
         handle.write(_MAGIC + _key(grammar) + b"\n")
         parser.save(handle)
     os.replace(temporary, target)
-    save_plain(Path(target).with_name(PLAIN.name), parser, grammar)
+    save_plain(os.path.join(os.path.dirname(os.fspath(target)), os.path.basename(PLAIN)),
+               parser, grammar)
 
 
 def load(grammar: str, transformer, source: str | os.PathLike = TABLES):
@@ -85,9 +91,12 @@ _PLAIN_MAGIC = b"castor-lalr-tables "
 
 def _plain_key(grammar: str) -> bytes:
     """What the plain tables depend on: the grammar, the options and their layout
-    (not lark's version: castor.language.lalr runs them without lark)."""
-    text = f"{grammar}\0{sorted(OPTIONS.items())!r}\0{PLAIN_LAYOUT}"
-    return hashlib.sha256(text.encode("utf-8")).hexdigest().encode("ascii")
+    (not lark's version: castor.language.lalr runs them without lark). A CRC-32
+    and the length, not a SHA-256: it tells tables of another grammar apart (no one
+    forges them: a file in the temporary directory must be the user's own), and
+    hashlib (OpenSSL) took a few milliseconds of every start."""
+    text = f"{grammar}\0{sorted(OPTIONS.items())!r}\0{PLAIN_LAYOUT}".encode("utf-8")
+    return f"{zlib.crc32(text):08x}-{len(text)}".encode("ascii")
 
 
 def export(parser) -> dict:
@@ -140,15 +149,22 @@ def export(parser) -> dict:
     lexers: dict = {}
     lexer_of = {}
     terminals = set()
+
+    def lexer_data(lexer) -> tuple:
+        """Its patterns (lark's alternation of its terminals, in lark's order of
+        them, the same in every lexer), the types it skips, those that may hold
+        newlines, and its terminals."""
+        scanner = lexer.scanner
+        if lexer.callback or lexer.user_callbacks:
+            raise ValueError("a lexer with callbacks (keywords the driver cannot tell apart)")
+        return (tuple((m.pattern, int(m.flags)) for m in scanner._mres),
+                tuple(sorted(lexer.ignore_types)), tuple(sorted(lexer.newline_types)),
+                tuple(sorted(t.name for t in lexer.terminals)))
+
     for state, lexer in frontend.lexer.lexers.items():
         if id(lexer) not in lexers:
-            scanner = lexer.scanner
-            if lexer.callback or lexer.user_callbacks:
-                raise ValueError("a lexer with callbacks (keywords the driver cannot tell apart)")
             terminals.update(t.name for t in lexer.terminals)
-            lexers[id(lexer)] = (len(lexers), (
-                tuple((m.pattern, int(m.flags)) for m in scanner._mres),
-                tuple(sorted(lexer.ignore_types)), tuple(sorted(lexer.newline_types))))
+            lexers[id(lexer)] = (len(lexers), lexer_data(lexer))
         lexer_of[int(state)] = lexers[id(lexer)][0]
     count = len(states)
     if sorted(states) != list(range(count)) or sorted(lexer_of) != list(range(count)):
@@ -160,6 +176,7 @@ def export(parser) -> dict:
             "rules": exported_rules,
             "lexer_of": [lexer_of[i] for i in range(count)],
             "lexers": [entry for _, entry in sorted(lexers.values())],
+            "root": lexer_data(frontend.lexer.root_lexer),
             "terminals": sorted(str(t) for t in terminals)}
 
 
@@ -184,7 +201,7 @@ def save_plain(target: str | os.PathLike, parser, grammar: str) -> bool:
     return True
 
 
-def cached_plain() -> Path:
+def cached_plain() -> str:
     """Where a checkout keeps the plain tables between runs: the temporary
     directory (as tempfile finds it from TMPDIR, TEMP or TMP, without importing
     it: this is read at every start), one file a user, as lark's own cache."""
@@ -197,7 +214,7 @@ def cached_plain() -> Path:
 
         directory = tempfile.gettempdir()
     user = os.getuid() if hasattr(os, "getuid") else 0
-    return Path(directory) / f"castor-lalr-{user}.tables"
+    return os.path.join(directory, f"castor-lalr-{user}.tables")
 
 
 def load_plain(grammar: str, transformer, sources=None):
@@ -226,4 +243,4 @@ def load_plain(grammar: str, transformer, sources=None):
 
 
 if __name__ == "__main__":  # python castor/language/tables.py DIRECTORY
-    save(Path(sys.argv[1]) / TABLES.name)
+    save(os.path.join(sys.argv[1], os.path.basename(TABLES)))

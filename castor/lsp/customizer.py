@@ -26,10 +26,8 @@ class SetError(Exception):
 def readable(source):
     """The source with standard input read once into memory, so that -p/-P and the
     run that follows both see it (castor.settings.Source)."""
-    from dataclasses import replace
-
     if source.text is None and tuple(source.files) in ((), ("-",)):
-        return replace(source, files=(), text=sys.stdin.read(), name="<stdin>")
+        return source.replace(files=(), text=sys.stdin.read(), name="<stdin>")
     return source
 
 

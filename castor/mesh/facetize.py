@@ -19,8 +19,7 @@ from dataclasses import dataclass
 from castor.csg import tree
 from castor.csg.paths import Path
 from castor.diagnostics import GeometryError, LimitError
-from castor.mesh import (adapter, booleans, instances, memory, merge, primitives, provenance,
-                         smooth)
+from castor.mesh import adapter, booleans, instances, memory, merge, primitives, provenance
 from castor.mesh.caches import PROCESS
 from castor.mesh.frame import (FaceSurfaces, Frame, Origin, compact, curved_origins,
                                polygon_surfaces)
@@ -115,6 +114,8 @@ class Facetizer:
 
     def _smooth(self, node: tree.Smooth) -> Solid:
         """A smooth solid, made once per key (castor.mesh.smooth) and moved."""
+        from castor.mesh import smooth  # here: a scene without '@s' needs none of it
+
         solid = self._once(node.key, lambda: smooth.smoothed(self.solid(node.operand), node,
                                                               self.max_polygons))
         if node.matrix != tree.IDENTITY and not solid.empty:

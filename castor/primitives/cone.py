@@ -3,17 +3,19 @@ a flat base and one curved side; a ray meets it as a quadric in a slab."""
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
 from castor.primitives import rays
 from castor.primitives.base import Primitive
 from castor.primitives.cylinder import ROUND, facets
 from castor.primitives.facets import spire
 
-INF = np.inf
+INF = math.inf
 
 
 def spans(shape, o, d):
+    import numpy as np
+
     w0, dw = 1 - o[:, 2], -d[:, 2]
     a = d[:, 0] ** 2 + d[:, 1] ** 2 - dw ** 2
     b = 2 * (o[:, 0] * d[:, 0] + o[:, 1] * d[:, 1] - w0 * dw)

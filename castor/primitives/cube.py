@@ -2,18 +2,19 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from castor.primitives import rays
 from castor.primitives.base import Mesh, Primitive
 from castor.primitives.facets import quads
 
-_PLANES = (np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]],
-                    dtype=np.float64), np.array([0, 1, 0, 1, 0, 1], dtype=np.float64))
+# outward normals and offsets (numbers, not arrays: reading a scene imports no numpy)
+_PLANES = (((-1, 0, 0), (1, 0, 0), (0, -1, 0), (0, 1, 0), (0, 0, -1), (0, 0, 1)),
+           (0, 1, 0, 1, 0, 1))
 _UNIT = ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))
 
 
 def mesh(shape: tuple, facets: tuple) -> Mesh:
+    import numpy as np
+
     vertices = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
                          [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], dtype=np.float64)
     corners = np.array([[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4],

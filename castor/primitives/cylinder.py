@@ -3,17 +3,19 @@ flat caps and one curved side; a ray meets it as a quadric in a slab."""
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
 from castor.primitives import rays
 from castor.primitives.base import Primitive
 from castor.primitives.facets import circle_segments, column, plane_stretch, quantize
 
-INF = np.inf
+INF = math.inf
 ROUND = ((-1.0, -1.0, 0.0), (1.0, 1.0, 1.0))  # the box of a unit disc swept or coned up
 
 
 def spans(shape, o, d):
+    import numpy as np
+
     a = d[:, 0] ** 2 + d[:, 1] ** 2
     b = 2 * (o[:, 0] * d[:, 0] + o[:, 1] * d[:, 1])
     c = o[:, 0] ** 2 + o[:, 1] ** 2 - 1

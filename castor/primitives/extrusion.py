@@ -5,14 +5,14 @@ its caps."""
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
 from castor.diagnostics import Location
 from castor.primitives import rays
 from castor.primitives.base import Mesh, Primitive
 from castor.primitives.facets import joined, quads
 
-INF = np.inf
+INF = math.inf
 
 
 def check(shape: tuple, location: Location, path: object) -> None:
@@ -23,6 +23,8 @@ def check(shape: tuple, location: Location, path: object) -> None:
 
 def extrusion(values: tuple) -> Mesh:
     """The simple polygon (x1, y1, ...) in z = 0 swept to z = 1."""
+    import numpy as np
+
     from castor.language.outline import polygon, signed_area
     from castor.mesh.adapter import triangulate
 
@@ -52,6 +54,8 @@ _convex: dict[tuple, tuple | None] = {}
 def _convex_planes(shape):
     """The half-spaces of an extrusion whose polygon is convex (faces numbered
     as the walls and caps), or None."""
+    import numpy as np
+
     if shape not in _convex:
         a, b = rays.outline(shape)
         e = b - a
@@ -68,6 +72,8 @@ def _convex_planes(shape):
 
 
 def spans(shape, o, d):
+    import numpy as np
+
     planes = _convex_planes(shape)
     if planes is not None:
         return rays.halfspaces(*planes, o, d)
@@ -116,6 +122,8 @@ def spans(shape, o, d):
 
 
 def _inside_polygon(points, a, b):
+    import numpy as np
+
     x, y = points[:, :1], points[:, 1:2]
     crosses = ((a[:, 1] > y) != (b[:, 1] > y))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -124,6 +132,8 @@ def _inside_polygon(points, a, b):
 
 
 def normal(shape, p, face):
+    import numpy as np
+
     a, b = rays.outline(shape)
     e = b - a
     n = np.zeros_like(p)

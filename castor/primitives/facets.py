@@ -20,10 +20,12 @@ A tolerance over a stretch is rounded down to a power of 2^(1/4)
 from __future__ import annotations
 
 import math
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from castor.primitives.base import FLAT, Mesh
+
+if TYPE_CHECKING:  # numpy is imported where it is used: see rays.py
+    import numpy as np
 
 MIN_SEGMENTS = 8
 
@@ -77,6 +79,8 @@ def plane_stretch(linear: Linear, i: int = 0, j: int = 1) -> float:
 def largest_stretch(linear: Linear) -> float:
     """The largest factor by which ``linear`` stretches any vector: its largest
     singular value."""
+    import numpy as np
+
     return float(np.linalg.norm(np.array(linear, dtype=np.float64).reshape(3, 3), 2))
 
 
@@ -94,6 +98,8 @@ def stretch_above(linear: Linear) -> tuple[float, Linear | None]:
     if (abs(gram[1] - square) <= 1e-12 * square and abs(gram[2] - square) <= 1e-12 * square
             and max(abs(g) for g in gram[3:]) <= 1e-12 * square):
         return math.sqrt(square), None  # a rotation, a mirror, a uniform scale (the commonest)
+    import numpy as np  # here: the commonest placements above need none
+
     a = np.array(linear, dtype=np.float64).reshape(3, 3)
     _, values, turn = np.linalg.svd(a)
     largest = float(values[0])
@@ -153,6 +159,8 @@ def sphere_segments(tolerance: float, flat: float | None = None,
 
 
 def ring(n: int, radius: float, z: float) -> np.ndarray:
+    import numpy as np
+
     angles = 2 * np.pi * np.arange(n) / n
     points = np.empty((n, 3))
     points[:, 0] = radius * np.cos(angles)
@@ -164,12 +172,16 @@ def ring(n: int, radius: float, z: float) -> np.ndarray:
 
 def fan(indices: np.ndarray, reverse: bool) -> np.ndarray:
     """Triangles of a convex polygon given counter-clockwise (seen from outside unless reverse)."""
+    import numpy as np
+
     n = len(indices)
     tris = np.column_stack([np.full(n - 2, indices[0]), indices[1:-1], indices[2:]])
     return tris[:, ::-1] if reverse else tris
 
 
 def joined(vertices, triangle_blocks, face_blocks, surfaces) -> Mesh:
+    import numpy as np
+
     return Mesh(np.ascontiguousarray(vertices, dtype=np.float64),
                 np.ascontiguousarray(np.concatenate(triangle_blocks), dtype=np.int64),
                 np.ascontiguousarray(np.concatenate(face_blocks), dtype=np.int64),
@@ -180,6 +192,8 @@ def quads(vertices: np.ndarray, corners: np.ndarray, first_face: int,
           surface: int = FLAT) -> Mesh:
     """Quads (Q, 4) as two triangles each, numbered as faces from ``first_face``,
     all facets of ``surface``."""
+    import numpy as np
+
     tris = np.concatenate([corners[:, [0, 1, 2]], corners[:, [0, 2, 3]]])
     faces = np.tile(np.arange(first_face, first_face + len(corners)), 2)
     return Mesh(vertices, tris, faces, np.full(first_face + len(corners), surface, np.int64))
@@ -188,6 +202,8 @@ def quads(vertices: np.ndarray, corners: np.ndarray, first_face: int,
 def column(n: int, surface: int = FLAT) -> Mesh:
     """Cylinder or prism: a regular n-gon swept from z = 0 to z = 1; its caps
     are flat, its sides facets of ``surface``."""
+    import numpy as np
+
     vertices = np.concatenate([ring(n, 1.0, 0.0), ring(n, 1.0, 1.0)])
     j = np.arange(n)
     k = (j + 1) % n
@@ -202,6 +218,8 @@ def column(n: int, surface: int = FLAT) -> Mesh:
 def spire(n: int, surface: int = FLAT) -> Mesh:
     """Cone or pyramid: a regular n-gon base in z = 0, apex (0, 0, 1); its base
     is flat, its sides facets of ``surface``."""
+    import numpy as np
+
     vertices = np.concatenate([ring(n, 1.0, 0.0), [[0.0, 0.0, 1.0]]])
     j = np.arange(n)
     sides = np.column_stack([j, (j + 1) % n, np.full(n, n)])
@@ -210,5 +228,7 @@ def spire(n: int, surface: int = FLAT) -> Mesh:
 
 
 def signed_volume(vertices: np.ndarray, triangles: np.ndarray) -> float:
+    import numpy as np
+
     a, b, c = (vertices[triangles[:, i]] for i in range(3))
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)

@@ -11,23 +11,33 @@ primitive each crossing lies on); its ``normal(shape, p, face)`` the
 Here: one span from an entry and an exit; the intersection of half-spaces
 (the cube, prisms, pyramids, convex extrusions); the roots of a quadratic;
 the slab 0 <= z <= 1; spans from sorted crossings (even-odd).
+
+numpy is imported in the functions that use it, here and in every primitive's
+module: reading and checking a scene (the parser, the evaluator, ``--check``)
+reads the primitives' declarations and needs none of it (issue 18).
 """
 
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
-import numpy as np
+if TYPE_CHECKING:  # numpy is imported where it is used: see rays.py
+    import numpy as np
 
-INF = np.inf
+INF = math.inf
 
 
 def empty_like(n: int, k: int = 1):
+    import numpy as np
+
     return np.full((n, 2 * k), INF), np.zeros((n, 2 * k), np.int64)
 
 
 def single(enter, leave, face_in, face_out):
     """One span per ray (enter <= leave), or none."""
+    import numpy as np
+
     ok = enter <= leave
     t = np.empty((len(enter), 2))
     t[:, 0] = np.where(ok, enter, INF)
@@ -41,6 +51,9 @@ def single(enter, leave, face_in, face_out):
 def halfspaces(normals: np.ndarray, offsets: np.ndarray, o: np.ndarray, d: np.ndarray):
     """The span of each ray inside the intersection of the half-spaces; the
     face of a crossing is the number of its plane."""
+    import numpy as np
+
+    normals, offsets = np.asarray(normals, np.float64), np.asarray(offsets, np.float64)
     nd = d @ normals.T  # (n, P)
     no = o @ normals.T
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -60,8 +73,12 @@ def halfspaces(normals: np.ndarray, offsets: np.ndarray, o: np.ndarray, d: np.nd
 
 
 def halfspace_normal(normals):
+    """The outward normal on each face of the intersection of half-spaces:
+    ``normals`` (numbers or an array) by face number."""
     def normal(shape, p, face):
-        return normals[face]
+        import numpy as np
+
+        return np.asarray(normals, np.float64)[face]
     return normal
 
 
@@ -69,6 +86,8 @@ _planes: dict[tuple, tuple] = {}
 
 
 def prism_planes(n: int, pyramid: bool):
+    import numpy as np
+
     key = (n, pyramid)
     if key not in _planes:
         angles = (2 * np.arange(n) + 1) * np.pi / n  # the middles of the sides
@@ -88,6 +107,8 @@ def prism_planes(n: int, pyramid: bool):
 
 def many_sides(n: int, pyramid: bool, o, d):
     """A polygon of very many sides: its half-spaces a block at a time."""
+    import numpy as np
+
     normals, offsets = prism_planes(n, pyramid)
     best_in, best_out = np.full(len(o), -INF), np.full(len(o), INF)
     face_in, face_out = np.zeros(len(o), np.int64), np.zeros(len(o), np.int64)
@@ -122,6 +143,8 @@ def round_normal(cone: bool):
     1 (the bottom) or 2 (the top): the side's normal points away from the axis and,
     on the cone, up as steeply as the side leans."""
     def normal(shape, p, face):
+        import numpy as np
+
         n = np.zeros_like(p)
         side = face == 0
         n[side, 0], n[side, 1] = p[side, 0], p[side, 1]
@@ -141,6 +164,8 @@ def polygon_normal(pyramid: bool):
 
 def roots(a, b, c):
     """The two roots of a t^2 + b t + c (t1 <= t2), NaN where there are none."""
+    import numpy as np
+
     with np.errstate(divide="ignore", invalid="ignore"):
         disc = b * b - 4 * a * c
         root = np.sqrt(disc)
@@ -151,6 +176,8 @@ def roots(a, b, c):
 
 def slab(o, d, low=0.0, high=1.0):
     """The span of each ray in low <= z <= high, with its faces (0 the bottom, 1 the top)."""
+    import numpy as np
+
     oz, dz = o[:, 2], d[:, 2]
     with np.errstate(divide="ignore", invalid="ignore"):
         t0, t1 = (low - oz) / dz, (high - oz) / dz
@@ -163,12 +190,16 @@ def slab(o, d, low=0.0, high=1.0):
 
 
 def outline(shape):
+    import numpy as np
+
     points = np.asarray(shape, dtype=np.float64).reshape(-1, 2)
     return points, np.roll(points, -1, axis=0)
 
 
 def pairs(crossings, faces, n):
     """Spans from the sorted crossings of closed surfaces along each ray (even-odd)."""
+    import numpy as np
+
     order = np.argsort(crossings, axis=1, kind="stable")
     t = np.take_along_axis(crossings, order, axis=1)
     face = np.take_along_axis(faces, order, axis=1)

@@ -6,14 +6,14 @@ cones, cylinders and discs."""
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
 from castor.diagnostics import Location
 from castor.primitives import rays
 from castor.primitives.base import FLAT, Mesh, Primitive
 from castor.primitives.facets import circle_segments, joined, plane_stretch, quantize, signed_volume
 
-INF = np.inf
+INF = math.inf
 
 
 def check(shape: tuple, location: Location, path: object) -> None:
@@ -24,6 +24,8 @@ def check(shape: tuple, location: Location, path: object) -> None:
 
 def revolution(values: tuple, segments: int) -> Mesh:
     """The simple profile (r1, z1, ...) turned a full circle about the z axis."""
+    import numpy as np
+
     from castor.language.outline import profile, signed_area
 
     outline = profile(values, None, "")
@@ -93,6 +95,8 @@ def box(shape: tuple):
 
 
 def spans(shape, o, d):
+    import numpy as np
+
     a, b = rays.outline(shape)
     crossings, faces = [], []
     ox, oy, oz = o[:, 0], o[:, 1], o[:, 2]
@@ -135,6 +139,8 @@ def spans(shape, o, d):
 
 
 def normal(shape, p, face):
+    import numpy as np
+
     a, b = rays.outline(shape)
     e = b - a
     dr, dz = e[face, 0], e[face, 1]

@@ -5,17 +5,17 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from castor.primitives import rays
 from castor.primitives.base import Mesh, Primitive
 from castor.primitives.facets import (joined, largest_stretch, plane_stretch, quads, quantize,
                                      ring, sphere_segments)
 
-INF = np.inf
+INF = math.inf
 
 
 def sphere(around: int, rings: int) -> Mesh:
+    import numpy as np
+
     polar = np.pi * np.arange(1, rings) / rings
     blocks = [np.array([[0.0, 0.0, 1.0]])]
     for angle in polar:
@@ -52,6 +52,8 @@ def facets(shape, linear, tolerance) -> tuple[int, int]:
 
 
 def spans(shape, o, d):
+    import numpy as np
+
     a = np.einsum("ij,ij->i", d, d)
     b = 2 * np.einsum("ij,ij->i", o, d)
     c = np.einsum("ij,ij->i", o, o) - 1

@@ -5,14 +5,12 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from castor.diagnostics import GeometryError, Location
 from castor.primitives.base import Argument, Mesh, Primitive
 from castor.primitives.facets import (circle_segments, largest_stretch, plane_stretch, quads,
                                      quantize)
 
-INF = np.inf
+INF = math.inf
 
 
 def check(shape: tuple, location: Location, path: object) -> None:
@@ -37,6 +35,8 @@ def facets(shape, linear, tolerance) -> tuple[int, int]:
 
 def torus(k: float, around: int, tube: int) -> Mesh:
     """Torus: centre circle of radius 1 in z = 0, tube radius k."""
+    import numpy as np
+
     theta = 2 * np.pi * np.arange(around) / around
     phi = 2 * np.pi * np.arange(tube) / tube
     radius = 1.0 + k * np.cos(phi)
@@ -53,6 +53,8 @@ def torus(k: float, around: int, tube: int) -> Mesh:
 
 
 def spans(shape, o, d):
+    import numpy as np
+
     k = shape[0]
     n = len(o)
     scale = np.linalg.norm(d, axis=1)
@@ -88,6 +90,8 @@ def spans(shape, o, d):
 
 
 def normal(shape, p, face):
+    import numpy as np
+
     k = shape[0]
     q = np.einsum("ij,ij->i", p, p) + 1 - k * k
     n = p * q[:, None]

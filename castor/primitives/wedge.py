@@ -5,18 +5,17 @@ five half-spaces."""
 
 from __future__ import annotations
 
-import numpy as np
-
 from castor.primitives import rays
 from castor.primitives.base import FLAT, Mesh, Primitive
 
 # outward normals and offsets: z >= 0, x >= 0, y >= 0, y <= 1, x + z <= 1
-_PLANES = (np.array([[0, 0, -1], [-1, 0, 0], [0, -1, 0], [0, 1, 0], [1, 0, 1]],
-                    dtype=np.float64), np.array([0, 0, 0, 1, 1], dtype=np.float64))
+_PLANES = (((0, 0, -1), (-1, 0, 0), (0, -1, 0), (0, 1, 0), (1, 0, 1)), (0, 0, 0, 1, 1))
 _UNIT = ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))
 
 
 def mesh(shape: tuple, facets: tuple) -> Mesh:
+    import numpy as np
+
     vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 0, 1],  # the triangle at y = 0
                          [0, 1, 0], [1, 1, 0], [0, 1, 1]], dtype=np.float64)  # at y = 1
     # faces, counter-clockwise from outside, numbered as the planes above

@@ -9,6 +9,14 @@ pixel. Edges are outlines only: ``--edges`` from the changes of depth and
 of surface between pixels (as castor's pictures; castor.mesh.creases), ``--wire`` the polygons' edges
 except those between two coplanar polygons, so a flat face cut into convex
 pieces shows no diagonals.
+
+The facets of one curved surface (a sphere's, a smooth solid's: guessed from
+the polygons' paths and the turns between them, ``_surfaces``) are shaded
+smoothly, as castor's pictures shade a smooth solid
+(castor.pictures.mesh_rays): each pixel takes the normal interpolated across
+its triangle from the normals at its corners, the mean of the normals of the
+facets of the same surface around each vertex. A flat face, and each side of
+a crease, keeps its own normal.
 """
 
 from __future__ import annotations
@@ -42,24 +50,30 @@ def _normals(picture: Picture) -> np.ndarray:
     return np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
 
 
-def _shade(picture: Picture, camera: Camera, normals: np.ndarray) -> np.ndarray:
+def _shade(picture: Picture, camera: Camera, normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Polygon colours lit as castor's pictures are (castor.pictures.shade), by
-    the default sun, without shadows; the normals are turned to the viewer."""
-    from castor.options import DEFAULT_SUN
-    from castor.pictures.shade import intensity, sun_light
-
+    the default sun, without shadows; the normals are turned to the viewer, and
+    which were is returned beside the colours."""
     if camera.orthographic:
         towards = np.broadcast_to(-camera.forward, normals.shape)
     else:
         towards = camera.eye - picture.points[picture.offsets[:-1]]
     back = np.einsum("ij,ij->i", normals, towards) < 0
     normals[back] *= -1
-    # one direction to the viewer for every polygon, so that the pieces of a
-    # flat face are lit alike
+    return _lit(picture.colours, normals, camera), back
+
+
+def _lit(colours: np.ndarray, normals: np.ndarray, camera: Camera) -> np.ndarray:
+    """Colours lit by the default sun for unit normals turned to the viewer,
+    with one direction to the viewer for all, so that the pieces of a flat face
+    are lit alike."""
+    from castor.options import DEFAULT_SUN
+    from castor.pictures.shade import intensity, sun_light
+
     towards = np.broadcast_to(-camera.forward, normals.shape)
     light, _ = sun_light(DEFAULT_SUN, camera)  # beside the camera, as castor's pictures
     strength = intensity(normals, towards, light, np.ones(len(normals)))
-    return np.clip(picture.colours * strength[:, None], 0, 1)
+    return np.clip(colours * strength[:, None], 0, 1)
 
 
 def render(picture: Picture, camera: Camera, width: int, height: int,
@@ -77,16 +91,23 @@ def render(picture: Picture, camera: Camera, width: int, height: int,
     image = np.empty((big_h * big_w, 3), np.float32)
     image[:] = BACKGROUND
     normals = _normals(picture)
-    if mode == "edges":  # before the normals are turned to the viewer
-        surfaces = _surfaces(picture, normals)
     if mode != "wire" and picture.polygon_count:
-        colours = _shade(picture, big, normals).astype(np.float32)
+        surfaces = _surfaces(picture, normals)  # before the normals are turned to the viewer
         tris, polygon = picture.triangles()
+        corners = _corner_normals(picture, tris, polygon, surfaces)
+        colours, back = _shade(picture, big, normals)
         visible = np.all(z[tris] > 1e-6, axis=1)
         tris, polygon = tris[visible], polygon[visible]
-        _rasterize(screen, z, tris, polygon, big_w, big_h, depth, owner, big.orthographic)
-        hit = owner >= 0
+        # each pixel's triangle, then its polygon
+        _rasterize(screen, z, tris, np.arange(len(tris)), big_w, big_h, depth, owner,
+                   big.orthographic)
+        hit = np.flatnonzero(owner >= 0)
+        triangle = owner[hit]
+        owner[hit] = polygon[triangle]
         image[hit] = colours[owner[hit]]
+        if corners is not None:
+            _shade_smoothly(image, hit, triangle, polygon, tris, corners[visible], back, screen, z,
+                            picture, big)
     image = image.reshape(big_h, big_w, 3)
     if mode == "edges" and picture.polygon_count:
         strength = np.zeros((big_h, big_w), np.float32)
@@ -114,6 +135,63 @@ def render(picture: Picture, camera: Camera, width: int, height: int,
         layer = image[..., channel].reshape(height, k, width, k).mean(axis=(1, 3))
         out[..., channel] = np.clip(np.rint(layer * 255), 0, 255)
     return out
+
+
+def _corner_normals(picture: Picture, tris: np.ndarray, polygon: np.ndarray,
+                    surfaces: np.ndarray) -> np.ndarray | None:
+    """(T, 3, 3) unit normals at the corners of the triangles, of the facets of
+    curved surfaces (as castor.pictures.mesh_rays.corner_normals, from the
+    triangles of the same surface around each vertex), each polygon's own
+    normal on the others; None when no surface has two facets."""
+    from castor.pictures.mesh_rays import corner_normals
+
+    facets = np.bincount(surfaces, minlength=len(surfaces))
+    if not (facets >= 2).any():
+        return None
+    vertex = _vertex_numbers(picture)[tris]
+    p = picture.points[tris]
+    area_normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    # a polygon alone on its surface: a group of its own (its normal everywhere)
+    group = np.where(facets[surfaces] >= 2, surfaces, len(surfaces) + np.arange(len(surfaces)))
+    return corner_normals(picture.points, vertex, area_normals, group[polygon])
+
+
+def _shade_smoothly(image, hit, triangle, polygon, tris, corners, back, screen, z,
+                    picture: Picture, camera: Camera) -> None:
+    """The pixels ``hit`` (of the triangles ``triangle``) of curved surfaces lit
+    with the normal interpolated at each from the corners of its triangle, in
+    the scene (perspective-correct), turned as its polygon was to the viewer."""
+    corner_turn = np.abs(np.einsum("tij,tkj->tik", corners, corners)).min(axis=(1, 2))
+    curved = corner_turn[triangle] < 1 - 1e-9  # the corners' normals differ: not flat
+    hit, triangle = hit[curved], triangle[curved]
+    width = camera.width
+    for start in range(0, len(hit), _BATCH_PIXELS):  # bounded memory
+        pixel, t = hit[start:start + _BATCH_PIXELS], triangle[start:start + _BATCH_PIXELS]
+        centre = np.column_stack([pixel % width, pixel // width]) + 0.5
+        weights = _screen_weights(centre, screen[tris[t]], z[tris[t]], camera.orthographic)
+        normals = np.einsum("ij,ijk->ik", weights, corners[t])
+        normals /= np.maximum(np.linalg.norm(normals, axis=1), 1e-300)[:, None]
+        p = polygon[t]
+        normals[back[p]] *= -1
+        image[pixel] = _lit(picture.colours[p], normals, camera)
+
+
+def _screen_weights(centre: np.ndarray, corners: np.ndarray, z: np.ndarray,
+                    orthographic: bool) -> np.ndarray:
+    """(n, 3) weights of a triangle's corners at points of the screen inside it
+    (corners (n, 3, 2), their depths z (n, 3)), for a value that varies linearly
+    in the scene: the screen's barycentric weights, over z in perspective."""
+    a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
+    e1, e2, e = b - a, c - a, centre - a
+    det = e1[:, 0] * e2[:, 1] - e2[:, 0] * e1[:, 1]
+    det = np.where(np.abs(det) > 0, det, 1.0)
+    v = (e[:, 0] * e2[:, 1] - e2[:, 0] * e[:, 1]) / det
+    w = (e1[:, 0] * e[:, 1] - e[:, 0] * e1[:, 1]) / det
+    weights = np.clip(np.column_stack([1 - v - w, v, w]), 0, None)
+    if not orthographic:
+        weights = weights / z
+    total = weights.sum(axis=1, keepdims=True)
+    return np.where(total > 0, weights / np.where(total > 0, total, 1), 1 / 3)
 
 
 def _outline_edges(picture: Picture, normals: np.ndarray) -> np.ndarray:
@@ -228,10 +306,7 @@ def _shared_edges(picture: Picture):
     one polygon and in the other, every point's polygon, and the edges' two
     vertices (points numbered once for all the polygons they are in)."""
     count = len(picture.points)
-    scale = max(float(np.abs(picture.points).max()), 1.0) * 1e-9
-    quantized = np.round(picture.points / scale).astype(np.int64)
-    _, vertex = np.unique(quantized, axis=0, return_inverse=True)
-    vertex = vertex.ravel()
+    vertex = _vertex_numbers(picture)
     offsets = picture.offsets
     nxt = np.arange(count) + 1
     nxt[offsets[1:] - 1] = offsets[:-1]
@@ -247,6 +322,15 @@ def _shared_edges(picture: Picture):
     pair = pair[single]
     first = order[pair]
     return first, order[pair + 1], polygon, np.column_stack([a[first], b[first]])
+
+
+def _vertex_numbers(picture: Picture) -> np.ndarray:
+    """For each point of each polygon, a number for its place: equal for the
+    points where polygons meet (to 1e-9 of the picture's size)."""
+    scale = max(float(np.abs(picture.points).max()), 1.0) * 1e-9
+    quantized = np.round(picture.points / scale).astype(np.int64)
+    _, vertex = np.unique(quantized, axis=0, return_inverse=True)
+    return vertex.ravel()
 
 
 def _rasterize(screen, z, tris, polygon, width, height, depth, owner, orthographic=False):

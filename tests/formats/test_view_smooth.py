@@ -74,6 +74,49 @@ def test_flat_solids_keep_their_edges():
     assert cube > 0.01 and pyramid > 0.05 and prism > 0.05
 
 
+def _interior(image: np.ndarray, band: int = 3) -> np.ndarray:
+    """The pixels the solids cover, less a band of ``band`` pixels inside the outline."""
+    inside = np.any(image != 255, axis=2)
+    for _ in range(band):
+        inside[1:-1, 1:-1] &= inside[:-2, 1:-1] & inside[2:, 1:-1] & inside[1:-1, :-2] \
+            & inside[1:-1, 2:]
+    return inside
+
+
+def brightness_steps(image: np.ndarray) -> np.ndarray:
+    """How much brighter or darker (the three channels' sum, 0..765) each pixel
+    inside the solids is than its neighbour to the right and below."""
+    brightness = image.astype(int).sum(axis=2)
+    inside = _interior(image)
+    across = (inside[:, :-1] & inside[:, 1:], brightness[:, :-1] - brightness[:, 1:])
+    down = (inside[:-1] & inside[1:], brightness[:-1] - brightness[1:])
+    return np.abs(np.concatenate([step[both] for both, step in (across, down)]))
+
+
+def test_the_facets_of_a_smooth_solid_are_shaded_smoothly():
+    # (issue 19 item 5) shaded flat, each facet of one colour, the brightness
+    # stepped by 108 and 79 between neighbouring pixels at the facets' edges
+    box, sphere = pictures("> @s(120) @h(2, 2, 1) !cu(0.8, 0.6, 0.4);\n> !sp(0.8, 0.6, 0.4);\n",
+                           "shaded")
+    assert brightness_steps(box).max() < 40 and brightness_steps(sphere).max() < 40
+    # and shaded: not one colour (the steps are small, the range is not)
+    for image in (box, sphere):
+        brightness = image.astype(int).sum(axis=2)[_interior(image)]
+        assert brightness.max() - brightness.min() > 100
+
+
+def test_flat_faces_stay_flat_and_creases_sharp():
+    cube, prism = pictures("> !cu(0.8, 0.6, 0.4);\n> @s(65) @h(1, 1, 1.5) !pr(0.6, 0.8, 0.4, 6);\n",
+                           "shaded")
+    # the cube: three faces of one colour each, and a step where two meet
+    inside = _interior(cube)
+    _, counts = np.unique(cube[inside], axis=0, return_counts=True)
+    assert np.sort(counts)[-3:].sum() > 0.97 * inside.sum()
+    assert brightness_steps(cube).max() > 40
+    # the smoothed prism's rims stay creases between its caps and its side
+    assert brightness_steps(prism).max() > 100
+
+
 def test_the_help_names_every_view_of_the_table():
     from castor.options import VIEW_NAMES
 

@@ -61,3 +61,64 @@ def test_the_build_ships_the_tables_and_castor_uses_them_without_writing(tmp_pat
                           env=env, cwd=tmp_path, capture_output=True, text=True, timeout=60)
     assert cube.returncode == 0 and "endframe 1 6" in cube.stdout, cube.stderr
     assert sorted(p.name for p in package.iterdir()) == listing
+
+
+# What castor imports to run, beyond what Python had imported before it (the
+# probe's own start): modules a run of that kind has no use for, each of which
+# cost start-up time (issue 18, item 18). A module is named with its package
+# ("numpy" covers numpy.linalg).
+NEVER = ("lark", "trimesh", "PIL", "ifcopenshell", "ezdxf", "reportlab", "cairosvg", "pygls",
+         "urllib", "ipaddress", "pathlib", "hashlib", "tempfile", "castor.pictures",
+         "castor.drawings", "castor.lsp", "castor.serve", "castor.view")
+NOT_FOR = {
+    # the stream of a cube: no smooth solid, no key of a shared subtree
+    "stream": NEVER + ("castor.mesh.smooth", "castor.mesh.subdivide"),
+    # --check makes no mesh: neither numpy nor the engine nor the facetizer
+    "check": NEVER + ("numpy", "manifold3d", "castor.mesh"),
+    # ... nor with turns, scales and a named object (whose key hashlib makes)
+    "check a scene": tuple(n for n in NEVER if n != "hashlib") + ("numpy", "manifold3d",
+                                                                  "castor.mesh"),
+    "version": NEVER + ("numpy", "manifold3d", "castor.mesh", "castor.language", "castor.csg",
+                        "dataclasses"),
+}
+
+IMPORTS = """
+import sys
+before = set(sys.modules)
+from castor import cli
+try:
+    cli.main(sys.argv[1:])
+except SystemExit:
+    pass
+print("IMPORTED", " ".join(sorted(set(sys.modules) - before)), file=sys.stderr)
+"""
+
+
+def _imported_by(args, cwd):
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "TMPDIR": str(cwd)}
+    done = subprocess.run([sys.executable, "-c", IMPORTS, *args], capture_output=True, text=True,
+                          cwd=cwd, timeout=120, env=env)
+    line = [x for x in done.stderr.splitlines() if x.startswith("IMPORTED")]
+    assert line, done.stderr
+    return done.stdout, set(line[0].split()[1:])
+
+
+def _named(modules, names):
+    return sorted(m for m in modules if any(m == n or m.startswith(n + ".") for n in names))
+
+
+def test_a_run_imports_only_what_it_uses(tmp_path):
+    (tmp_path / "cube.cas").write_text("> !cu(1, 0, 0);\n")
+    # turned, scaled, a named object, every primitive but !ex and !rv (whose
+    # checks read their outlines with numpy)
+    (tmp_path / "scene.cas").write_text(
+        "x = @rz(30) @h(2) !cu(1, 0, 0);\n"
+        "> x, @r(1, 1, 0, 20) @h(1, 2, 3) !sp(0, 1, 0), !cy(0, 0, 1), !co(0, 0, 1),\n"
+        "  !to(1, 1, 0, 0.3), !pr(1, 0, 1, 6), !py(0, 1, 1, 5), !we(1, 1, 1);\n")
+    _imported_by(["--check", "cube.cas"], tmp_path)  # a checkout's first run keeps the tables
+    for kind, args in (("stream", ["cube.cas"]), ("check", ["--check", "cube.cas"]),
+                       ("check a scene", ["--check", "scene.cas"]), ("version", ["--version"])):
+        out, modules = _imported_by(args, tmp_path)
+        if kind == "stream":
+            assert "endframe 1 6" in out and "numpy" in modules  # it ran, and made a mesh
+        assert _named(modules, NOT_FOR[kind]) == [], kind
