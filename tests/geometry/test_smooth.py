@@ -125,6 +125,51 @@ def test_only_what_is_far_from_the_limit_is_refined():
     assert everywhere.levels >= 4
 
 
+def test_levels_are_made_only_where_they_are_needed(monkeypatch):
+    # a long box under a pyramid end, its sides cut in 200 unit quads each
+    # side (805 control polygons), @s(70) at 1e-4: only the end is refined
+    # past the first level. Whole levels would have made 1,646,592
+    # triangles at the last one (refused under a limit of 1,000,000 before
+    # levels followed the refinement); the parts made hold 52,288 written
+    v, o, i = long_box_with_a_pyramid_end(200)
+    made = []
+    refine = subdivide._refine
+    monkeypatch.setattr(subdivide, "_refine", lambda level: made.append(len(level.indices))
+                        or refine(level))
+    part = subdivide.smooth(v, o, i, 70, 1e-4, 1_000_000)
+    assert closed(part.triangles) and part.distance <= 1e-4
+    assert len(part.triangles) < 60_000 and max(made) < 100_000
+    assert volume(part.vertices, part.triangles) == pytest.approx(199.8863, abs=1e-3)
+
+
+def test_parts_give_the_surface_whole_levels_give(monkeypatch):
+    """A prism, a box under a roof and a cube smoothed again after a cut
+    (fine where the cut was), refined in parts and in whole levels: the same
+    triangles at the same points."""
+    v, o, i = box()
+    v = np.concatenate([v, [[0.5, 0.5, 1.1]]])
+    faces = [i[o[k]:o[k + 1]].tolist() for k in range(6) if k != 5]
+    faces += [[1, 5, 8], [5, 7, 8], [7, 3, 8], [3, 1, 8]]
+    roofed = (v, np.cumsum([0] + [len(f) for f in faces]), np.concatenate(faces))
+    cases = [(prism(7), 65, 1e-3), (roofed, 30, 1e-4), (box(3, 1, 0.5), 120, 1e-3),
+             (long_box_with_a_pyramid_end(6), 100, 1e-4)]
+    results = []
+    parts = []
+    part = subdivide._part
+    monkeypatch.setattr(subdivide, "_part", lambda level, keep: parts.append(keep.mean())
+                        or part(level, keep))
+    for mesh, angle, tolerance in cases:
+        results.append(subdivide.smooth(*mesh, angle, tolerance, 10 ** 8))
+    assert len(parts) >= 4 and min(parts) < 0.7  # refined in parts
+    monkeypatch.setattr(subdivide, "_rings", lambda level, seed, count:
+                        np.ones(len(level.faces), bool))
+    for (mesh, angle, tolerance), part in zip(cases, results):
+        whole = subdivide.smooth(*mesh, angle, tolerance, 10 ** 8)
+        assert closed(part.triangles)
+        assert np.array_equal(part.triangles, whole.triangles)
+        assert np.abs(part.vertices - whole.vertices).max() < 1e-12
+
+
 def test_a_large_solid_gets_as_many_levels_as_its_size_needs():
     small = subdivide.smooth(*box(0.05, 0.05, 0.05), 120, 0.001, 10 ** 7)
     large = subdivide.smooth(*box(5, 5, 5), 120, 0.001, 10 ** 7)
