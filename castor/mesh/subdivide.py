@@ -452,8 +452,73 @@ def smooth(vertices, offsets, indices, angle: float, tolerance: float,
     for numbers, points in written:
         positions[numbers] = points
     triangles, faces = _leaf_triangles(levels, leaves, parents, renumbers, positions)
+    corner = np.zeros(len(positions), bool)
+    corner[:len(vertices)] = _per_vertex_crease(level)[0] >= 3
+    _edges, _edge_of, _count, following_corner = _topology(vertices, offsets, indices)
+    control_normal = _normals(vertices, offsets, indices, following_corner)
+    triangles, faces = unturned(positions, triangles, faces, control_normal, corner)
     used, triangles = np.unique(triangles, return_inverse=True)
     return Smoothed(positions[used], triangles.reshape(-1, 3), faces, len(levels), gap)
+
+
+def turned(positions: np.ndarray, triangles: np.ndarray, faces: np.ndarray,
+           control_normal: np.ndarray) -> np.ndarray:
+    """The triangles that face away from the control polygon they come from."""
+    p = positions[triangles]
+    normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    return np.einsum("ij,ij->i", normal, control_normal[faces]) < 0
+
+
+def unturned(positions: np.ndarray, triangles: np.ndarray, faces: np.ndarray,
+             control_normal: np.ndarray, fixed: np.ndarray, rounds: int = 40):
+    """The refined triangles without the slivers turned over. Where a control
+    polygon is itself a sliver (three of its corners almost on one line, as a
+    boolean of smooth solids leaves beside its seams), Catmull–Clark's limit
+    surface folds over itself along it (the reference subdivision folds
+    there too): a triangle a hair wide faces inward, a sheet §7 rules out.
+    Each such triangle loses its shortest side that can go (both ends become
+    one point, at their middle, or at the end that is a ``fixed`` corner;
+    not where the ends have other neighbours in common than the side's two
+    triangles, which would pinch the surface): the sliver and its neighbour
+    across that side go, and the surface moves by the sliver's width.
+    ``positions`` is changed in place."""
+    for _ in range(rounds):
+        bad = np.flatnonzero(turned(positions, triangles, faces, control_normal))
+        if not len(bad):
+            break
+        sides = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]])
+        order = np.argsort(sides[:, 0], kind="stable")
+        starts = np.searchsorted(sides[order, 0], np.arange(len(positions) + 1))
+
+        def ring(v):
+            return set(sides[order[starts[v]:starts[v + 1]], 1].tolist())
+
+        merge_into = np.arange(len(positions))
+        touched: set = set()
+        for t in bad.tolist():
+            corners = triangles[t].tolist()
+            pairs = [(corners[k], corners[(k + 1) % 3]) for k in range(3)]
+            pairs.sort(key=lambda ab: float(np.linalg.norm(positions[ab[0]] - positions[ab[1]])))
+            for a, b in pairs:
+                if a in touched or b in touched or (fixed[a] and fixed[b]):
+                    continue
+                around_a, around_b = ring(a), ring(b)
+                if len(around_a & around_b) != 2:
+                    continue
+                if fixed[b]:
+                    a, b = b, a
+                if not fixed[a]:
+                    positions[a] = (positions[a] + positions[b]) / 2
+                merge_into[b] = a
+                touched |= {a, b} | around_a | around_b
+                break
+        if not touched:
+            break
+        triangles = merge_into[triangles]
+        whole = ((triangles[:, 0] != triangles[:, 1]) & (triangles[:, 1] != triangles[:, 2])
+                 & (triangles[:, 2] != triangles[:, 0]))
+        triangles, faces = triangles[whole], faces[whole]
+    return triangles, faces
 
 
 def patches(vertices, offsets, indices, angle: float) -> np.ndarray:
