@@ -224,6 +224,69 @@ def polygon_defects(polygon: Polygon, slack: float = 1e-7) -> list[str]:
     return defects
 
 
+def frame_polygon_defects(frame: Frame, slack: float = 1e-7) -> list[tuple[int, list[str]]]:
+    """``polygon_defects`` of every polygon of a frame, the same tests made
+    on all the polygons' arrays at once (a smooth frame has tens of
+    thousands): (polygon number, its defects) where it has any."""
+    if not frame.polygons:
+        return []
+    corners, starts = _polygon_arrays(frame)
+    sizes = np.diff(starts)
+    out: dict[int, list[str]] = {}
+    few = np.flatnonzero(sizes < 3)
+    for i in few.tolist():
+        out[i] = ["fewer than 3 vertices"]
+    polygon = np.repeat(np.arange(len(sizes)), sizes)
+    # a repeated vertex: two corners of one polygon at the same exact position
+    key = np.lexsort((corners[:, 2], corners[:, 1], corners[:, 0], polygon))
+    same = ((polygon[key][1:] == polygon[key][:-1])
+            & (corners[key][1:] == corners[key][:-1]).all(axis=1))
+    repeated = np.zeros(len(sizes), bool)
+    repeated[polygon[key][1:][same]] = True
+    following = np.arange(len(corners)) + 1
+    following[starts[1:] - 1] = starts[:-1]
+    after = following[following]
+    low = np.minimum.reduceat(corners, starts[:-1], axis=0)
+    high = np.maximum.reduceat(corners, starts[:-1], axis=0)
+    size = np.maximum((high - low).max(axis=1), 1e-300)
+    normal = np.zeros((len(sizes), 3))
+    np.add.at(normal, polygon, np.cross(corners, corners[following]))
+    length = np.linalg.norm(normal, axis=1)
+    flat = length <= 1e-12 * size * size
+    unit = normal / np.where(flat, 1.0, length)[:, None]
+    n = unit[polygon]
+    centre = np.add.reduceat(corners, starts[:-1], axis=0) / sizes[:, None]
+    away = np.abs(np.einsum("ij,ij->i", corners - centre[polygon], n))
+    not_planar = np.maximum.reduceat(away, starts[:-1]) > slack * np.maximum(size, 1.0)
+    edges = corners[following] - corners
+    next_edges = corners[after] - corners[following]
+    turns = np.einsum("ij,ij->i", np.cross(edges, next_edges), n)
+    lengths = np.linalg.norm(edges, axis=1) * np.linalg.norm(next_edges, axis=1)
+    concave = np.zeros(len(sizes), bool)
+    concave[polygon[turns < -slack * lengths]] = True
+    u = edges - np.einsum("ij,ij->i", edges, n)[:, None] * n
+    u_next = u[following]
+    angle = np.arctan2(np.einsum("ij,ij->i", np.cross(u, u_next), n),
+                       np.einsum("ij,ij->i", u, u_next))
+    total = np.add.reduceat(angle, starts[:-1])
+    winds = np.abs(total - 2 * np.pi) > 1e-6
+    for i in np.flatnonzero(repeated | flat | not_planar | concave | winds).tolist():
+        if sizes[i] < 3:
+            continue
+        defects = ["a repeated vertex"] if repeated[i] else []
+        if flat[i]:
+            out[i] = defects + ["zero area"]
+            continue
+        if not_planar[i]:
+            defects.append("not planar")
+        if concave[i]:
+            defects.append("not convex")
+        if winds[i]:
+            defects.append(f"winds {total[i] / (2 * np.pi):.2f} times")
+        out[i] = defects
+    return sorted(out.items())
+
+
 def shells(frame: Frame) -> list[list[int]]:
     """The polygons of each connected shell (polygons sharing a vertex position)."""
     parent = {}
@@ -245,17 +308,44 @@ def shells(frame: Frame) -> list[list[int]]:
 
 def shell_defects(frame: Frame, thickness: float = 1e-9) -> list[str]:
     """Shells of (about) zero volume: their volume over half their area, a mean
-    thickness, is below ``thickness`` times the frame's size."""
+    thickness, is below ``thickness`` times the frame's size. (The shells
+    as ``shells`` finds them, polygons sharing a vertex position, found on
+    the frame's arrays at once.)"""
     if not frame.polygons:
         return []
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
     size = max(float(np.abs(frame.box()).max()), 1.0)
+    corners, starts = _polygon_arrays(frame)
+    sizes = np.diff(starts)
+    count = len(sizes)
+    polygon = np.repeat(np.arange(count), sizes)
+    _, vertex = np.unique(corners, axis=0, return_inverse=True)
+    vertex = vertex.ravel()
+    nodes = count + int(vertex.max()) + 1
+    graph = coo_matrix((np.ones(len(polygon)), (polygon, count + vertex)), shape=(nodes, nodes))
+    _, label = connected_components(graph, directed=False)
+    label = label[:count]
+    following = np.arange(len(corners)) + 1
+    following[starts[1:] - 1] = starts[:-1]
+    normal = np.zeros((count, 3))
+    np.add.at(normal, polygon, np.cross(corners, corners[following]))
+    area = np.linalg.norm(normal, axis=1) / 2
+    # each polygon's fan from its first corner: a . (b x c) / 6 per triangle
+    fans = np.maximum(sizes - 2, 0)
+    owner = np.repeat(np.arange(count), fans)
+    k = np.arange(len(owner)) - np.repeat(np.cumsum(fans) - fans, fans)
+    first = starts[owner]
+    cone = np.einsum("ij,ij->i", corners[first],
+                     np.cross(corners[first + k + 1], corners[first + k + 2])) / 6
+    volume = np.bincount(label[owner], weights=cone, minlength=label.max() + 1)
+    shell_area = np.bincount(label, weights=area, minlength=label.max() + 1)
+    members = np.bincount(label, minlength=label.max() + 1)
     defects = []
-    for members in shells(frame):
-        volume = sum(_fan_volume(frame.polygons[i].points) for i in members)
-        area = sum(np.linalg.norm(_newell(frame.polygons[i].points)) / 2 for i in members)
-        if abs(volume) <= thickness * size * area / 2:  # a cavity's volume is negative
-            defects.append(f"a shell of {len(members)} polygons has volume {volume:.3g} "
-                           f"for area {area:.3g}")
+    for s in np.flatnonzero(np.abs(volume) <= thickness * size * shell_area / 2).tolist():
+        defects.append(f"a shell of {members[s]} polygons has volume {volume[s]:.3g} "
+                       f"for area {shell_area[s]:.3g}")
     return defects
 
 
@@ -459,8 +549,8 @@ def sheet_defects(frame: Frame, offset: float = 1e-8) -> list[str]:
 
 def regularity_defects(frame: Frame, sheets: bool = True) -> list[str]:
     """Every defect LANGUAGE.md §7 rules out, as readable lines (empty if none)."""
-    defects = [f"polygon {i} of {p.path}: {', '.join(d)}"
-               for i, p in enumerate(frame.polygons) if (d := polygon_defects(p))]
+    defects = [f"polygon {i} of {frame.polygons[i].path}: {', '.join(d)}"
+               for i, d in frame_polygon_defects(frame)]
     defects += shell_defects(frame)
     if sheets:
         defects += sheet_defects(frame)

@@ -81,3 +81,51 @@ def test_a_sheet_in_a_frame_of_many_polygons_is_found_quickly():
     assert len(defects) == 4, defects  # the four triangles of the two coincident faces
     assert all("!cu" in d for d in defects)
     assert elapsed < 20, elapsed
+
+
+def _random_polygons(count=3000, seed=3):
+    """Polygons of every kind polygon_defects tells apart: fine, turning
+    twice, bent, with a repeated vertex, winding twice, too small."""
+    rng = np.random.default_rng(seed)
+    polygons = []
+    for k in range(count):
+        n = int(rng.integers(1, 8))
+        kind = k % 6
+        angle = rng.uniform(0, 2 * np.pi, n)
+        if kind != 1:
+            angle = np.sort(angle)
+        points = np.column_stack([np.cos(angle), np.sin(angle), np.zeros(n)])
+        if kind == 2:
+            points[:, 2] = rng.normal(0, 1e-6, n)
+        if kind == 3 and n > 2:
+            points[1] = points[0]
+        if kind == 4 and n > 2:
+            points = np.vstack([points, points])
+        if kind == 5:
+            points *= 1e-9
+        turn = np.linalg.qr(rng.normal(size=(3, 3)))[0]
+        polygons.append(meshcheck.Polygon("!p", (1, 1, 1), points @ turn.T + rng.normal(size=3)))
+    return polygons
+
+
+def test_the_frames_polygon_defects_are_each_polygons():
+    polygons = _random_polygons()
+    one_by_one = {i: d for i, p in enumerate(polygons) if (d := meshcheck.polygon_defects(p))}
+    at_once = dict(meshcheck.frame_polygon_defects(meshcheck.Frame(1, "test", polygons)))
+    assert len(one_by_one) > 2000 and set(one_by_one) == set(at_once)
+
+    def kinds(defects):  # "winds 0.00 times" or "-0.00": a sum of angles near 0
+        return [d.replace("-0.00", "0.00") for d in defects]
+
+    assert all(kinds(one_by_one[i]) == kinds(at_once[i]) for i in one_by_one)
+
+
+def test_shells_of_zero_volume_are_found_among_many():
+    polygons = [meshcheck.Polygon("!sp", (1, 1, 1), t) for t in _sphere(4)]
+    # a flat shell: a square twice, turned each way (volume 0)
+    square = np.array([[3, 0, 0], [4, 0, 0], [4, 1, 0], [3, 1, 0]], float)
+    polygons += [meshcheck.Polygon("!sq", (1, 0, 0), square),
+                 meshcheck.Polygon("!sq", (1, 0, 0), square[::-1])]
+    polygons += [meshcheck.Polygon("!cu", (0, 1, 0), t) for t in _box((5, 5, 5), (6, 6, 6))]
+    defects = meshcheck.shell_defects(meshcheck.Frame(1, "test", polygons))
+    assert defects == ["a shell of 2 polygons has volume 0 for area 2"]
