@@ -836,11 +836,12 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
         else:
             problems.append(f"volume {got:.9g}, oracle {volume:.9g}"
                             + (f", exact {truth:.9g}" if truth is not None else ""))
-    # (the oracle's smooth solids are closed quad meshes it made: no sheet to
-    # look for, and thousands of triangles the winding test would take long
-    # over; the other objects of the frame are looked at)
-    smooth_objects = smooth[2] if len(smooth) > 2 else [made] * len(solids)
-    sure = sure and not any(has_sheets(s) for s, m in zip(solids, smooth_objects) if not m)
+    # every object is looked at, those that hold the oracle's own smooth
+    # solids too: a boolean over one can leave a sheet in manifold3d's result
+    # (smooth seed 11, batch 50, scene 14: the area 41.76 and a box 0.9
+    # wider than castor's 33.69, the same volume); the winding test counts
+    # crossings, thousands of triangles are quick
+    sure = sure and not any(has_sheets(s) for s in solids)
     if not sure:
         UNSURE.append(frame.number)
     got_area = frame.area()
@@ -918,9 +919,11 @@ def check_scenes(scenes: list[Scene], sheets: bool = True,
             return known[number - 1]
 
         oracle = Oracle(scene)
+        # exact.py knows no smooth solid: a scene with @s is judged without it
+        decide = exact and "@s(" not in scene_text(scene)
         for number, (solids, uses) in enumerate(oracle.frames(), 1):
             problems = judge(frames[k], solids, uses, sheets,
-                             (lambda n=number: truth(n)) if exact else None,
+                             (lambda n=number: truth(n)) if decide else None,
                              (oracle.smooth, oracle.loose, oracle.smooth_objects))
             k += 1
             if problems:
