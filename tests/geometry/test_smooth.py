@@ -431,6 +431,19 @@ def test_a_smoothing_too_fine_is_refused_before_it_is_made():
     assert "GB" in err and "raise the tolerance" in err
 
 
+def test_a_smoothing_small_in_fact_is_not_refused():
+    # @s(150) over a union holding a smooth solid: its facets are already
+    # near the new limit, and only the seam is refined. Whole levels made
+    # 73,600 triangles and were refused under --max-polygons 20,000; the
+    # parts made now hold fewer, and 5,762 polygons are written. A
+    # smoothing too fine in fact is still refused (the test above)
+    status, out, err = run("--no-cpp", "--stats", "--max-polygons", "20000",
+                           stdin="> @s(150) $U(@s(120) @h(2) !cu(1, 0, 0), "
+                                 "@t(1.5, 0, 0) !cu(0, 1, 0));")
+    assert status == 0, err
+    assert "5762 polygons" in err and "volume 3.0676" in err
+
+
 def test_the_tree_has_a_node_for_it():
     from castor.csg import tree
 
