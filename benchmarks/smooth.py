@@ -10,6 +10,11 @@ For the unit cube smoothed everywhere (``@s(120) !cu``), level by level:
   (a smooth solid lies inside its control mesh: the Catmull–Clark limit has
   volume 0.3275).
 
+And the issue's target: the whole command ``castor --tolerance 0.001`` on
+``> @s(120) @h(5) !cu(1, 0, 0);`` (start-up, parsing, smoothing, the engine,
+merging, writing), at most 2 s; its wall time and the CPU time it used (on
+a machine shared with other work the wall time is the larger).
+
 Each figure is the best of three runs.
 
     python benchmarks/smooth.py
@@ -42,6 +47,26 @@ def volume(vertices, triangles):
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6)
 
 
+def whole_command(text: str = "> @s(120) @h(5) !cu(1, 0, 0);", tolerance: float = 0.001):
+    """Best of three: (wall seconds, CPU seconds) of castor run on ``text``."""
+    import os
+    import resource
+    import subprocess
+    import sys
+
+    runs = []
+    for _ in range(3):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        started = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "castor", "--no-cpp", "-q", "--tolerance",
+                        str(tolerance)], input=text, text=True, capture_output=True, check=True,
+                       env=dict(os.environ))
+        wall = time.perf_counter() - started
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        runs.append((wall, after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime))
+    return min(runs)
+
+
 def main() -> None:
     import manifold3d
 
@@ -63,6 +88,9 @@ def main() -> None:
         triangles = out.num_tri()
         print(f"{n:>10} {triangles:>10,} {seconds:>8.3f} {triangles / seconds:>12,.0f} "
               f"{out.volume():>8.4f}")
+    wall, cpu = whole_command()
+    print(f"\nthe whole command, @s(120) @h(5) !cu at --tolerance 0.001: {wall:.2f} s "
+          f"({cpu:.2f} s of CPU); the target is 2 s")
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@ as any other program reading the stream would.
 
 from __future__ import annotations
 
+import math
 import subprocess
 import sys
 import tempfile
@@ -223,6 +224,69 @@ def polygon_defects(polygon: Polygon, slack: float = 1e-7) -> list[str]:
     return defects
 
 
+def frame_polygon_defects(frame: Frame, slack: float = 1e-7) -> list[tuple[int, list[str]]]:
+    """``polygon_defects`` of every polygon of a frame, the same tests made
+    on all the polygons' arrays at once (a smooth frame has tens of
+    thousands): (polygon number, its defects) where it has any."""
+    if not frame.polygons:
+        return []
+    corners, starts = _polygon_arrays(frame)
+    sizes = np.diff(starts)
+    out: dict[int, list[str]] = {}
+    few = np.flatnonzero(sizes < 3)
+    for i in few.tolist():
+        out[i] = ["fewer than 3 vertices"]
+    polygon = np.repeat(np.arange(len(sizes)), sizes)
+    # a repeated vertex: two corners of one polygon at the same exact position
+    key = np.lexsort((corners[:, 2], corners[:, 1], corners[:, 0], polygon))
+    same = ((polygon[key][1:] == polygon[key][:-1])
+            & (corners[key][1:] == corners[key][:-1]).all(axis=1))
+    repeated = np.zeros(len(sizes), bool)
+    repeated[polygon[key][1:][same]] = True
+    following = np.arange(len(corners)) + 1
+    following[starts[1:] - 1] = starts[:-1]
+    after = following[following]
+    low = np.minimum.reduceat(corners, starts[:-1], axis=0)
+    high = np.maximum.reduceat(corners, starts[:-1], axis=0)
+    size = np.maximum((high - low).max(axis=1), 1e-300)
+    normal = np.zeros((len(sizes), 3))
+    np.add.at(normal, polygon, np.cross(corners, corners[following]))
+    length = np.linalg.norm(normal, axis=1)
+    flat = length <= 1e-12 * size * size
+    unit = normal / np.where(flat, 1.0, length)[:, None]
+    n = unit[polygon]
+    centre = np.add.reduceat(corners, starts[:-1], axis=0) / sizes[:, None]
+    away = np.abs(np.einsum("ij,ij->i", corners - centre[polygon], n))
+    not_planar = np.maximum.reduceat(away, starts[:-1]) > slack * np.maximum(size, 1.0)
+    edges = corners[following] - corners
+    next_edges = corners[after] - corners[following]
+    turns = np.einsum("ij,ij->i", np.cross(edges, next_edges), n)
+    lengths = np.linalg.norm(edges, axis=1) * np.linalg.norm(next_edges, axis=1)
+    concave = np.zeros(len(sizes), bool)
+    concave[polygon[turns < -slack * lengths]] = True
+    u = edges - np.einsum("ij,ij->i", edges, n)[:, None] * n
+    u_next = u[following]
+    angle = np.arctan2(np.einsum("ij,ij->i", np.cross(u, u_next), n),
+                       np.einsum("ij,ij->i", u, u_next))
+    total = np.add.reduceat(angle, starts[:-1])
+    winds = np.abs(total - 2 * np.pi) > 1e-6
+    for i in np.flatnonzero(repeated | flat | not_planar | concave | winds).tolist():
+        if sizes[i] < 3:
+            continue
+        defects = ["a repeated vertex"] if repeated[i] else []
+        if flat[i]:
+            out[i] = defects + ["zero area"]
+            continue
+        if not_planar[i]:
+            defects.append("not planar")
+        if concave[i]:
+            defects.append("not convex")
+        if winds[i]:
+            defects.append(f"winds {total[i] / (2 * np.pi):.2f} times")
+        out[i] = defects
+    return sorted(out.items())
+
+
 def shells(frame: Frame) -> list[list[int]]:
     """The polygons of each connected shell (polygons sharing a vertex position)."""
     parent = {}
@@ -244,31 +308,89 @@ def shells(frame: Frame) -> list[list[int]]:
 
 def shell_defects(frame: Frame, thickness: float = 1e-9) -> list[str]:
     """Shells of (about) zero volume: their volume over half their area, a mean
-    thickness, is below ``thickness`` times the frame's size."""
+    thickness, is below ``thickness`` times the frame's size. (The shells
+    as ``shells`` finds them, polygons sharing a vertex position, found on
+    the frame's arrays at once.)"""
     if not frame.polygons:
         return []
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
     size = max(float(np.abs(frame.box()).max()), 1.0)
+    corners, starts = _polygon_arrays(frame)
+    sizes = np.diff(starts)
+    count = len(sizes)
+    polygon = np.repeat(np.arange(count), sizes)
+    _, vertex = np.unique(corners, axis=0, return_inverse=True)
+    vertex = vertex.ravel()
+    nodes = count + int(vertex.max()) + 1
+    graph = coo_matrix((np.ones(len(polygon)), (polygon, count + vertex)), shape=(nodes, nodes))
+    _, label = connected_components(graph, directed=False)
+    label = label[:count]
+    following = np.arange(len(corners)) + 1
+    following[starts[1:] - 1] = starts[:-1]
+    normal = np.zeros((count, 3))
+    np.add.at(normal, polygon, np.cross(corners, corners[following]))
+    area = np.linalg.norm(normal, axis=1) / 2
+    # each polygon's fan from its first corner: a . (b x c) / 6 per triangle
+    fans = np.maximum(sizes - 2, 0)
+    owner = np.repeat(np.arange(count), fans)
+    k = np.arange(len(owner)) - np.repeat(np.cumsum(fans) - fans, fans)
+    first = starts[owner]
+    cone = np.einsum("ij,ij->i", corners[first],
+                     np.cross(corners[first + k + 1], corners[first + k + 2])) / 6
+    volume = np.bincount(label[owner], weights=cone, minlength=label.max() + 1)
+    shell_area = np.bincount(label, weights=area, minlength=label.max() + 1)
+    members = np.bincount(label, minlength=label.max() + 1)
     defects = []
-    for members in shells(frame):
-        volume = sum(_fan_volume(frame.polygons[i].points) for i in members)
-        area = sum(np.linalg.norm(_newell(frame.polygons[i].points)) / 2 for i in members)
-        if abs(volume) <= thickness * size * area / 2:  # a cavity's volume is negative
-            defects.append(f"a shell of {len(members)} polygons has volume {volume:.3g} "
-                           f"for area {area:.3g}")
+    for s in np.flatnonzero(np.abs(volume) <= thickness * size * shell_area / 2).tolist():
+        defects.append(f"a shell of {members[s]} polygons has volume {volume[s]:.3g} "
+                       f"for area {shell_area[s]:.3g}")
     return defects
 
 
+def _polygon_arrays(frame: Frame):
+    """All the frame's corners (C, 3), where each polygon's start (P + 1,)."""
+    sizes = np.array([len(p.points) for p in frame.polygons], dtype=np.int64)
+    corners = np.concatenate([np.asarray(p.points, dtype=np.float64).reshape(-1, 3)
+                              for p in frame.polygons])
+    return corners, np.concatenate([[0], np.cumsum(sizes)])
+
+
 def _fan_arrays(frame: Frame) -> np.ndarray:
-    tris = []
-    for p in frame.polygons:
-        for k in range(1, len(p.points) - 1):
-            tris.append((p.points[0], p.points[k], p.points[k + 1]))
-    return np.array(tris, dtype=np.float64).reshape(-1, 3, 3)
+    """The polygons as fans of triangles from their first corners, (T, 3, 3)."""
+    corners, starts = _polygon_arrays(frame)
+    sizes = np.diff(starts)
+    owner = np.repeat(np.arange(len(sizes)), np.maximum(sizes - 2, 0))
+    k = np.arange(len(owner)) - np.repeat(np.cumsum(np.maximum(sizes - 2, 0))
+                                          - np.maximum(sizes - 2, 0), np.maximum(sizes - 2, 0))
+    first = starts[owner]
+    return np.stack([corners[first], corners[first + k + 1], corners[first + k + 2]], axis=1)
 
 
 def winding_numbers(triangles: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """The generalized winding number of a closed triangle surface at each point
-    (Van Oosterom and Strackee's solid angle of each triangle)."""
+    """The generalized winding number of a triangle surface at each point.
+
+    On a closed surface (every directed edge, by exact positions, used as
+    often the other way) it is an integer, the signed number of times a ray
+    from the point crosses the surface (Jacobson et al. 2013, §3): that count
+    is made here along one ray direction for all points, the triangles found
+    through a grid, so that thousands of points against tens of thousands of
+    triangles take a moment rather than minutes. An open surface's (fractional)
+    number is the sum of the triangles' solid angles (Van Oosterom and
+    Strackee), point by triangle."""
+    triangles = np.asarray(triangles, dtype=np.float64).reshape(-1, 3, 3)
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    if not len(triangles) or not len(points):
+        return np.zeros(len(points))
+    ids = _closed_vertex_ids(triangles)
+    if ids is None:
+        return _solid_angle_winding(triangles, points)
+    return _crossing_winding(triangles, ids, points)
+
+
+def _solid_angle_winding(triangles: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Sum of the triangles' solid angles at each point, over 4 pi."""
     out = np.zeros(len(points))
     for start in range(0, len(points), 64):
         q = points[start:start + 64]
@@ -283,6 +405,112 @@ def winding_numbers(triangles: np.ndarray, points: np.ndarray) -> np.ndarray:
     return out
 
 
+def _closed_vertex_ids(triangles: np.ndarray) -> np.ndarray | None:
+    """Each corner's vertex number (one per exact position), if the surface is
+    closed: every directed edge used as often as its reverse; else None."""
+    flat = triangles.reshape(-1, 3)
+    _, ids = np.unique(flat, axis=0, return_inverse=True)
+    ids = ids.reshape(-1, 3)
+    start = ids.ravel()
+    end = ids[:, [1, 2, 0]].ravel()
+    n = int(ids.max()) + 1
+    forward = np.sort(start * n + end)
+    backward = np.sort(end * n + start)
+    return ids if np.array_equal(forward, backward) else None
+
+
+# a fixed rotation in no special direction: rays along its third axis run
+# along no edge or face a scene's grid and right angles make
+_RAY_FRAME = None
+
+
+def _ray_frame() -> np.ndarray:
+    global _RAY_FRAME
+    if _RAY_FRAME is None:
+        a, b, c = 0.6180339887, 1.2247448714, 0.4142135624
+        rx = np.array([[1, 0, 0], [0, math.cos(a), -math.sin(a)], [0, math.sin(a), math.cos(a)]])
+        ry = np.array([[math.cos(b), 0, math.sin(b)], [0, 1, 0], [-math.sin(b), 0, math.cos(b)]])
+        rz = np.array([[math.cos(c), -math.sin(c), 0], [math.sin(c), math.cos(c), 0], [0, 0, 1]])
+        _RAY_FRAME = rz @ ry @ rx
+    return _RAY_FRAME
+
+
+def _crossing_winding(triangles: np.ndarray, ids: np.ndarray, points: np.ndarray,
+                      pairs_per_chunk: int = 4_000_000) -> np.ndarray:
+    """Signed crossings of a closed surface by a ray from each point (up the
+    third axis of ``_ray_frame``). Each edge's side test is computed from its
+    two ends in one order (the lower vertex number first) for both triangles
+    on it, and a point exactly on an edge's line belongs to one side only: a
+    ray through an edge is counted once, never twice or not at all."""
+    frame = _ray_frame()
+    t = triangles @ frame.T
+    q = points @ frame.T
+    x, y = t[:, :, 0], t[:, :, 1]
+    area = ((x[:, 1] - x[:, 0]) * (y[:, 2] - y[:, 0]) - (x[:, 2] - x[:, 0]) * (y[:, 1] - y[:, 0]))
+    turn = np.sign(area)  # +1 where the triangle faces up the ray
+    keep = turn != 0
+    t, ids, turn = t[keep], ids[keep], turn[keep]
+    if not len(t):
+        return np.zeros(len(points))
+    # each side (corner k to k + 1) from its lower-numbered end
+    start, end = ids, ids[:, [1, 2, 0]]
+    forward = start < end  # the side runs from its lower end
+    low = np.where(forward[:, :, None], t, t[:, [1, 2, 0]])
+    high = np.where(forward[:, :, None], t[:, [1, 2, 0]], t)
+    lx, ly = low[:, :, 0], low[:, :, 1]
+    dx, dy = high[:, :, 0] - lx, high[:, :, 1] - ly
+    # the side of each line (from its lower end) the triangle's inside lies on;
+    # a point on the line is inside where that side is the left
+    inside_sign = np.where(forward, 1.0, -1.0) * turn[:, None]
+    normal = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    # the grid: about as many cells as triangles
+    lo = np.minimum(t[:, :, :2].min(axis=1).min(axis=0), q[:, :2].min(axis=0))
+    hi = np.maximum(t[:, :, :2].max(axis=1).max(axis=0), q[:, :2].max(axis=0))
+    cells = int(min(max(math.sqrt(len(t)), 1), 512))
+    step = np.maximum((hi - lo) / cells, 1e-300)
+
+    def cell(v):
+        return np.clip(((v - lo) / step).astype(np.int64), 0, cells - 1)
+
+    first = cell(t[:, :, :2].min(axis=1))
+    last = cell(t[:, :, :2].max(axis=1))
+    span = last - first + 1
+    per = span[:, 0] * span[:, 1]
+    owner = np.repeat(np.arange(len(t)), per)
+    local = np.arange(len(owner)) - np.repeat(np.cumsum(per) - per, per)
+    cx = first[owner, 0] + local % span[owner, 0]
+    cy = first[owner, 1] + local // span[owner, 0]
+    key = cy * cells + cx
+    order = np.argsort(key, kind="stable")
+    owner, key = owner[order], key[order]
+    bounds = np.searchsorted(key, np.arange(cells * cells + 1))
+    point_cell = cell(q[:, :2])
+    point_key = point_cell[:, 1] * cells + point_cell[:, 0]
+    begin, count = bounds[point_key], bounds[point_key + 1] - bounds[point_key]
+    out = np.zeros(len(points))
+    chunk_start = 0
+    while chunk_start < len(points):
+        total = np.cumsum(count[chunk_start:])
+        chunk_end = chunk_start + max(1, int(np.searchsorted(total, pairs_per_chunk)))
+        counts = count[chunk_start:chunk_end]
+        which = np.repeat(np.arange(chunk_start, chunk_end), counts)
+        offset = np.arange(len(which)) - np.repeat(np.cumsum(counts) - counts, counts)
+        tri = owner[np.repeat(begin[chunk_start:chunk_end], counts) + offset]
+        px, py, pz = q[which, 0], q[which, 1], q[which, 2]
+        inside = np.ones(len(which), bool)
+        for k in range(3):
+            side = dx[tri, k] * (py - ly[tri, k]) - dy[tri, k] * (px - lx[tri, k])
+            wanted = inside_sign[tri, k]
+            inside &= (side * wanted > 0) | ((side == 0) & (wanted > 0))
+        tri, which, px, py, pz = tri[inside], which[inside], px[inside], py[inside], pz[inside]
+        n = normal[tri]
+        height = t[tri, 0, 2] - (n[:, 0] * (px - t[tri, 0, 0]) + n[:, 1] * (py - t[tri, 0, 1])) / n[:, 2]
+        above = height > pz
+        out += np.bincount(which[above], weights=turn[tri[above]], minlength=len(points))
+        chunk_start = chunk_end
+    return out
+
+
 def sheet_defects(frame: Frame, offset: float = 1e-8) -> list[str]:
     """Polygons that do not part inside from outside: just behind each polygon
     (at a point inside it) the winding number must be 1, just in front 0. A
@@ -291,33 +519,38 @@ def sheet_defects(frame: Frame, offset: float = 1e-8) -> list[str]:
         return []
     triangles = _fan_arrays(frame)
     size = max(float(np.abs(frame.box()).max()), 1.0)
-    points, names = [], []
-    for p in frame.polygons:
-        normal = _newell(p.points)
-        length = np.linalg.norm(normal)
-        if length == 0:
-            continue
-        normal /= length
-        # four points well inside the (convex) polygon, none on a line through
-        # its centre and a corner: solids that touch along a line (which is no
-        # sheet) often touch along a diagonal, and one point may lie on it
-        centre = p.points.mean(axis=0)
-        n = len(p.points)
-        for q in [0.47 * p.points[k % n] + 0.31 * p.points[(k + 1) % n] + 0.22 * centre
-                  for k in range(4)]:
-            points += [q - offset * size * normal, q + offset * size * normal]
-        names.append(p.path)
-    w = winding_numbers(triangles, np.array(points)).reshape(-1, 4, 2)
+    corners, starts = _polygon_arrays(frame)
+    sizes = np.diff(starts)
+    polygon = np.repeat(np.arange(len(sizes)), sizes)
+    following = np.arange(len(corners)) + 1
+    following[starts[1:] - 1] = starts[:-1]
+    normal = np.zeros((len(sizes), 3))  # Newell's, summed corner by corner
+    np.add.at(normal, polygon, np.cross(corners, corners[following]))
+    length = np.linalg.norm(normal, axis=1)
+    kept = np.flatnonzero(length > 0)
+    normal = normal[kept] / length[kept, None]
+    centre = np.add.reduceat(corners, starts[:-1], axis=0)[kept] / sizes[kept, None]
+    # four points well inside the (convex) polygon, none on a line through
+    # its centre and a corner: solids that touch along a line (which is no
+    # sheet) often touch along a diagonal, and one point may lie on it
+    k = np.arange(4)
+    first = corners[starts[kept][:, None] + k % sizes[kept][:, None]]
+    second = corners[starts[kept][:, None] + (k + 1) % sizes[kept][:, None]]
+    inner = 0.47 * first + 0.31 * second + 0.22 * centre[:, None]
+    step = (offset * size * normal)[:, None]
+    points = np.stack([inner - step, inner + step], axis=2).reshape(-1, 3)
+    names = [frame.polygons[i].path for i in kept.tolist()]
+    w = winding_numbers(triangles, points).reshape(-1, 4, 2)
     wrong = (np.abs(w[:, :, 0] - 1) > 0.01) | (np.abs(w[:, :, 1]) > 0.01)
     bad = np.flatnonzero(wrong.sum(axis=1) >= 2)
-    return [f"polygon {i} of {names[i]} has winding {w[i, 0, 0]:.3f} behind and "
+    return [f"polygon {kept[i]} of {names[i]} has winding {w[i, 0, 0]:.3f} behind and "
             f"{w[i, 0, 1]:.3f} in front" for i in bad.tolist()]
 
 
 def regularity_defects(frame: Frame, sheets: bool = True) -> list[str]:
     """Every defect LANGUAGE.md §7 rules out, as readable lines (empty if none)."""
-    defects = [f"polygon {i} of {p.path}: {', '.join(d)}"
-               for i, p in enumerate(frame.polygons) if (d := polygon_defects(p))]
+    defects = [f"polygon {i} of {frame.polygons[i].path}: {', '.join(d)}"
+               for i, d in frame_polygon_defects(frame)]
     defects += shell_defects(frame)
     if sheets:
         defects += sheet_defects(frame)

@@ -800,7 +800,8 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
     not make; which of its objects hold one it made): the oracle's smooth
     solids are four levels of its own subdivision, castor's refined to its tolerance, so volume, area and box
     agree to within those (0.012 + 0.003 x the frame's size, times the area
-    for the volume; 5 % of the area: the unit cube @s(170) at a tolerance of
+    for the volume; 5 % of the area and 4 x that distance x its square root:
+    the unit cube @s(170) at a tolerance of
     0.015 to 0.057, two levels, falls 3.2 % short of its limit's area, as
     the contract allows); with one it could not make, only the
     surface is judged (closed, regular, paths and colours).
@@ -836,15 +837,22 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
         else:
             problems.append(f"volume {got:.9g}, oracle {volume:.9g}"
                             + (f", exact {truth:.9g}" if truth is not None else ""))
-    # (the oracle's smooth solids are closed quad meshes it made: no sheet to
-    # look for, and thousands of triangles the winding test would take long
-    # over; the other objects of the frame are looked at)
-    smooth_objects = smooth[2] if len(smooth) > 2 else [made] * len(solids)
-    sure = sure and not any(has_sheets(s) for s, m in zip(solids, smooth_objects) if not m)
+    # every object is looked at, those that hold the oracle's own smooth
+    # solids too: a boolean over one can leave a sheet in manifold3d's result
+    # (smooth seed 11, batch 50, scene 14: the area 41.76 and a box 0.9
+    # wider than castor's 33.69, the same volume); the winding test counts
+    # crossings, thousands of triangles are quick
+    sure = sure and not any(has_sheets(s) for s in solids)
     if not sure:
         UNSURE.append(frame.number)
     got_area = frame.area()
-    if sure and abs(got_area - area) > 1e-7 * size ** 2 + (0.05 * area if made else 0):
+    # a smooth solid's area: 5 %, and where a boolean cuts it, the cut face's
+    # edge moves by up to ``distance`` across, along a seam about as long as a
+    # square of that area is round (a thin intersection of two smooth cubes,
+    # smooth seed 42: castor 0.4323 at 0.01, 0.4614 at 0.001, 0.4663 at
+    # 0.0002, the oracle's four levels 0.4575)
+    slack = 0.05 * area + 4 * distance * math.sqrt(max(area, 0.0)) if made else 0.0
+    if sure and abs(got_area - area) > 1e-7 * size ** 2 + slack:
         truth = exact()[1] if exact is not None else None
         if truth is not None and abs(got_area - truth) <= 1e-7 * size ** 2:
             ORACLE_WRONG.append(frame.number)  # manifold3d's surface, not castor's
@@ -918,9 +926,11 @@ def check_scenes(scenes: list[Scene], sheets: bool = True,
             return known[number - 1]
 
         oracle = Oracle(scene)
+        # exact.py knows no smooth solid: a scene with @s is judged without it
+        decide = exact and "@s(" not in scene_text(scene)
         for number, (solids, uses) in enumerate(oracle.frames(), 1):
             problems = judge(frames[k], solids, uses, sheets,
-                             (lambda n=number: truth(n)) if exact else None,
+                             (lambda n=number: truth(n)) if decide else None,
                              (oracle.smooth, oracle.loose, oracle.smooth_objects))
             k += 1
             if problems:

@@ -28,9 +28,19 @@ of it (the distance falls by about four a level), is within the tolerance.
 So a control mesh that is already fine in places (a smooth solid in a
 boolean smoothed again) is refined only where it is still far from the
 limit. Where a quad meets finer ones, its side takes their vertices and it
-becomes a fan from its centre: no crack. The levels themselves are made
-whole (each a uniform Catmull–Clark step), and the caller's limit on
-triangles is checked before a level is made.
+becomes a fan from its centre: no crack.
+
+A level is made only where it is needed: the quads still too far, and two
+rings of quads around them (every quad sharing a vertex with one, twice).
+A limit position needs a vertex's ring of quads, a point of the next level
+the quads around it, so two rings keep every position that is used exactly
+what the whole level would give, and the next level's two rings lie inside
+the children of this level's first. Vertices keep their numbers from level
+to level (a level's vertex points take the numbers of the vertices they
+come from; numbers of vertices outside the part refined are left unused).
+The caller's limit on triangles is checked before each level is made,
+against what that level will actually hold: a rounded end of a long
+smoothed box makes only the end's quads, not the whole box four times over.
 """
 
 from __future__ import annotations
@@ -204,6 +214,34 @@ def _refine(level: _Level) -> _Level:
                   edges, edge_of, crease, following)
 
 
+def _rings(level: _Level, seed: np.ndarray, count: int) -> np.ndarray:
+    """The quads of a quad level that share a vertex with one of ``seed``'s
+    (a mask), ``count`` times over."""
+    quads = level.indices.reshape(-1, 4)
+    chosen = seed
+    for _ in range(count):
+        touched = np.zeros(len(level.vertices), bool)
+        touched[quads[chosen].ravel()] = True
+        chosen = touched[quads].any(axis=1)
+    return chosen
+
+
+def _part(level: _Level, keep: np.ndarray) -> tuple[_Level, np.ndarray]:
+    """The quads ``keep`` of a quad level as a level of their own (the same
+    vertex numbers, their edges numbered anew), and each old edge's new
+    number (-1 where no kept quad has it)."""
+    corners = np.repeat(keep, 4)
+    used, edge_of = np.unique(level.edge_of[corners], return_inverse=True)
+    renumber = np.full(len(level.edges), -1, np.int64)
+    renumber[used] = np.arange(len(used))
+    count = 4 * int(keep.sum())
+    new_corners = np.arange(count)
+    following = new_corners - new_corners % 4 + (new_corners + 1) % 4
+    return _Level(level.vertices, np.arange(0, count + 1, 4), level.indices[corners],
+                  level.faces[keep], level.edges[used], edge_of.ravel(), level.crease[used],
+                  following), renumber
+
+
 def limit_positions(level: _Level) -> np.ndarray:
     """Where each vertex of a quad level lies on the limit surface:
     (n² P + 4 Σ edge neighbours + Σ diagonal neighbours) / (n (n + 5)) on the
@@ -261,21 +299,26 @@ def _triangles(quads: np.ndarray, positions: np.ndarray) -> np.ndarray:
     return np.stack([t0, t1], axis=1).reshape(-1, 3)
 
 
-def _leaf_triangles(levels: list, leaves: list, positions: np.ndarray):
+def _leaf_triangles(levels: list, leaves: list, parents: list, renumbers: list,
+                    positions: np.ndarray):
     """The triangles of the quads chosen at each level (``leaves[k]``, a mask
     over the quads of ``levels[k]``; a quad is chosen, or its children are
-    looked at, or an ancestor was chosen), without cracks: where a chosen
-    quad meets finer ones across a side, that side carries their vertices
-    too, and the quad is a fan from its centre (the face point of the next
-    level, on the limit surface). Vertices are numbered once for all
-    levels (a level's vertices keep their numbers in the next), so the
+    looked at, or an ancestor was chosen, or it is only there as a ring
+    around those), without cracks: where a chosen quad meets finer ones
+    across a side, that side carries their vertices too, and the quad is a
+    fan from its centre (the face point of the next level, on the limit
+    surface). ``parents[k]`` numbers the quad of ``levels[k - 1]`` each quad
+    of ``levels[k]`` comes from, ``renumbers[k]`` its edges (None: as the
+    step from ``levels[k - 1]`` made them). Vertices are numbered once for
+    all levels (a level's vertices keep their numbers in the next), so the
     pieces meet at the same points."""
     count = len(levels)
     split = []  # which quads of each level have children that are looked at
     active = np.ones(len(levels[0].faces), bool)
     for k in range(count):
         split.append(active & ~leaves[k])
-        active = np.repeat(split[-1], 4)
+        if k + 1 < count:
+            active = split[-1][parents[k + 1]]
     # every side of every chosen quad, as segments (quad, from, to) that are
     # cut in two while the edge they lie on is cut on the other side
     quad_ids, starts, ends, edge, level_of = [], [], [], [], []
@@ -305,7 +348,10 @@ def _leaf_triangles(levels: list, leaves: list, positions: np.ndarray):
         quad_ids = np.concatenate([quad_ids[~cut], quad_ids[cut], quad_ids[cut]])
         starts = np.concatenate([starts[~cut], a, middle])
         ends = np.concatenate([ends[~cut], middle, b])
-        edge = np.concatenate([edge[~cut], 2 * e + (a != low), 2 * e + (b != low)])
+        halves = np.concatenate([2 * e + (a != low), 2 * e + (b != low)])
+        if renumbers[k + 1] is not None:
+            halves = renumbers[k + 1][halves]
+        edge = np.concatenate([edge[~cut], halves])
         level_of = np.concatenate([level_of[~cut], np.full(2 * len(e), k + 1)])
     pieces = np.bincount(quad_ids, minlength=offset)
     triangles, faces = [], []
@@ -352,7 +398,7 @@ def smooth(vertices, offsets, indices, angle: float, tolerance: float,
     tolerance = max(float(tolerance), 1e-12)
 
     def checked_refine(current: _Level) -> _Level:
-        quads = len(current.indices)  # one quad per corner
+        quads = len(current.indices)  # one quad per corner of the part refined
         if 2 * quads > max_triangles:
             raise SubdivisionLimit(2 * quads, max_triangles)
         return _refine(current)
@@ -360,13 +406,22 @@ def smooth(vertices, offsets, indices, angle: float, tolerance: float,
     current = checked_refine(level)
     current_limit = limit_positions(current)
     levels, leaves = [], []
+    parents, renumbers = [None], [None]  # how each level's quads come from the one before
+    written = []  # (vertex numbers, their limit positions) of what may be written
     active = np.ones(len(current.faces), bool)  # quads whose ancestors are all too far
     gap = 0.0
     while True:
         following = checked_refine(current)
         following_limit = limit_positions(following)
         gaps = np.where(active, _quad_gaps(current, current_limit, following_limit), 0.0)
-        levels.append(current)
+        # what this level may write: the corners of its quads still looked
+        # at, and the next level's points on and in them (cut sides, fans)
+        near_vertices = np.unique(current.indices.reshape(-1, 4)[active])
+        children = np.unique(following.indices.reshape(-1, 4)[np.repeat(active, 4)])
+        written += [(near_vertices, current_limit[near_vertices]),
+                    (children, following_limit[children])]
+        # a level kept for the triangles needs no positions of its own
+        levels.append(current._replace(vertices=np.empty((len(current.vertices), 0))))
         worst = float(gaps.max(initial=0.0))
         near = active & (gaps <= tolerance)
         if worst <= tolerance or not math.isfinite(worst):
@@ -377,14 +432,93 @@ def smooth(vertices, offsets, indices, angle: float, tolerance: float,
         gap = max(gap, float(gaps[near].max(initial=0.0)))
         active = np.repeat(active & ~near, 4)
         if worst / 3 <= tolerance:
-            levels.append(following)
+            levels.append(following._replace(vertices=np.empty((len(following.vertices), 0))))
+            parents.append(np.arange(len(following.faces)) // 4)
+            renumbers.append(None)
             leaves.append(active)
             gap = max(gap, worst / 3)
             break
+        keep = _rings(following, active, 2)
+        if keep.all():
+            parents.append(np.arange(len(following.faces)) // 4)
+            renumbers.append(None)
+        else:
+            parents.append(np.flatnonzero(keep) // 4)
+            following, renumber = _part(following, keep)
+            renumbers.append(renumber)
+            active = active[keep]
         current, current_limit = following, following_limit
-    triangles, faces = _leaf_triangles(levels, leaves, following_limit)
+    positions = np.full((len(following_limit), 3), np.nan)
+    for numbers, points in written:
+        positions[numbers] = points
+    triangles, faces = _leaf_triangles(levels, leaves, parents, renumbers, positions)
+    corner = np.zeros(len(positions), bool)
+    corner[:len(vertices)] = _per_vertex_crease(level)[0] >= 3
+    _edges, _edge_of, _count, following_corner = _topology(vertices, offsets, indices)
+    control_normal = _normals(vertices, offsets, indices, following_corner)
+    triangles, faces = unturned(positions, triangles, faces, control_normal, corner)
     used, triangles = np.unique(triangles, return_inverse=True)
-    return Smoothed(following_limit[used], triangles.reshape(-1, 3), faces, len(levels), gap)
+    return Smoothed(positions[used], triangles.reshape(-1, 3), faces, len(levels), gap)
+
+
+def turned(positions: np.ndarray, triangles: np.ndarray, faces: np.ndarray,
+           control_normal: np.ndarray) -> np.ndarray:
+    """The triangles that face away from the control polygon they come from."""
+    p = positions[triangles]
+    normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    return np.einsum("ij,ij->i", normal, control_normal[faces]) < 0
+
+
+def unturned(positions: np.ndarray, triangles: np.ndarray, faces: np.ndarray,
+             control_normal: np.ndarray, fixed: np.ndarray, rounds: int = 40):
+    """The refined triangles without the slivers turned over. Where a control
+    polygon is itself a sliver (three of its corners almost on one line, as a
+    boolean of smooth solids leaves beside its seams), Catmull–Clark's limit
+    surface folds over itself along it (the reference subdivision folds
+    there too): a triangle a hair wide faces inward, a sheet §7 rules out.
+    Each such triangle loses its shortest side that can go (both ends become
+    one point, at their middle, or at the end that is a ``fixed`` corner;
+    not where the ends have other neighbours in common than the side's two
+    triangles, which would pinch the surface): the sliver and its neighbour
+    across that side go, and the surface moves by the sliver's width.
+    ``positions`` is changed in place."""
+    for _ in range(rounds):
+        bad = np.flatnonzero(turned(positions, triangles, faces, control_normal))
+        if not len(bad):
+            break
+        sides = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]])
+        order = np.argsort(sides[:, 0], kind="stable")
+        starts = np.searchsorted(sides[order, 0], np.arange(len(positions) + 1))
+
+        def ring(v):
+            return set(sides[order[starts[v]:starts[v + 1]], 1].tolist())
+
+        merge_into = np.arange(len(positions))
+        touched: set = set()
+        for t in bad.tolist():
+            corners = triangles[t].tolist()
+            pairs = [(corners[k], corners[(k + 1) % 3]) for k in range(3)]
+            pairs.sort(key=lambda ab: float(np.linalg.norm(positions[ab[0]] - positions[ab[1]])))
+            for a, b in pairs:
+                if a in touched or b in touched or (fixed[a] and fixed[b]):
+                    continue
+                around_a, around_b = ring(a), ring(b)
+                if len(around_a & around_b) != 2:
+                    continue
+                if fixed[b]:
+                    a, b = b, a
+                if not fixed[a]:
+                    positions[a] = (positions[a] + positions[b]) / 2
+                merge_into[b] = a
+                touched |= {a, b} | around_a | around_b
+                break
+        if not touched:
+            break
+        triangles = merge_into[triangles]
+        whole = ((triangles[:, 0] != triangles[:, 1]) & (triangles[:, 1] != triangles[:, 2])
+                 & (triangles[:, 2] != triangles[:, 0]))
+        triangles, faces = triangles[whole], faces[whole]
+    return triangles, faces
 
 
 def patches(vertices, offsets, indices, angle: float) -> np.ndarray:

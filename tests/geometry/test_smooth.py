@@ -125,6 +125,51 @@ def test_only_what_is_far_from_the_limit_is_refined():
     assert everywhere.levels >= 4
 
 
+def test_levels_are_made_only_where_they_are_needed(monkeypatch):
+    # a long box under a pyramid end, its sides cut in 200 unit quads each
+    # side (805 control polygons), @s(70) at 1e-4: only the end is refined
+    # past the first level. Whole levels would have made 1,646,592
+    # triangles at the last one (refused under a limit of 1,000,000 before
+    # levels followed the refinement); the parts made hold 52,288 written
+    v, o, i = long_box_with_a_pyramid_end(200)
+    made = []
+    refine = subdivide._refine
+    monkeypatch.setattr(subdivide, "_refine", lambda level: made.append(len(level.indices))
+                        or refine(level))
+    part = subdivide.smooth(v, o, i, 70, 1e-4, 1_000_000)
+    assert closed(part.triangles) and part.distance <= 1e-4
+    assert len(part.triangles) < 60_000 and max(made) < 100_000
+    assert volume(part.vertices, part.triangles) == pytest.approx(199.8863, abs=1e-3)
+
+
+def test_parts_give_the_surface_whole_levels_give(monkeypatch):
+    """A prism, a box under a roof and a cube smoothed again after a cut
+    (fine where the cut was), refined in parts and in whole levels: the same
+    triangles at the same points."""
+    v, o, i = box()
+    v = np.concatenate([v, [[0.5, 0.5, 1.1]]])
+    faces = [i[o[k]:o[k + 1]].tolist() for k in range(6) if k != 5]
+    faces += [[1, 5, 8], [5, 7, 8], [7, 3, 8], [3, 1, 8]]
+    roofed = (v, np.cumsum([0] + [len(f) for f in faces]), np.concatenate(faces))
+    cases = [(prism(7), 65, 1e-3), (roofed, 30, 1e-4), (box(3, 1, 0.5), 120, 1e-3),
+             (long_box_with_a_pyramid_end(6), 100, 1e-4)]
+    results = []
+    parts = []
+    part = subdivide._part
+    monkeypatch.setattr(subdivide, "_part", lambda level, keep: parts.append(keep.mean())
+                        or part(level, keep))
+    for mesh, angle, tolerance in cases:
+        results.append(subdivide.smooth(*mesh, angle, tolerance, 10 ** 8))
+    assert len(parts) >= 4 and min(parts) < 0.7  # refined in parts
+    monkeypatch.setattr(subdivide, "_rings", lambda level, seed, count:
+                        np.ones(len(level.faces), bool))
+    for (mesh, angle, tolerance), part in zip(cases, results):
+        whole = subdivide.smooth(*mesh, angle, tolerance, 10 ** 8)
+        assert closed(part.triangles)
+        assert np.array_equal(part.triangles, whole.triangles)
+        assert np.abs(part.vertices - whole.vertices).max() < 1e-12
+
+
 def test_a_large_solid_gets_as_many_levels_as_its_size_needs():
     small = subdivide.smooth(*box(0.05, 0.05, 0.05), 120, 0.001, 10 ** 7)
     large = subdivide.smooth(*box(5, 5, 5), 120, 0.001, 10 ** 7)
@@ -309,7 +354,7 @@ def test_a_smooth_solid_cut_and_a_smooth_union():
     """
     cut, union, twice = frames_of(text)
     for frame in (cut, union, twice):
-        assert regularity_defects(frame, sheets=len(frame.polygons) < 1500) == []
+        assert regularity_defects(frame) == []
     # the cut faces take the cutter's colour and path
     assert cut.colours() == {(0.8, 0.6, 0.4), (0.2, 0.4, 0.9)}
     assert cut.area(colour=(0.2, 0.4, 0.9)) > 0 and "D2(trou)!cy" in cut.paths()
@@ -329,9 +374,44 @@ def test_a_smooth_solid_smoothed_again_is_refined_where_it_must_be():
     # (uniform levels wrote 73,536 polygons here, 2 million in the oracle's)
     text = "> @s(150) $U(@s(120) @h(2) !cu(1, 0, 0), @t(1.5, 0, 0) !cu(0, 1, 0));"
     frame = frames_of(text)[0]
-    assert regularity_defects(frame, sheets=False) == []
+    assert regularity_defects(frame) == []
     assert len(frame.polygons) < 12_000
     assert frame.volume() == pytest.approx(3.09, abs=0.05)
+
+
+def test_a_smooth_union_of_smooth_solids_has_no_slivers_turned_over():
+    # the smooth oracle's seed 11 (batch 0, scene 33, frame 3): @s(100) over
+    # a union of two copies of a boolean of smooth solids. The union's
+    # polygons beside its seams are slivers (three corners almost on one
+    # line), and Catmull–Clark's limit surface folds over itself along them
+    # (the reference subdivision's too): 4 triangles a hair wide faced
+    # inward, each with winding 1 on both sides. They are taken out
+    text = """S33P0 = 0.5;
+s33o0 = $I[S33R3 = 0, 1]($U(@s(170.0) @t((0.25 * S33R3 + 0.0), 0.0, (0.0 * S33R3 + 0.0)) !pr(0.5, 0.0, 0.0, 6.0), @s(180.0) @rx(180.0) !we(1.0, 1.0, 1.0), $I[S33R1 = 0, 1](@t((1.0 * S33R1 + 0.0), 0.0, 0.0) @s(30.0) !cu(0.0, 0.0, 0.0)), @s(140.0) @h(1.0, (-1.0), (-2.0)) @rz(45.0) @r(0.0, 1.0, 0.0, 60.0) !pr(0.0, 0.0, 0.5, 3.0)));
+> @s(100.0) $U(@t(0.5, (0.5 * S33P0 + (-0.235)), 0.0) s33o0, @h(1.0, (-2.0), 2.0) s33o0);
+"""
+    frame = frames_of(text)[0]
+    assert regularity_defects(frame) == []
+    assert frame.volume() == pytest.approx(6.7721, abs=2e-3)
+
+
+def test_slivers_turned_over_lose_a_side():
+    # a closed pillow: a square fanned from a point above it and from one
+    # below; the upper point moved across the square's far side turns one
+    # triangle over. A side of it goes, and nothing faces away from its
+    # control face (up for the upper fan, down for the lower)
+    positions = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                          [0.5, 1.001, 0.1], [0.5, 0.5, -0.5]], float)
+    triangles = np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4],
+                          [1, 0, 5], [2, 1, 5], [3, 2, 5], [0, 3, 5]])
+    faces = np.repeat([0, 1], 4)
+    normal = np.array([[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]])
+    assert subdivide.turned(positions, triangles, faces, normal).tolist() == [False] * 2 + [
+        True] + [False] * 5
+    kept, kept_faces = subdivide.unturned(positions, triangles, faces, normal,
+                                          np.zeros(6, bool))
+    assert not subdivide.turned(positions, kept, kept_faces, normal).any()
+    assert 4 <= len(kept) < 8 and closed(kept)
 
 
 def test_a_bad_angle_is_reported_where_it_is_written():
@@ -349,6 +429,19 @@ def test_a_smoothing_too_fine_is_refused_before_it_is_made():
     assert status == 1
     assert "<stdin>:1:3: error: '@s(120)': smoothing would need at least" in err
     assert "GB" in err and "raise the tolerance" in err
+
+
+def test_a_smoothing_small_in_fact_is_not_refused():
+    # @s(150) over a union holding a smooth solid: its facets are already
+    # near the new limit, and only the seam is refined. Whole levels made
+    # 73,600 triangles and were refused under --max-polygons 20,000; the
+    # parts made now hold fewer, and 5,762 polygons are written. A
+    # smoothing too fine in fact is still refused (the test above)
+    status, out, err = run("--no-cpp", "--stats", "--max-polygons", "20000",
+                           stdin="> @s(150) $U(@s(120) @h(2) !cu(1, 0, 0), "
+                                 "@t(1.5, 0, 0) !cu(0, 1, 0));")
+    assert status == 0, err
+    assert "5762 polygons" in err and "volume 3.0676" in err
 
 
 def test_the_tree_has_a_node_for_it():
@@ -421,6 +514,32 @@ def test_the_oracles_smooth_solids_agree_with_castors():
         assert frame.volume() == pytest.approx(reference, rel=0.01)
     # every edge a crease: the oracle's smooth solid is the primitive itself
     assert oracle.smooth_solid(oracle.Prim("pr", (1.0, 0.0, 0.0), (6.0,)), np.eye(4), 30.0) is None
+
+
+def test_the_oracle_looks_for_sheets_in_its_smooth_objects_too():
+    # the smooth oracle's seed 11 (batch 50, scene 14) frame 3: a difference
+    # whose operands hold the oracle's own @s(170) wedge; manifold3d's result
+    # keeps a sheet (area 41.76, a box 0.9 wider, the same volume as
+    # castor's 33.69): its area and box are not the truth, and the frame is
+    # judged on castor's surface. It was reported as castor's failure, and
+    # asking exact.py (which knows no smooth solid) about it crashed the run
+    import oracle
+
+    scene = oracle.scenes(50, 11 * 1_000_003 + 50, False, True)[14]
+    assert oracle.check_scenes([scene], exact=True) == []
+    assert len(oracle.UNSURE) >= 1
+
+
+def test_the_oracle_allows_a_thin_smooth_intersection_its_tolerance():
+    # the smooth oracle's seed 42 (batch 50, scene 3) frame 1: the
+    # intersection of two smooth scaled cubes side by side is a lens 0.03
+    # thick; at the tolerance 0.01 castor's area is 0.4323, converging to
+    # the limit's 0.4663 (0.4614 at 0.001), the oracle's four levels 0.4575:
+    # 5.5 % apart, within what a cut face's edge moved by the tolerance makes
+    import oracle
+
+    scene = oracle.scenes(50, 42 * 1_000_003 + 50, False, True)[3]
+    assert oracle.check_scenes([scene], exact=True) == []
 
 
 def test_its_picture_with_edges_has_no_facet_lines():
