@@ -147,7 +147,8 @@ def test_a_scene_is_read_without_importing_lark_and_its_syntax_error_still_says_
                           "x = @t(1, 2 !cu(1, 0, 0);\n> x;\n")]
     first, second, wrong = runs
     assert "endframe 1 6" in first.stdout and "endframe 1 6" in second.stdout
-    assert "LARK True" in first.stderr  # the first run builds the tables with lark, once
+    if not (ROOT / "castor" / "language" / "castor.lalr").exists():  # a checkout's tables not built
+        assert "LARK True" in first.stderr  # the first run builds the tables with lark, once
     assert "LARK False" in second.stderr, second.stderr
     assert "<stdin>:1:13: error: expected ',' or ')' after an argument, found '!cu'" in wrong.stderr
     assert "object 'x' is not defined (its definition had errors)" in wrong.stderr
