@@ -81,6 +81,10 @@ def parse_stream(text: str) -> list[Frame]:
 
 
 def _newell(points: np.ndarray) -> np.ndarray:
+    """Twice the polygon's vector area (Newell), taken about its centre: about
+    the origin, the rounding of coordinates of 2 swamps the normal of a
+    triangle 2e-4 long and 1e-10 high, and a planar one read as tilted."""
+    points = points - points.mean(axis=0)
     nxt = np.roll(points, -1, axis=0)
     return np.cross(points, nxt).sum(axis=0)
 

@@ -121,3 +121,16 @@ def test_inner_faces_of_touching_cubes_go_beside_a_needle_the_engine_left():
     assert abs(frame.area() - area) < 1e-7
     assert regularity_defects(frame) == []
     assert problems == []
+
+
+def test_the_judge_reads_a_thin_triangle_far_from_the_origin_as_planar():
+    """A triangle of castor's (wide oracle, seed 22: a turned row of cubes in
+    a shared object, moved), 2.3e-4 long and 1.4e-7 wide at x = -2: its
+    normal taken about the origin was 2 % off (the rounding of coordinates
+    of 2), so the judge found its own corners 2.4e-7 off its plane."""
+    from meshcheck import Polygon, polygon_defects
+
+    corners = np.array([[-2.0175520307082437, -0.3671558291210445, -0.3993812032469618],
+                        [-2.0173210497029217, -0.3671575394512535, -0.3993866435291141],
+                        [-2.0173211902126096, -0.3671575383501424, -0.39938664015685066]])
+    assert polygon_defects(Polygon("U3!cu", (0.5, 0.0, 0.0), corners)) == []
