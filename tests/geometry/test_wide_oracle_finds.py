@@ -134,3 +134,23 @@ def test_the_judge_reads_a_thin_triangle_far_from_the_origin_as_planar():
                         [-2.0173210497029217, -0.3671575394512535, -0.3993866435291141],
                         [-2.0173211902126096, -0.3671575383501424, -0.39938664015685066]])
     assert polygon_defects(Polygon("U3!cu", (0.5, 0.0, 0.0), corners)) == []
+
+
+@needs_exact
+def test_the_judge_does_not_test_a_needle_narrower_than_its_offset():
+    """A row of eleven cubes 0.1 apart turned by 356.731° about (0.5, 1, 1),
+    in a named object flattened to half its height (wide oracle, seed 32):
+    the engine leaves a strip of U10's side 0.075 long and 1.4e-9 wide along
+    the top edge. A point 1e-8 behind it is past the edge, outside, and the
+    judge called the strip a sheet; it has no width to test that way (its
+    area and the frame's are judged otherwise)."""
+    row = Tf((("h", (1.0, 1.0, 0.5)), ("t", (0.0, 0.269, -0.825)),
+              ("r", (0.5, 1.0, 1.0, 356.731))), Rep(
+        "U", "W", 11, Tf((("t", (Param("W", 0.1, 0.0), 0.0, 0.0)),), _cube((1.0, 0.0, 0.5)))))
+    scene = Scene([("object", "s", row), ("frame", [oracle.Ref("s")])])
+    (frame,), (problems,), ((volume, area),) = _judged(scene)
+    check_closed(frame)
+    assert abs(frame.volume() - volume) < 1e-9
+    assert abs(frame.area() - area) < 1e-7
+    assert regularity_defects(frame) == []
+    assert problems == []
