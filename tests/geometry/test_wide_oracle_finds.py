@@ -154,3 +154,22 @@ def test_the_judge_does_not_test_a_needle_narrower_than_its_offset():
     assert abs(frame.area() - area) < 1e-7
     assert regularity_defects(frame) == []
     assert problems == []
+
+
+@pytest.mark.xfail(strict=True, reason="a flat triangle the flips cannot take out (also on main)")
+def test_a_flattened_turned_row_leaves_no_needle():
+    """Eleven cubes 0.1 apart turned by 356.731° about (0.5, 1, 1) and
+    flattened to half their height (wide oracle, seed 32, on the final code
+    of issue 18's items 4-5): a triangle of U11 0.3 long and 3.8e-7 wide at
+    one end (twice its area 8e-13 of its length squared) is left, flat by
+    castor's own test, because every flip of its long edge would turn a
+    neighbour over and no collapse of its short edge keeps the faces around
+    it in one plane. Left for the next session: the polygon of zero area
+    that LANGUAGE.md §7 rules out."""
+    from meshcheck import frames_of
+
+    (frame,) = frames_of("> @h(1.0, 1.0, 0.5) @r(0.5, 1.0, 1.0, 356.731) "
+                         "$U[W = 0, 10](@t(0.1 * W, 0.0, 0.0) !cu(1.0, 0.0, 0.0));\n")
+    check_closed(frame)
+    assert abs(frame.volume() - 0.5 * 2.0) < 1e-9
+    assert regularity_defects(frame) == []
