@@ -82,6 +82,10 @@ def parse_stream(text: str) -> list[Frame]:
 
 
 def _newell(points: np.ndarray) -> np.ndarray:
+    """Twice the polygon's vector area (Newell), taken about its centre: about
+    the origin, the rounding of coordinates of 2 swamps the normal of a
+    triangle 2e-4 long and 1e-10 high, and a planar one read as tilted."""
+    points = points - points.mean(axis=0)
     nxt = np.roll(points, -1, axis=0)
     return np.cross(points, nxt).sum(axis=0)
 
@@ -249,13 +253,14 @@ def frame_polygon_defects(frame: Frame, slack: float = 1e-7) -> list[tuple[int, 
     low = np.minimum.reduceat(corners, starts[:-1], axis=0)
     high = np.maximum.reduceat(corners, starts[:-1], axis=0)
     size = np.maximum((high - low).max(axis=1), 1e-300)
+    centre = np.add.reduceat(corners, starts[:-1], axis=0) / sizes[:, None]
+    about = corners - centre[polygon]  # Newell's normal about the centre, as _newell
     normal = np.zeros((len(sizes), 3))
-    np.add.at(normal, polygon, np.cross(corners, corners[following]))
+    np.add.at(normal, polygon, np.cross(about, about[following]))
     length = np.linalg.norm(normal, axis=1)
     flat = length <= 1e-12 * size * size
     unit = normal / np.where(flat, 1.0, length)[:, None]
     n = unit[polygon]
-    centre = np.add.reduceat(corners, starts[:-1], axis=0) / sizes[:, None]
     away = np.abs(np.einsum("ij,ij->i", corners - centre[polygon], n))
     not_planar = np.maximum.reduceat(away, starts[:-1]) > slack * np.maximum(size, 1.0)
     edges = corners[following] - corners
@@ -524,12 +529,19 @@ def sheet_defects(frame: Frame, offset: float = 1e-8) -> list[str]:
     polygon = np.repeat(np.arange(len(sizes)), sizes)
     following = np.arange(len(corners)) + 1
     following[starts[1:] - 1] = starts[:-1]
-    normal = np.zeros((len(sizes), 3))  # Newell's, summed corner by corner
-    np.add.at(normal, polygon, np.cross(corners, corners[following]))
+    centres = np.add.reduceat(corners, starts[:-1], axis=0) / sizes[:, None]
+    about = corners - centres[polygon]  # Newell's normal about the centre: about
+    normal = np.zeros((len(sizes), 3))  # the origin, rounding tilts a thin one
+    np.add.at(normal, polygon, np.cross(about, about[following]))
     length = np.linalg.norm(normal, axis=1)
-    kept = np.flatnonzero(length > 0)
+    # a needle narrower than the offset (a strip 1.4e-9 wide along an edge of
+    # the solid, which the engine's rounding leaves) has no point that far
+    # behind it that is not past the edge: the test cannot see it
+    extent = (np.maximum.reduceat(corners, starts[:-1], axis=0)
+              - np.minimum.reduceat(corners, starts[:-1], axis=0)).max(axis=1)
+    kept = np.flatnonzero((length > 0) & (length / 2 >= offset * size * extent))
     normal = normal[kept] / length[kept, None]
-    centre = np.add.reduceat(corners, starts[:-1], axis=0)[kept] / sizes[kept, None]
+    centre = centres[kept]
     # four points well inside the (convex) polygon, none on a line through
     # its centre and a corner: solids that touch along a line (which is no
     # sheet) often touch along a diagonal, and one point may lie on it

@@ -138,8 +138,15 @@ class Placed:
         return adapter.transform(manifold, np.ascontiguousarray(self.matrix))
 
     def distinguished(self) -> "Placed":
-        """The same use with a copy of the template of its own, under a new ID."""
-        copy, id = adapter.as_original(self.template.manifold)
+        """The same use with a copy of the template of its own, under a new ID
+        and with the template's face numbers (the engine's ``as_original``
+        numbers the faces afresh: the checks then found the copy's triangles
+        off the planes of the faces they named, and computed its booleans
+        another, worse, way)."""
+        id = adapter.reserve_ids(1)
+        copy = adapter.with_run_ids(self.template.manifold, np.array([id], np.int64))
+        if copy is None:  # (the engine keeps a primitive's mesh as it is given)
+            copy, id = adapter.as_original(self.template.manifold)
         PROCESS.engine_ids[id] = self.template
         return Placed(self.template, self.matrix, (copy, id))
 

@@ -72,10 +72,15 @@ def _opposed_planes(vertices, triangles, face_ids,
     k = key[key_order]
     starts = np.flatnonzero(np.r_[True, np.any(k[1:] != k[:-1], axis=1)])
     ends = np.r_[starts[1:], len(k)]
-    # each triangle's own side, where it is no sliver: one face number can hold
-    # both (two uses of one primitive at one place, inside results of the engine)
+    # each triangle's own side: one face number can hold both (two uses of one
+    # primitive at one place, inside results of the engine; or a fold of the
+    # engine's, whose small triangles lie turned against their face's large
+    # one). A triangle is turned if its own normal points against the face's
+    # (by more than 60 degrees): measured against its own area, not the face's
+    # largest triangle's, so that a small one of 1e-7 is told as surely as a
+    # large one (flat triangles, whose normal is rounding, are gone before)
     facing = np.einsum("ij,ij->i", n, u[face]) * sign[face]
-    turned = facing < -1e-6 * big_area[face]
+    turned = facing < -0.5 * area
     face_turns = np.zeros(len(first), bool)
     face_turns[face[turned]] = True
     positive = np.add.reduceat((sign[key_order] > 0).astype(np.int64), starts)
