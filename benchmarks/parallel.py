@@ -41,10 +41,11 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-def run(args, scene_path):
-    """The best wall-clock seconds of RUNS runs, the CPU seconds of that run, the output."""
+def run(args, scene_path, runs=None):
+    """The best wall-clock seconds of ``runs`` runs (RUNS), the CPU seconds of that
+    run, the output."""
     best, cpu, out = None, None, None
-    for _ in range(RUNS):
+    for _ in range(RUNS if runs is None else runs):
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         started = time.perf_counter()
         result = subprocess.run([*castor_command(), *args, scene_path], capture_output=True)
@@ -57,6 +58,35 @@ def run(args, scene_path):
             cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         out = result.stdout
     return best, cpu, out
+
+
+def on_a_new_cluster(dask: str, scene: str, directory: str):
+    """One run of the animation on a cluster started for it (a scheduler and two
+    one-thread workers, from the command line as a user starts them), warmed by
+    one cube so that the workers have imported castor but made nothing of the
+    block: a worker keeps the solids it made, and a second run of the same scene
+    on the same workers would find them made (the figure of an earlier version
+    of this benchmark, 6.6 s, was that)."""
+    port = free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    quiet = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=directory)
+    scheduler = subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port",
+                                  str(port), "--dashboard-address", ":0"], **quiet)
+    workers = [subprocess.Popen([dask, "worker", address, "--nthreads", "1",
+                                 "--nworkers", "1", "--dashboard-address", ":0"], **quiet)
+               for _ in range(2)]
+    try:
+        time.sleep(6)  # the workers join the scheduler
+        cube = os.path.join(directory, "cube.cas")
+        with open(cube, "w") as handle:
+            handle.write(">[T = 0, 3] @t(T, 0, 0) !cu(1, 0, 0);\n")
+        run(["--scheduler", address], cube, runs=1)  # the workers import castor
+        return run(["--scheduler", address], scene, runs=1)
+    finally:
+        for process in [*workers, scheduler]:
+            process.terminate()
+        for process in [*workers, scheduler]:
+            process.wait(timeout=30)
 
 
 def main():
@@ -74,26 +104,15 @@ def main():
                      f"{plain / seconds:.2f}", "yes" if out == reference else "NO"])
     dask = shutil.which("dask") if not os.environ.get("NO_DASK") else None
     if dask:
-        port = free_port()
-        address = f"tcp://127.0.0.1:{port}"
-        quiet = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=directory)
-        scheduler = subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port",
-                                      str(port), "--dashboard-address", ":0"], **quiet)
-        workers = [subprocess.Popen([dask, "worker", address, "--nthreads", "1",
-                                     "--nworkers", "1", "--dashboard-address", ":0"], **quiet)
-                   for _ in range(2)]
-        try:
-            time.sleep(6)  # the workers join the scheduler
-            run(["--scheduler", address], scene)  # warm the workers (imports)
-            cluster, cpu, out = run(["--scheduler", address], scene)
-            rows.append(["Dask, 2 one-thread workers", f"{cluster:.2f}", f"{cpu:.2f}",
-                         f"{cluster / 24:.2f}", f"{plain / cluster:.2f}",
-                         "yes" if out == reference else "NO"])
-        finally:
-            for process in [*workers, scheduler]:
-                process.terminate()
-            for process in [*workers, scheduler]:
-                process.wait(timeout=30)
+        best = None
+        for _ in range(RUNS):  # a new cluster each run: workers keep what they made
+            seconds, cpu, out = on_a_new_cluster(dask, scene, directory)
+            if best is None or seconds < best[0]:
+                best = (seconds, cpu, out)
+        cluster, cpu, out = best
+        rows.append(["Dask, 2 one-thread workers", f"{cluster:.2f}", f"{cpu:.2f}",
+                     f"{cluster / 24:.2f}", f"{plain / cluster:.2f}",
+                     "yes" if out == reference else "NO"])
     print("24 frames of 64 houses whose windows slide (whole processes, best of "
           f"{RUNS}):")
     print(table(rows, ["how", "seconds", "CPU s", "s/frame", "speed-up", "same bytes"]))
