@@ -156,16 +156,16 @@ def test_the_judge_does_not_test_a_needle_narrower_than_its_offset():
     assert problems == []
 
 
-@pytest.mark.xfail(strict=True, reason="a flat triangle the flips cannot take out (also on main)")
 def test_a_flattened_turned_row_leaves_no_needle():
     """Eleven cubes 0.1 apart turned by 356.731° about (0.5, 1, 1) and
-    flattened to half their height (wide oracle, seed 32, on the final code
-    of issue 18's items 4-5): a triangle of U11 0.3 long and 3.8e-7 wide at
-    one end (twice its area 8e-13 of its length squared) is left, flat by
-    castor's own test, because every flip of its long edge would turn a
-    neighbour over and no collapse of its short edge keeps the faces around
-    it in one plane. Left for the next session: the polygon of zero area
-    that LANGUAGE.md §7 rules out."""
+    flattened to half their height (wide oracle, seed 32): a triangle of
+    U11 0.3 long and 3.8e-7 wide at one end (twice its area 8.8e-13 of its
+    long side squared) was left, flat by castor's own test: its flip would
+    turn the neighbour over (itself a needle 2.5e-7 high), and collapsing
+    its short edge either way turned over a triangle at the third corner of
+    the small triangle across it (1.9e-7 from both ends). That corner goes
+    onto one end first, then the short edge: no polygon of zero area
+    (LANGUAGE.md §7), the volume exact."""
     from meshcheck import frames_of
 
     (frame,) = frames_of("> @h(1.0, 1.0, 0.5) @r(0.5, 1.0, 1.0, 356.731) "
