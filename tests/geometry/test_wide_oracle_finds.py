@@ -25,6 +25,18 @@ def _judged(scene: Scene):
     return frames, problems, figures
 
 
+def _as_exact(scene: Scene):
+    """The scene's one frame closed, regular, judged sound by the oracle, its
+    volume and area the exact booleans'."""
+    (frame,), (problems,), ((volume, area),) = _judged(scene)
+    check_closed(frame)
+    assert abs(frame.volume() - volume) < 1e-9
+    assert abs(frame.area() - area) < 1e-7
+    assert regularity_defects(frame) == []
+    assert problems == []
+    return frame, volume
+
+
 def _cube(colour):
     return Prim("cu", colour, ())
 
@@ -115,12 +127,7 @@ def test_inner_faces_of_touching_cubes_go_beside_a_needle_the_engine_left():
               ("r", (-1.0, 1.0, 0.3, 356.731))), Rep(
         "U", "V", 11, Tf((("t", (Param("V", 0.1, 0.0), 0.0, 0.0)),), _cube((0.5, 0.0, 0.0)))))
     scene = Scene([("frame", [Bool("U", (three, row))])])
-    (frame,), (problems,), ((volume, area),) = _judged(scene)
-    check_closed(frame)
-    assert abs(frame.volume() - volume) < 1e-9
-    assert abs(frame.area() - area) < 1e-7
-    assert regularity_defects(frame) == []
-    assert problems == []
+    _as_exact(scene)
 
 
 def test_the_judge_reads_a_thin_triangle_far_from_the_origin_as_planar():
@@ -148,12 +155,7 @@ def test_the_judge_does_not_test_a_needle_narrower_than_its_offset():
               ("r", (0.5, 1.0, 1.0, 356.731))), Rep(
         "U", "W", 11, Tf((("t", (Param("W", 0.1, 0.0), 0.0, 0.0)),), _cube((1.0, 0.0, 0.5)))))
     scene = Scene([("object", "s", row), ("frame", [oracle.Ref("s")])])
-    (frame,), (problems,), ((volume, area),) = _judged(scene)
-    check_closed(frame)
-    assert abs(frame.volume() - volume) < 1e-9
-    assert abs(frame.area() - area) < 1e-7
-    assert regularity_defects(frame) == []
-    assert problems == []
+    _as_exact(scene)
 
 
 def test_a_flattened_turned_row_leaves_no_needle():
