@@ -223,7 +223,20 @@ def _arguments(argv):
         problem = destination_problem(path, option) if path is not None else None
         if problem is not None:
             p.error(problem)
+        if path is not None and any(_same_file(path, scene) for scene in args.files):
+            p.error(f"{option} {path}: is a scene castor reads; give the output another name")
     return p, args
+
+
+def _same_file(output: str, scene: str) -> bool:
+    """Whether writing ``output`` would write over the scene file ``scene`` (as
+    cpp and compilers refuse to; a '-o' of a device such as /dev/null never does)."""
+    from castor.formats.output import is_device
+
+    try:
+        return os.path.samefile(output, scene) and not is_device(output)
+    except (OSError, ValueError):  # either absent, unreadable, or a name with a NUL
+        return False
 
 
 def _overrides(parser, sets: list[str]) -> dict[str, float]:

@@ -26,3 +26,19 @@ def test_the_error_comes_first_and_alone(tmp_path, args, what):
     assert lines[1:] == ["try 'castor --help'"], err
     assert "usage:" not in err
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("args", [["--summary", "house.cas"], ["-f", "off", "-o", "./house.cas"]],
+                         ids=["summary", "output"])
+def test_an_output_never_writes_over_the_scene_it_reads(tmp_path, args):
+    """`castor --summary house.cas house.cas` wrote the take-off over the scene
+    and exited 0; an output named as a scene file is a usage error, and the
+    scene is left as it was."""
+    scene = tmp_path / "house.cas"
+    scene.write_text(CUBE)
+    status, out, err = run(*args, "house.cas", cwd=tmp_path)
+    assert status == 2 and out == ""
+    assert err.splitlines()[0] == (f"castor: error: {args[-2]} {args[-1]}: is a scene castor reads; "
+                                   f"give the output another name"), err
+    assert scene.read_text() == CUBE
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["house.cas"]
