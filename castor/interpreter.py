@@ -60,10 +60,18 @@ class Interpreter:
                 return
             iterator = iter(chunks)
             while True:
-                batch = list(itertools.islice(iterator, BATCH))
+                batch, unread = [], None
+                try:
+                    for chunk in itertools.islice(iterator, BATCH):
+                        batch.append(chunk)
+                except CastorError as exc:  # the statements read before it run first,
+                    unread = exc            # as they do streaming
+                if batch:
+                    self.parser.run_batch(batch, self.execute)
+                if unread is not None:
+                    raise unread
                 if not batch:
                     break
-                self.parser.run_batch(batch, self.execute)
         except CastorError as exc:  # from the reader: an unterminated comment
             self.reporter.error(exc)
 

@@ -11,6 +11,8 @@ import sys
 import time
 from pathlib import Path
 
+import pytest
+
 from hypothesis import HealthCheck, example, given, settings, strategies as st
 
 from castor.pipeline import RECURSION_LIMIT
@@ -235,6 +237,8 @@ def _run_file(text: str, *args: str):
 @example("a = !cu(1,1,1)\n> a;\n> b;\n> @t(1,0,0) a;\n")
 @example("> !cu(1,1,1); ? > !cu(1,1,1);\n> !cu(1,1,1);")
 @example("X = 1;\nX = ;\na = @h(X) !cu(1,1,1);\n> a\n")
+@example("m = @t(0, I * 0.28, I ;/* 0.17) @h(1.2, 0.3, 0.17) !cu(0.7,0.7,0.7);\n"
+         "> $U[I = 0, 3](m);\n")
 def test_batches_and_streaming_agree(text):
     """Parsing many statements at once must say and write exactly what parsing
     them one by one does."""
@@ -243,3 +247,15 @@ def test_batches_and_streaming_agree(text):
     streamed = run_inprocess(text, "--no-cpp")[:3]
     batched = _run_file(text, "--no-cpp")
     assert batched == streamed
+
+
+@pytest.mark.parametrize("args", [["--no-cpp"], []], ids=["no-cpp", "cpp"])
+def test_a_frame_before_an_unterminated_comment_is_written(args):
+    """A file's statements are parsed in batches; an unterminated comment ended
+    the batch being read and dropped the statements read before it (the cube
+    was never written, where reading the same scene statement by statement
+    wrote it): every good frame is still written."""
+    status, out, err = _run_file("> !cu(1, 0, 0);\n/* never closed\n", *args)
+    assert status == 1
+    assert out.count("\npoly ") == 6 and out.endswith("endframe 1 6\n"), out
+    assert err.startswith("<stdin>:2:1: error: unterminated comment: '/*' has no matching '*/'")
