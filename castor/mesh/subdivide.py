@@ -454,8 +454,7 @@ def smooth(vertices, offsets, indices, angle: float, tolerance: float,
     triangles, faces = _leaf_triangles(levels, leaves, parents, renumbers, positions)
     corner = np.zeros(len(positions), bool)
     corner[:len(vertices)] = _per_vertex_crease(level)[0] >= 3
-    _edges, _edge_of, _count, following_corner = _topology(vertices, offsets, indices)
-    control_normal = _normals(vertices, offsets, indices, following_corner)
+    control_normal = _normals(vertices, offsets, indices, level.corner_next)
     triangles, faces = unturned(positions, triangles, faces, control_normal, corner)
     used, triangles = np.unique(triangles, return_inverse=True)
     return Smoothed(positions[used], triangles.reshape(-1, 3), faces, len(levels), gap)
