@@ -462,10 +462,42 @@ def smooth(vertices, offsets, indices, angle: float, tolerance: float,
 
 def turned(positions: np.ndarray, triangles: np.ndarray, faces: np.ndarray,
            control_normal: np.ndarray) -> np.ndarray:
-    """The triangles that face away from the control polygon they come from."""
+    """The triangles turned over: facing away from the control polygon they
+    come from, and either folded against a neighbour across one of their
+    sides (their normals more than 120 degrees apart) or facing away from
+    the triangles around them (every triangle that shares a corner with it,
+    weighted by area). Facing away from its control polygon alone is no
+    fold: a control mesh sheared hard (a cube under a strong ``@m``) has a
+    limit surface that turns past its control polygons' normals near their
+    corners, smooth all the same, and taking those triangles out moved the
+    surface by five times the tolerance."""
     p = positions[triangles]
     normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-    return np.einsum("ij,ij->i", normal, control_normal[faces]) < 0
+    away = np.einsum("ij,ij->i", normal, control_normal[faces]) < 0
+    if not away.any():
+        return away
+    at_corner = np.zeros((len(positions), 3))
+    for k in range(3):
+        np.add.at(at_corner, triangles[:, k], normal)
+    around = at_corner[triangles].sum(axis=1) - 3 * normal
+    against_around = np.einsum("ij,ij->i", normal, around) < 0
+    # each side once each way: a side (a, b) of one triangle is (b, a) of its neighbour
+    count = len(triangles)
+    starts = triangles.ravel()
+    ends = triangles[:, [1, 2, 0]].ravel()
+    owner = np.repeat(np.arange(count), 3)
+    size = len(positions)
+    key = starts * size + ends
+    order = np.argsort(key)
+    twin_key = ends * size + starts
+    at = np.clip(np.searchsorted(key[order], twin_key), 0, len(key) - 1)
+    paired = key[order][at] == twin_key
+    unit = normal / np.maximum(np.linalg.norm(normal, axis=1), 1e-300)[:, None]
+    facing = np.ones(3 * count)
+    neighbour = owner[order][at]
+    facing[paired] = np.einsum("ij,ij->i", unit[owner[paired]], unit[neighbour[paired]])
+    folded = facing.reshape(-1, 3).min(axis=1) < -0.5
+    return away & (against_around | folded)
 
 
 def unturned(positions: np.ndarray, triangles: np.ndarray, faces: np.ndarray,
