@@ -50,6 +50,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from castor.mesh import crossings
+
 # bytes per triangle at the peak of a level (the level being made and the one
 # before, their edges sorted, then the engine's copy): see benchmarks/smooth.py
 BYTES_PER_TRIANGLE = 500
@@ -456,6 +458,12 @@ def smooth(vertices, offsets, indices, angle: float, tolerance: float,
     corner[:len(vertices)] = _per_vertex_crease(level)[0] >= 3
     control_normal = _normals(vertices, offsets, indices, level.corner_next)
     triangles, faces = unturned(positions, triangles, faces, control_normal, corner)
+    # the two sides of a thin wall that went through each other: a flat
+    # face (between creases) stays where it is, the curved side goes back
+    flat = np.logical_and.reduceat(level.crease[level.edge_of], offsets[:-1])
+    movable = ~corner
+    movable[triangles[flat[faces]].ravel()] = False
+    positions = crossings.uncrossed(positions, triangles, movable, tolerance)
     used, triangles = np.unique(triangles, return_inverse=True)
     return Smoothed(positions[used], triangles.reshape(-1, 3), faces, len(levels), gap)
 
