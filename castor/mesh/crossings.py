@@ -10,46 +10,29 @@ plain-Python subdivision does the same, so it is the surface, not a slip.
 
 ``crossing_pairs`` finds the triangles of a closed surface that cross one
 another (no shared corner, a side of one through the inside of the other):
-their boxes are put in the cells of a grid, and the pairs that share a cell
-and whose boxes meet are tested exactly, a piece at a time. ``uncrossed``
-puts back the corners that went through, told by the winding number beside
-where two triangles meet: -1 just in front of both is a wall turned inside
-out, 2 just behind both two parts pushed into each other. A corner moves by
-no more than ``reach`` (the tolerance) and stops a hair past the other
-side's plane, so the wall keeps a thickness and the surface stays within
-the tolerance of the limit; a flat face's corners never move.
+their boxes are put in a loose hierarchy of grids (each box in cells at
+least as long as it), and the pairs that share a cell and whose boxes meet
+are tested, a piece at a time, with the signs of triple products (a sign
+within rounding of zero counts as zero: triangles of one plane never cross).
+
+``uncrossed`` puts back the corners that went through, told by the winding
+number beside where two triangles meet: -1 just in front of both is a wall
+turned inside out, 2 just behind both two parts pushed into each other. A
+corner moves by no more than ``reach`` (the tolerance) and stops a hair past
+the other side's plane, so the wall keeps a thickness and the surface stays
+within the tolerance of the solid's (which has no pocket); the corners of a
+face that stayed flat never move.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-# a box over more cells than this is compared with every other box at once
-_WIDE = 64
 # crossings looked at in one round of ``uncrossed`` (each costs two winding
 # numbers, each a pass over the whole surface)
-_LOOKED = 64
-
-
-def _pairs_in_cells(cells: np.ndarray, owners: np.ndarray, chunk: int):
-    """Every pair of owners that share a cell, as keys (``_keys``), in pieces of
-    about ``chunk`` pairs; a pair in several cells comes once from each."""
-    order = np.lexsort((owners, cells))
-    cells, owners = cells[order], owners[order]
-    starts = np.flatnonzero(np.r_[True, cells[1:] != cells[:-1]])
-    sizes = np.diff(np.r_[starts, len(cells)])
-    # each member pairs with the members after it in its cell
-    after = np.repeat(starts + sizes, sizes) - np.arange(len(cells)) - 1
-    total = np.cumsum(after)
-    begin = 0
-    while begin < len(cells):
-        end = int(np.searchsorted(total, total[begin] - after[begin] + chunk, side="right"))
-        end = max(end, begin + 1)
-        part = after[begin:end]
-        first = np.repeat(np.arange(begin, end), part)
-        offset = np.arange(len(first)) - np.repeat(np.cumsum(part) - part, part) + 1
-        yield _keys(owners[first], owners[first + offset])
-        begin = end
+_LOOKED = 32
+# candidate pairs made at once
+_CHUNK = 1 << 16
 
 
 def _keys(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -59,57 +42,6 @@ def _keys(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return low[keep] * (1 << 31) + high[keep]
 
 
-def _boxes_meet(lo: np.ndarray, hi: np.ndarray, pairs: np.ndarray) -> np.ndarray:
-    a, b = pairs[:, 0], pairs[:, 1]
-    return np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
-
-
-def _cells(lo, hi, origin, cell, owners):
-    """The grid cells each box of ``owners`` covers: (cell numbers, owners), one row a cell."""
-    first = np.floor((lo[owners] - origin) / cell).astype(np.int64)
-    last = np.floor((hi[owners] - origin) / cell).astype(np.int64)
-    span = last - first + 1
-    reps = span.prod(axis=1)
-    owner = np.repeat(np.arange(len(owners)), reps)
-    k = np.arange(len(owner)) - np.repeat(np.cumsum(reps) - reps, reps)
-    s = span[owner]
-    x = first[owner, 0] + k % s[:, 0]
-    y = first[owner, 1] + (k // s[:, 0]) % s[:, 1]
-    z = first[owner, 2] + k // (s[:, 0] * s[:, 1])
-    size = np.floor((hi.max(axis=0) - origin) / cell).astype(np.int64) + 2
-    return (x * size[1] + y) * size[2] + z, owners[owner]
-
-
-def _spans(lo, hi, origin, cell):
-    return (np.floor((hi - origin) / cell) - np.floor((lo - origin) / cell) + 1).prod(axis=1)
-
-
-def _candidates(lo: np.ndarray, hi: np.ndarray, chunk: int = 1 << 16):
-    """Pairs of boxes that may meet, as keys in pieces (repeated, unsorted):
-    through a grid of cells twice the median box; the boxes over more than 64
-    of its cells (a flat face's long triangles beside a curved surface's small
-    ones) are paired with every box through a second grid, twice their own
-    median."""
-    origin = lo.min(axis=0)
-    floor = 1e-12 * max(1.0, float(np.abs(hi).max()))
-    cell = np.maximum(2 * np.median(hi - lo, axis=0), floor)
-    wide = _spans(lo, hi, origin, cell) > _WIDE
-    yield from _pairs_in_cells(*_cells(lo, hi, origin, cell, np.flatnonzero(~wide)), chunk)
-    if wide.any():
-        coarse = np.maximum(2 * np.median(hi[wide] - lo[wide], axis=0), cell)
-        cells, owners = _cells(lo, hi, origin, coarse, np.arange(len(lo)))
-        order = np.argsort(cells, kind="stable")
-        cells, owners = cells[order], owners[order]
-        starts = np.flatnonzero(np.r_[True, cells[1:] != cells[:-1]])
-        sizes = np.diff(np.r_[starts, len(cells)])
-        group = np.repeat(np.arange(len(starts)), sizes)
-        mine = np.flatnonzero(wide[owners])  # each wide box's rows, paired with its cells' rows
-        reps = sizes[group[mine]]
-        first = np.repeat(starts[group[mine]], reps)
-        k = np.arange(len(first)) - np.repeat(np.cumsum(reps) - reps, reps)
-        yield _keys(np.repeat(owners[mine], reps), owners[first + k])
-
-
 def _pairs(keys: np.ndarray) -> np.ndarray:
     """Keys as pairs (a, b), each once."""
     keys = np.sort(keys)
@@ -117,11 +49,101 @@ def _pairs(keys: np.ndarray) -> np.ndarray:
     return np.column_stack([keys >> 31, keys & ((1 << 31) - 1)])
 
 
+def _boxes_meet(lo: np.ndarray, hi: np.ndarray, pairs: np.ndarray) -> np.ndarray:
+    a, b = pairs[:, 0], pairs[:, 1]
+    return np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
+
+
+def _cells(lo, hi, origin, cell, owners):
+    """The cells of side ``cell`` each box of ``owners`` covers (at most two a
+    side: each box is put in a grid at least as coarse as it is long), as
+    (hashed cell numbers, owners), a row a cell. Two cells may share a number:
+    that only adds candidates, which the boxes' own test takes out."""
+    first = np.floor((lo[owners] - origin) / cell).astype(np.int64)
+    last = np.floor((hi[owners] - origin) / cell).astype(np.int64)
+    span = np.minimum(last - first + 1, 2)
+    reps = span.prod(axis=1)
+    row = np.repeat(np.arange(len(owners)), reps)
+    k = np.arange(len(row)) - np.repeat(np.cumsum(reps) - reps, reps)
+    s = span[row]
+    x = first[row, 0] + k % s[:, 0]
+    y = first[row, 1] + (k // s[:, 0]) % s[:, 1]
+    z = first[row, 2] + k // (s[:, 0] * s[:, 1])
+    with np.errstate(over="ignore"):
+        numbers = (x * 73856093) ^ (y * 19349663) ^ (z * 83492791)
+    return numbers, owners[row]
+
+
+def _chunks(counts: np.ndarray):
+    """Ranges [begin, end) of rows whose ``counts`` add up to about _CHUNK."""
+    total = np.cumsum(counts)
+    begin = 0
+    while begin < len(counts):
+        end = int(np.searchsorted(total, total[begin] - counts[begin] + _CHUNK, side="right"))
+        end = max(end, begin + 1)
+        yield begin, end
+        begin = end
+
+
+def _pairs_in_cells(cells: np.ndarray, owners: np.ndarray):
+    """Every pair of owners that share a cell, as keys, in pieces."""
+    order = np.lexsort((owners, cells))
+    cells, owners = cells[order], owners[order]
+    starts = np.flatnonzero(np.r_[True, cells[1:] != cells[:-1]])
+    sizes = np.diff(np.r_[starts, len(cells)])
+    # each member pairs with the members after it in its cell
+    after = np.repeat(starts + sizes, sizes) - np.arange(len(cells)) - 1
+    for begin, end in _chunks(after):
+        part = after[begin:end]
+        first = np.repeat(np.arange(begin, end), part)
+        offset = np.arange(len(first)) - np.repeat(np.cumsum(part) - part, part) + 1
+        yield _keys(owners[first], owners[first + offset])
+
+
+def _guests_in_cells(cells, owners, guest_cells, guests):
+    """Every pair of a guest and an owner in the same cell, as keys, in pieces."""
+    order = np.argsort(cells, kind="stable")
+    cells, owners = cells[order], owners[order]
+    start = np.searchsorted(cells, guest_cells, side="left")
+    count = np.searchsorted(cells, guest_cells, side="right") - start
+    for begin, end in _chunks(count):
+        part = count[begin:end]
+        first = np.repeat(start[begin:end], part)
+        k = np.arange(len(first)) - np.repeat(np.cumsum(part) - part, part)
+        yield _keys(np.repeat(guests[begin:end], part), owners[first + k])
+
+
+def _candidates(lo: np.ndarray, hi: np.ndarray):
+    """Pairs of boxes that may meet, as keys in pieces (repeated, unsorted),
+    through a loose hierarchy of grids (cells twice the median box, then
+    twice that, and so on): each box lives in the grid whose cells are at
+    least as long as it, so it covers at most eight cells; it meets the boxes
+    of its own grid in those cells and, as a guest, those of every coarser
+    grid in the cells that hold it there. A flat face's long triangles beside
+    a curved surface's small ones cost no more than the small ones."""
+    origin = lo.min(axis=0)
+    length = (hi - lo).max(axis=1)
+    floor = 1e-12 * max(1.0, float(np.abs(hi).max()), float(np.abs(lo).max()))
+    base = max(2 * float(np.median(length)), floor)
+    level = np.ceil(np.log2(np.maximum(length / base, 1.0))).astype(np.int64)
+    level += length > base * 2.0 ** level  # rounding: every box within its cells
+    present = np.unique(level)
+    for top in present:
+        cell = base * 2.0 ** top
+        residents = np.flatnonzero(level == top)
+        cells, owners = _cells(lo, hi, origin, cell, residents)
+        yield from _pairs_in_cells(cells, owners)
+        finer = np.flatnonzero(level < top)
+        if len(finer):
+            guest_cells, guests = _cells(lo, hi, origin, cell, finer)
+            yield from _guests_in_cells(cells, owners, guest_cells, guests)
+
+
 def near_pairs(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
     """Pairs (a, b), a < b, of boxes that meet (``_candidates``, then their boxes)."""
     if len(lo) < 2:
         return np.zeros((0, 2), np.int64)
-    pieces = []
+    pieces = [np.zeros((0, 2), np.int64)]
     for keys in _candidates(lo, hi):
         pairs = _pairs(keys)
         pieces.append(pairs[_boxes_meet(lo, hi, pairs)])
@@ -129,16 +151,40 @@ def near_pairs(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
 
 
 def _orient(a, b, c, d):
-    """The sign of the volume of the tetrahedra (a, b, c, d), row by row."""
-    return np.sign(np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a))
+    """The sign of the volume of the tetrahedra (a, b, c, d), row by row; 0
+    where it is within rounding of 0 (a trillionth of the product of the
+    three sides from a), so that triangles of one plane that rounding tilts
+    apart are not taken for crossing."""
+    u, v, w = b - a, c - a, d - a
+    volume = np.einsum("ij,ij->i", np.cross(u, v), w)
+    scale = (np.einsum("ij,ij->i", u, u) * np.einsum("ij,ij->i", v, v)
+             * np.einsum("ij,ij->i", w, w))
+    return np.where(volume * volume <= 1e-24 * scale, 0.0, np.sign(volume))
 
 
-def _side_through(p, q, a, b, c):
-    """Whether the segments pq pass through the insides of the triangles abc."""
-    sp, sq = _orient(a, b, c, p), _orient(a, b, c, q)
-    across = sp * sq < 0
-    s1, s2, s3 = _orient(p, q, a, b), _orient(p, q, b, c), _orient(p, q, c, a)
-    return across & (s1 == s2) & (s2 == s3) & (s1 != 0)
+def _crossing(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Whether a side of triangle a passes through the inside of triangle b,
+    or the other way round (beyond rounding: a side in the other's plane, or
+    through its side or corner, does not), pair by pair: first which side of
+    each one's plane the other's corners lie on, then, where that does not
+    already rule it out, each side against the other triangle."""
+    of_b = np.stack([_orient(a[:, 0], a[:, 1], a[:, 2], b[:, k]) for k in range(3)], axis=1)
+    of_a = np.stack([_orient(b[:, 0], b[:, 1], b[:, 2], a[:, k]) for k in range(3)], axis=1)
+    spread = ((of_b.max(axis=1) > 0) & (of_b.min(axis=1) < 0)
+              & (of_a.max(axis=1) > 0) & (of_a.min(axis=1) < 0))
+    crossing = np.zeros(len(a), bool)
+    rows = np.flatnonzero(spread)
+    a, b, of_a, of_b = a[rows], b[rows], of_a[rows], of_b[rows]
+    for one, other, sides in ((a, b, of_a), (b, a, of_b)):
+        for k in range(3):
+            j = (k + 1) % 3
+            p, q = one[:, k], one[:, j]
+            across = sides[:, k] * sides[:, j] < 0
+            s1 = _orient(p, q, other[:, 0], other[:, 1])
+            s2 = _orient(p, q, other[:, 1], other[:, 2])
+            s3 = _orient(p, q, other[:, 2], other[:, 0])
+            crossing[rows] |= across & (s1 == s2) & (s2 == s3) & (s1 != 0)
+    return crossing
 
 
 def _along_line(corners, origin, normal, line):
@@ -187,7 +233,8 @@ def crossing_middles(positions: np.ndarray, triangles: np.ndarray,
 def crossing_pairs(positions: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     """Pairs of triangles with no corner in common where a side of one passes
     through the inside of the other; the candidates are tested a piece at a
-    time, so a surface of 200,000 triangles needs a few tens of megabytes."""
+    time (a surface of 200,000 triangles needs about 80 MB, of 770,000 about
+    400 MB, as much as the smoothing that made it)."""
     corners = positions[triangles]
     lo, hi = corners.min(axis=1), corners.max(axis=1)
     found = [np.zeros((0, 2), np.int64)]
@@ -196,15 +243,9 @@ def crossing_pairs(positions: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     for keys in _candidates(lo, hi):
         pairs = _pairs(keys)
         pairs = pairs[_boxes_meet(lo, hi, pairs)]
-        shared = (triangles[pairs[:, 0], :, None] == triangles[pairs[:, 1], None, :]).any(axis=(1, 2))
-        pairs = pairs[~shared]
-        a, b = corners[pairs[:, 0]], corners[pairs[:, 1]]
-        crossing = np.zeros(len(pairs), bool)
-        for one, other in ((a, b), (b, a)):
-            for k in range(3):
-                crossing |= _side_through(one[:, k], one[:, (k + 1) % 3], other[:, 0],
-                                          other[:, 1], other[:, 2])
-        found.append(pairs[crossing])
+        first, second = triangles[pairs[:, 0]], triangles[pairs[:, 1]]
+        pairs = pairs[~(first[:, :, None] == second[:, None, :]).any(axis=(1, 2))]
+        found.append(pairs[_crossing(corners[pairs[:, 0]], corners[pairs[:, 1]])])
     return np.unique(np.concatenate(found), axis=0)
 
 
@@ -243,7 +284,19 @@ def uncrossed(positions: np.ndarray, triangles: np.ndarray, movable: np.ndarray,
             break
         p = positions[triangles]
         normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-        normal /= np.maximum(np.linalg.norm(normal, axis=1), 1e-300)[:, None]
+        length = np.linalg.norm(normal, axis=1)
+        normal /= np.maximum(length, 1e-300)[:, None]
+        # only crossings where a corner could move are looked at: those of
+        # corners that may not move, or too deep, must not hide them
+        could = np.zeros(len(pairs), bool)
+        for one, other in ((0, 1), (1, 0)):
+            corners = triangles[pairs[:, one]]
+            side = np.einsum("ijk,ik->ij", positions[corners] - p[pairs[:, other], :1],
+                             normal[pairs[:, other]])
+            could |= (movable[corners] & (side != 0) & (np.abs(side) <= reach)).any(axis=1)
+        pairs = pairs[could & (length[pairs[:, 0]] > 0) & (length[pairs[:, 1]] > 0)]
+        if not len(pairs):
+            break
         with np.errstate(invalid="ignore", divide="ignore"):
             middle = crossing_middles(positions, triangles, pairs)
         # two triangles in one plane that overlap have no common line: left

@@ -458,9 +458,16 @@ def smooth(vertices, offsets, indices, angle: float, tolerance: float,
     corner[:len(vertices)] = _per_vertex_crease(level)[0] >= 3
     control_normal = _normals(vertices, offsets, indices, level.corner_next)
     triangles, faces = unturned(positions, triangles, faces, control_normal, corner)
-    # the two sides of a thin wall that went through each other: a flat
-    # face (between creases) stays where it is, the curved side goes back
-    flat = np.logical_and.reduceat(level.crease[level.edge_of], offsets[:-1])
+    # the two sides of a thin wall that went through each other: a face that
+    # stayed flat (its triangles in its control polygon's plane: between
+    # creases, alone or with polygons of its plane) stays where it is, the
+    # curved side goes back
+    anchor = vertices[indices[offsets[:-1]]][faces]  # a corner of each one's control polygon
+    on = np.abs(np.einsum("ijk,ik->ij", positions[triangles] - anchor[:, None],
+                          control_normal[faces])).max(axis=1)
+    size = max(1.0, float(np.abs(vertices).max()))
+    flat = np.ones(len(offsets) - 1, bool)
+    np.logical_and.at(flat, faces, on <= 1e-9 * size)
     movable = ~corner
     movable[triangles[flat[faces]].ravel()] = False
     positions = crossings.uncrossed(positions, triangles, movable, tolerance)

@@ -24,6 +24,32 @@ def test_the_grid_pairs_every_two_boxes_that_meet():
     assert len(want) > 100 and got == want
 
 
+def test_the_grid_copes_with_flat_boxes_and_long_ones():
+    # triangles in two horizontal planes (no height: the median height is 0),
+    # long slivers of a fan among small ones, and a few tilted: the grid of
+    # the long ones once took cells of 1e-12 in height and asked for
+    # terabytes (the review's case)
+    points, triangles = [], []
+
+    def add(a, b, c):
+        triangles.append([len(points), len(points) + 1, len(points) + 2])
+        points.extend([a, b, c])
+
+    for i in range(60):
+        x, y = i % 10 * 0.1, i // 10 * 0.1
+        add([x, y, 0], [x + 0.1, y, 0], [x, y + 0.1, 0])
+    for i in range(30):
+        add([0, 0, 1], [5, i * 0.2, 1], [5, i * 0.2 + 0.2, 1])
+    for i in range(10):
+        add([i * 0.1, 2, 0], [i * 0.1 + 0.1, 2, 0.05], [i * 0.1, 2.1, 0.1])
+    corners = np.array(points)[np.array(triangles)]
+    lo, hi = corners.min(axis=1), corners.max(axis=1)
+    meet = np.all((lo[:, None] <= hi[None]) & (lo[None] <= hi[:, None]), axis=2)
+    want = {(a, b) for a, b in zip(*np.nonzero(np.triu(meet, 1)))}
+    assert {tuple(p) for p in crossings.near_pairs(lo, hi).tolist()} == want
+    assert crossings.crossing_pairs(np.array(points), np.array(triangles)).tolist() == []
+
+
 def test_triangles_that_cross_and_triangles_that_only_touch():
     positions = np.array([[0, 0, 0], [2, 0, 0], [0, 2, 0],          # flat, z = 0
                           [0.5, 0.5, -1], [0.5, 0.5, 1], [1.5, 0.5, 1],  # through it
@@ -67,6 +93,27 @@ def test_a_thin_wall_turned_inside_out_is_put_back():
     # deeper than the reach, or not movable: left as it is
     assert np.array_equal(crossings.uncrossed(positions, triangles, movable, reach=0.001), positions)
     assert np.array_equal(crossings.uncrossed(positions, triangles, ~movable, reach=0.01), positions)
+
+
+def test_crossings_that_cannot_be_put_back_hide_none_that_can():
+    # 30 pairs of tetrahedra pushed deep into each other (beyond the reach:
+    # about 90 crossings), numbered first, then the plate turned inside out:
+    # its centre still goes back
+    tetrahedron = np.array([[0, 2, 1], [0, 3, 2], [0, 1, 3], [1, 2, 3]])
+    corner = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
+    points, triangles = [], []
+    for i in range(30):
+        for shift in (0.0, 0.3):
+            triangles.append(tetrahedron + 4 * len(triangles))
+            points.append(corner + [10 + 3 * i + shift, shift, shift])
+    first = 4 * len(points)
+    plate, fan = box((0, 0, -0.01), (4, 4, 0), fan_bottom_at=0.002)
+    positions = np.concatenate(points + [plate])
+    triangles = np.concatenate(triangles + [fan + first])
+    movable = np.arange(len(positions)) == first + 8
+    assert len(crossings.crossing_pairs(positions, triangles)) > 64
+    put = crossings.uncrossed(positions, triangles, movable, reach=0.01)
+    assert put[first + 8].tolist() == pytest.approx([2, 2, -1e-5], abs=1e-12)
 
 
 def test_two_parts_pushed_into_each_other_are_put_back():
