@@ -57,6 +57,12 @@ def test_triangles_that_cross_and_triangles_that_only_touch():
                          float)
     triangles = np.array([[0, 1, 2], [3, 4, 5], [6, 7, 8]])
     assert crossings.crossing_pairs(positions, triangles).tolist() == [[0, 1]]
+    # around a corner they share, the far side of one through the other: the
+    # ring of triangles around it folds over (the smooth oracle's seed 80,
+    # winding 2 after @s(170) over a union); sharing a side, they never cross
+    positions = np.array([[0, 0, 0], [2, 0, 0], [0, 2, 0], [1, 0.2, -1], [0.2, 1, 1]], float)
+    assert crossings.crossing_pairs(positions, np.array([[0, 1, 2], [0, 3, 4]])).tolist() == [[0, 1]]
+    assert crossings.crossing_pairs(positions, np.array([[0, 1, 2], [0, 1, 4]])).tolist() == []
 
 
 def box(low, high, fan_bottom_at=None):
