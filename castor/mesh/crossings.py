@@ -28,6 +28,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from castor.mesh.arrays import row_hash
+
 # crossings looked at in one round of ``uncrossed`` (each costs two winding
 # numbers, each a pass over the whole surface)
 _LOOKED = 32
@@ -69,9 +71,7 @@ def _cells(lo, hi, origin, cell, owners):
     x = first[row, 0] + k % s[:, 0]
     y = first[row, 1] + (k // s[:, 0]) % s[:, 1]
     z = first[row, 2] + k // (s[:, 0] * s[:, 1])
-    with np.errstate(over="ignore"):
-        numbers = (x * 73856093) ^ (y * 19349663) ^ (z * 83492791)
-    return numbers, owners[row]
+    return row_hash(np.column_stack([x, y, z])), owners[row]
 
 
 def _chunks(counts: np.ndarray):
@@ -139,15 +139,19 @@ def _candidates(lo: np.ndarray, hi: np.ndarray):
             yield from _guests_in_cells(cells, owners, guest_cells, guests)
 
 
-def near_pairs(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """Pairs (a, b), a < b, of boxes that meet (``_candidates``, then their boxes)."""
-    if len(lo) < 2:
-        return np.zeros((0, 2), np.int64)
-    pieces = [np.zeros((0, 2), np.int64)]
+def _meeting(lo: np.ndarray, hi: np.ndarray):
+    """Pairs (a, b), a < b, of boxes that meet, in pieces (``_candidates``,
+    then their boxes; a pair may come in several pieces)."""
     for keys in _candidates(lo, hi):
         pairs = _pairs(keys)
-        pieces.append(pairs[_boxes_meet(lo, hi, pairs)])
-    return np.unique(np.concatenate(pieces), axis=0)
+        yield pairs[_boxes_meet(lo, hi, pairs)]
+
+
+def near_pairs(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Pairs (a, b), a < b, of boxes that meet, each once."""
+    if len(lo) < 2:
+        return np.zeros((0, 2), np.int64)
+    return np.unique(np.concatenate([np.zeros((0, 2), np.int64), *_meeting(lo, hi)]), axis=0)
 
 
 def _orient(a, b, c, d):
@@ -253,9 +257,7 @@ def crossing_pairs(positions: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     found = [np.zeros((0, 2), np.int64)]
     if len(triangles) < 2:
         return found[0]
-    for keys in _candidates(lo, hi):
-        pairs = _pairs(keys)
-        pairs = pairs[_boxes_meet(lo, hi, pairs)]
+    for pairs in _meeting(lo, hi):
         first, second = triangles[pairs[:, 0]], triangles[pairs[:, 1]]
         pairs = pairs[(first[:, :, None] == second[:, None, :]).sum(axis=(1, 2)) < 2]
         first, second = pairs[:, 0], pairs[:, 1]
