@@ -89,7 +89,7 @@ def _make(scene: tree.FrameTree, settings: FrameSettings, result: Result) -> Non
         from castor.pictures import picture
 
         started = time.perf_counter()
-        if _draws_nothing(scene, settings.mesh):
+        if _draws_nothing(scene, settings.mesh) and not scene.spaces:
             result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
                                     scene.location))
         if not chosen.one_frame:
@@ -107,14 +107,15 @@ def _make(scene: tree.FrameTree, settings: FrameSettings, result: Result) -> Non
         if output.summary:  # the take-off is written whatever the output (OUTPUT.md)
             from castor.quantities import summary_record
 
-            result.summary = summary_record(_facetizer(settings.mesh, merge=True).frame(scene))
+            facetizer = _facetizer(settings.mesh, merge=True)
+            result.summary = summary_record(facetizer.frame(scene), scene, facetizer)
         return
     # a file of triangles skips merging them into polygons, unless the take-off
     # counts the frame's polygons
     merge = chosen is None or not chosen.triangles_only or output.summary
     facetizer = _facetizer(settings.mesh, merge=merge)
     frame = facetizer.frame(scene)
-    if frame.polygon_count == 0:
+    if frame.polygon_count == 0 and not scene.spaces:  # rooms only: not an empty frame
         result.warnings.append((f"frame {scene.number} is empty: its objects have no volume",
                                 scene.location))
     if kind == "drawing":
@@ -146,7 +147,7 @@ def _make(scene: tree.FrameTree, settings: FrameSettings, result: Result) -> Non
         if output.stats:
             result.stats = stats_line(frame, stats.primitives, stats.booleans, stats.seconds)
         if output.summary:
-            result.summary = summary_record(frame)
+            result.summary = summary_record(frame, scene, facetizer)
 
 
 def _scaled(frame, factor: float):

@@ -126,8 +126,10 @@ def _number(x: float) -> float | int:
     return int(x) if x.is_integer() and abs(x) < 1e15 else x
 
 
-def summary_record(frame: Frame) -> dict:
-    """One frame of the --summary document (OUTPUT.md, "Quantities")."""
+def summary_record(frame: Frame, scene=None, facetizer=None) -> dict:
+    """One frame of the --summary document (OUTPUT.md, "Quantities"); with the
+    frame's tree and the facetizer that made it, and classes in the scene, the
+    totals per class and storey, the openings and the spaces too."""
     objects = []
     for f in frame_figures(frame):
         objects.append({
@@ -140,7 +142,220 @@ def summary_record(frame: Frame) -> dict:
             "colours": [{"rgb": [_number(c) for c in rgb], "area": _number(area)}
                         for rgb, area in f.colours],
         })
-    return {"number": frame.number, "where": frame.where, "objects": objects}
+    record = {"number": frame.number, "where": frame.where, "objects": objects}
+    if scene is not None and facetizer is not None and scene.classes is not None:
+        record.update(Takeoff(scene, facetizer).record())
+    return record
+
+
+# --- the take-off by class and storey (LANGUAGE.md §11)
+
+LEVEL_SLACK = 0.01  # levels this close are one; an element this far below a level is on it
+
+
+def section_area(obj: FrameObject, z: float) -> float:
+    """The area of the object's section by the plane at height ``z``: each
+    polygon crossing it gives a segment, oriented by its outward normal so that
+    the shoelace sum of the segments is the area inside (no loop over them)."""
+    from castor.mesh.arrays import fan_triangles
+
+    if obj.polygon_count == 0:
+        return 0.0
+    tris, _ = fan_triangles(obj.offsets, obj.indices)
+    corners = obj.vertices[tris]  # (T, 3, 3)
+    above = corners[:, :, 2] > z
+    crossing = above.any(axis=1) & ~above.all(axis=1)
+    corners = corners[crossing]
+    above = above[crossing]
+    if len(corners) == 0:
+        return 0.0
+    points = []
+    for i, j in ((0, 1), (1, 2), (2, 0)):
+        a, b = corners[:, i], corners[:, j]
+        cut = above[:, i] != above[:, j]
+        t = np.where(cut, (z - a[:, 2]) / np.where(cut, b[:, 2] - a[:, 2], 1.0), 0.0)
+        points.append((a + (b - a) * t[:, None], cut))
+    # two of the three sides are cut: the segment's ends
+    ends = np.stack([p for p, _ in points], axis=1)  # (T, 3, 3)
+    cuts = np.stack([c for _, c in points], axis=1)  # (T, 3)
+    order = np.argsort(~cuts, axis=1, kind="stable")[:, :2]
+    p = np.take_along_axis(ends, order[:, 0, None, None].repeat(3, axis=2), axis=1)[:, 0]
+    q = np.take_along_axis(ends, order[:, 1, None, None].repeat(3, axis=2), axis=1)[:, 0]
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    # the inside is on the left going along z x normal
+    along = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
+    flip = ((q - p)[:, :2] * along).sum(axis=1) < 0
+    p, q = np.where(flip[:, None], q, p), np.where(flip[:, None], p, q)
+    return float((p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]).sum() / 2)
+
+
+def shells(obj: FrameObject) -> list[FrameObject]:
+    """The object's separate closed surfaces, each an object of its own."""
+    if obj.polygon_count == 0:
+        return []
+    following = np.arange(1, len(obj.indices) + 1)
+    following[obj.offsets[1:] - 1] = obj.offsets[:-1]
+    label = components(len(obj.vertices), obj.indices, obj.indices[following])
+    of_polygon = label[obj.indices[obj.offsets[:-1]]]
+    pieces = []
+    for value in np.unique(of_polygon):
+        chosen = np.flatnonzero(of_polygon == value)
+        lengths = np.diff(obj.offsets)[chosen]
+        starts = obj.offsets[:-1][chosen]
+        take = np.concatenate([np.arange(s, s + n) for s, n in zip(starts, lengths)])
+        used, indices = np.unique(obj.indices[take], return_inverse=True)
+        offsets = np.concatenate([[0], np.cumsum(lengths)])
+        pieces.append(FrameObject(obj.vertices[used], offsets, indices.reshape(-1),
+                                  obj.origin_of[chosen], obj.origins, obj.name))
+    return pieces
+
+
+class Takeoff:
+    """The elements, openings, storeys and spaces of one frame, their solids made
+    when first asked for, with the facetizer that made the frame (its caches
+    hold the frame's shared subtrees, so only the booleans that part the
+    solids out are new work)."""
+
+    def __init__(self, scene, facetizer):
+        from castor.csg.elements import find
+
+        self.scene = scene
+        self.facetizer = facetizer
+        self.elements, self.openings = find(scene)
+        self._solids: dict = {}
+
+    def _made(self, key, node) -> FrameObject:
+        if key not in self._solids:
+            from castor.csg import tree
+
+            if node is None:
+                self._solids[key] = FrameObject(np.zeros((0, 3)), np.zeros(1, np.int64),
+                                                np.zeros(0, np.int64), np.zeros(0, np.int64), [])
+            else:
+                scene = tree.FrameTree(self.scene.number, self.scene.where, self.scene.location,
+                                       (tree.Object(str(key), node),))
+                self._solids[key] = self.facetizer.frame(scene).objects[0]
+        return self._solids[key]
+
+    def solid(self, element) -> FrameObject:
+        """The element's own solid, as polygons."""
+        from castor.csg.elements import element_tree
+
+        return self._made(("element", element.number), element_tree(self.scene, element))
+
+    def figures(self, element) -> Figures:
+        return object_figures(self.solid(element), element.name)
+
+    def opening_pieces(self, opening) -> list[FrameObject]:
+        """The separate blocks the door or window took out of its element."""
+        from castor.csg.elements import opening_tree
+
+        return shells(self._made(("opening", opening.number), opening_tree(self.scene, opening)))
+
+    def space_solid(self, index: int) -> FrameObject:
+        from castor.csg import tree
+
+        space = self.scene.spaces[index]
+        return self._made(("space", index), tree.Use(space.matrix, "", space.shared))
+
+    def storeys(self) -> list[tuple[str, float]]:
+        """(name, floor level) from the lowest: LANGUAGE.md §11's rule."""
+        declared = self.scene.classes.storeys
+        values = dict(self.scene.parameters)
+        found = [(m.name, float(values[m.parameter])) for m in declared if m.parameter in values]
+        if found:
+            return sorted(found, key=lambda s: s[1])
+        tops = sorted(f.bbox[1][2] for f in (self.figures(e) for e in self._floor_slabs())
+                      if f.bbox is not None)
+        levels: list[float] = []
+        for top in tops:
+            if not levels or top - levels[-1] > LEVEL_SLACK:
+                levels.append(top)
+        if not levels:
+            return [("Level 0", 0.0)]
+        return [(f"Level {k}", level) for k, level in enumerate(levels)]
+
+    def _floor_slabs(self):
+        return [e for e in self.elements if e.classification is not None
+                and e.classification.ifc_class == "IfcSlab"
+                and e.classification.predefined == "floor"]
+
+    @staticmethod
+    def storey_at(storeys, height: float) -> str:
+        """The highest storey whose level is at most ``height`` (+ the slack), or
+        the lowest."""
+        chosen = storeys[0][0]
+        for name, level in storeys:
+            if level <= height + LEVEL_SLACK:
+                chosen = name
+        return chosen
+
+    def record(self) -> dict:
+        """What --summary adds to a frame: storeys, totals per class and storey,
+        openings, spaces."""
+        storeys = self.storeys()
+        totals: dict[tuple[str, str], list] = {}
+        floor = set(e.number for e in self._floor_slabs())
+        hosts = []
+        for element in self.elements:
+            f = self.figures(element)
+            if f.bbox is None:
+                continue  # the rest of an object wholly made of classed parts
+            height = f.bbox[1][2] if element.number in floor else f.bbox[0][2]
+            storey = self.storey_at(storeys, height)
+            total = totals.setdefault((element.ifc_class, storey), [0, 0.0, 0.0])
+            total[0] += 1
+            total[1] += f.volume
+            total[2] += f.area
+            hosts.append((element, f.bbox))
+        order = {name: k for k, (name, _) in enumerate(storeys)}
+        classes = [{"class": c, "storey": s, "count": n, "volume": _number(v), "area": _number(a)}
+                   for (c, s), (n, v, a) in sorted(totals.items(),
+                                                   key=lambda i: (order[i[0][1]], i[0][0]))]
+        openings = []
+        for opening in self.openings:
+            for piece in self.opening_pieces(opening):
+                openings.append(self._opening_record(opening, piece, hosts, storeys))
+        spaces = []
+        for index, space in enumerate(self.scene.spaces):
+            solid = self.space_solid(index)
+            f = object_figures(solid, space.name)
+            if f.bbox is None:
+                continue
+            bottom = f.bbox[0][2]
+            spaces.append({"name": space.classification.long_name or space.name,
+                           "object": space.name, "storey": self.storey_at(storeys, bottom),
+                           "floor_area": _number(section_area(solid, bottom + 1e-3)),
+                           "volume": _number(f.volume)})
+        return {"storeys": [{"name": n, "level": _number(level)} for n, level in storeys],
+                "classes": classes, "openings": openings, "spaces": spaces}
+
+    def _opening_record(self, opening, piece, hosts, storeys) -> dict:
+        f = object_figures(piece, opening.name)
+        (x0, y0, z0), (x1, y1, z1) = f.bbox
+        host = _host(hosts, f.bbox)
+        out = {"class": opening.classification.ifc_class, "name": opening.name,
+               "host": host.name if host is not None else None,
+               "storey": self.storey_at(storeys, z0),
+               "width": _number(max(x1 - x0, y1 - y0)), "height": _number(z1 - z0),
+               "sill": _number(z0), "head": _number(z1), "volume": _number(f.volume)}
+        out.update(opening.classification.settings)
+        return out
+
+
+def _host(hosts, box):
+    """The element whose box holds most of the opening's box; of those that
+    hold as much, the one whose box is smallest (a wall rather than the house)."""
+    best, rank = None, None
+    low, high = np.asarray(box[0]), np.asarray(box[1])
+    for element, (a, b) in hosts:
+        overlap = float(np.clip(np.minimum(high, b) - np.maximum(low, a), 0, None).prod())
+        if overlap <= 0:
+            continue
+        key = (-round(overlap, 9), float(np.prod(np.subtract(b, a))))
+        if rank is None or key < rank:
+            best, rank = element, key
+    return best
 
 
 class Summary:
