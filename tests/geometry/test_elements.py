@@ -148,3 +148,32 @@ def test_annotations_never_change_the_tree():
     b, _ = evaluated_frames(plain)
     assert dump(a[0]) == dump(b[0])
     assert a[0].classes is not None and b[0].classes is None
+
+
+def test_pavilion_take_off_by_hand(tmp_path: Path):
+    """examples/pavilion.cas, figures worked out by hand from its boxes."""
+    run = castor("-q", str(ROOT / "examples" / "pavilion.cas"), "--summary", "p.json",
+                 "-o", "p.off", cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    frame = json.loads((tmp_path / "p.json").read_text())["frames"][0]
+    rez, etage = "Rez-de-chaussée", "Étage"
+    shell = 8 * 6 * 3 - 7.5 * 5.5 * 3
+    assert totals(frame) == {
+        ("IfcSlab", rez): (1, 8 * 6 * 0.2),
+        ("IfcStair", rez): (1, sum(0.26 * (i + 1) * 3 / 16 for i in range(16))),
+        ("IfcWall", rez): (1, shell - 0.9 * 0.25 * 2.1 - 2 * 1.2 * 0.25 * 1.3),
+        ("IfcRoof", etage): (1, 8.6 * 6.6 * 0.25),
+        ("IfcSlab", etage): (1, 7.5 * 5.5 * 0.2 - 1.1 * 16 * 0.26 * 0.2),
+        ("IfcWall", etage): (2, shell - 3 * 1.2 * 0.25 * 1.3 + 0.1 * 5.5 * 2.8 - 0.1 * 0.9 * 2.1),
+    }
+    doors = [o for o in frame["openings"] if o["class"] == "IfcDoor"]
+    assert [(d["name"], d["host"], d["storey"], d["width"], d["height"], d["hinge"], d["swing"])
+            for d in doors] == [("porte", "murs_rdc", rez, 0.9, 2.1, "left", "in"),
+                                ("porte_chambre", "cloison", etage, 0.9, 2.1, "right", "out")]
+    windows = [(o["storey"], o["sill"], o["head"]) for o in frame["openings"]
+               if o["class"] == "IfcWindow"]
+    assert windows == [(rez, 0.9, 2.2)] * 2 + [(etage, 3.9, 5.2)] * 3
+    assert [(s["name"], s["storey"], s["floor_area"], s["volume"]) for s in frame["spaces"]] == [
+        ("Séjour", rez, 41.25, pytest.approx(41.25 * 2.8)),
+        ("Chambre", etage, 20.625, pytest.approx(20.625 * 2.8)),
+        ("Bureau", etage, pytest.approx(3.65 * 5.5), pytest.approx(3.65 * 5.5 * 2.8))]
