@@ -165,27 +165,20 @@ class Interpreter:
     def _classify(self, statement: ObjectDef) -> None:
         """The class the comment on an object's definition gives it (LANGUAGE.md §11);
         what cannot be understood is a warning, and the object is unclassed."""
-        found = self._comment(statement.location)
-        if found is None or not found[0].lstrip().startswith("["):
+        where = statement.location
+        lines = self.reporter.source_lines
+        text = lines.get((where.file, where.line))
+        if text is None or ("//" not in text and ";" in text[where.column - 1:]):
             return
-        from castor.language.classes import Problem, read_object_annotation
+        from castor.language.classes import object_classes
 
-        text, at, crowded = found
-        if crowded:
-            lead = len(text) - len(text.lstrip())
-            problem = Problem(f"annotation: this line holds more than one statement, so the "
-                              f"annotation does not say which it is for; put the definition "
-                              f"of '{statement.name}' on a line of its own",
-                              at._replace(column=at.column + lead))
-            classification = None
-        else:
-            classification, problem = read_object_annotation(text, at)
-        if problem is not None:
-            self.reporter.warning(problem.message, problem.location)
-        if classification is not None:
-            where = statement.location
-            self.classified[(where.file, where.line, where.column)] = classification
-            self.declared_changed = True
+        for _, _, classification, problem in object_classes(
+                [(statement.name, where)], lambda file, number: lines.get((file, number))):
+            if problem is not None:
+                self.reporter.warning(problem.message, problem.location)
+            if classification is not None:
+                self.classified[(where.file, where.line, where.column)] = classification
+                self.declared_changed = True
 
     def _stray_annotation(self, statement: Facetize) -> None:
         """An annotation on a '>' command says nothing of anything: a warning."""

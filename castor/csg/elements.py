@@ -266,96 +266,111 @@ def without_spaces(scene: tree.FrameTree) -> tree.FrameTree:
     """The frame with every use of a ``space`` object taken out (its objects and
     shared subtrees rebuilt where they held one), the spaces in ``spaces``; a
     '>' object that was only a space is left out."""
-    declared = scene.classes
-    holds: dict[str, bool] = {}
-    rebuilt: dict[str, tree.Shared | None] = {}
-
-    def is_space(node) -> bool:
-        if type(node) is not tree.Use:
-            return False
-        mark = declared.of(node.shared.location)
-        return mark is not None and mark.role == "space"
-
-    def has_space(node) -> bool:
-        kind = type(node)
-        if kind is tree.Use:
-            key = node.shared.key
-            if key not in holds:
-                holds[key] = is_space(node) or (node.shared.child is not None
-                                                and has_space(node.shared.child))
-            return holds[key]
-        if kind is tree.Boolean:
-            return any(has_space(o) for o in node.operands)
-        if kind is tree.Smooth:
-            return has_space(node.operand)
-        return False
-
-    spaces: list[SpaceUse] = []
-
-    def strip(node, matrix):
-        if not has_space(node):
-            return node
-        kind = type(node)
-        if kind is tree.Use:
-            placed = tree.compose(matrix, node.matrix)
-            shared = node.shared
-            if is_space(node):
-                spaces.append(SpaceUse(shared.name, declared.of(shared.location), placed,
-                                       shared, _where(shared.location)))
-                return None
-            if shared.key not in rebuilt:
-                child = strip(shared.child, placed)
-                rebuilt[shared.key] = None if child is None else tree.Shared(
-                    shared.name, child, tree.content_key(shared.name, child), shared.location)
-            else:
-                _collect(shared.child, placed)
-            new = rebuilt[shared.key]
-            return None if new is None else tree.Use(node.matrix, node.path, new)
-        if kind is tree.Smooth:
-            operand = strip(node.operand, tree.compose(matrix, node.matrix))
-            if operand is None:
-                return None
-            return tree.Smooth(node.angle, node.matrix, operand, node.tolerance,
-                               tree.smooth_key(node.angle, node.tolerance, operand), node.location)
-        operands = [strip(o, matrix) for o in node.operands]
-        if node.op == "D":
-            if operands[0] is None:
-                return None
-            if operands[1] is None:
-                return operands[0]
-        elif node.op == "I" and any(o is None for o in operands):
-            return None
-        operands = [o for o in operands if o is not None]
-        if not operands:
-            return None
-        if len(operands) == 1 and node.op != "D":
-            return operands[0]
-        return tree.Boolean(node.op, tuple(operands), node.location)
-
-    def _collect(node, matrix) -> None:
-        """The spaces under a subtree already rebuilt (used again elsewhere)."""
-        if not has_space(node):
-            return
-        kind = type(node)
-        if kind is tree.Use:
-            placed = tree.compose(matrix, node.matrix)
-            if is_space(node):
-                spaces.append(SpaceUse(node.shared.name, declared.of(node.shared.location),
-                                       placed, node.shared, _where(node.shared.location)))
-            elif node.shared.child is not None:
-                _collect(node.shared.child, placed)
-        elif kind is tree.Smooth:
-            _collect(node.operand, tree.compose(matrix, node.matrix))
-        elif kind is tree.Boolean:
-            for o in node.operands:
-                _collect(o, matrix)
-
+    stripper = _Stripper(scene.classes)
     objects = []
     for obj in scene.objects:
         if obj.root is None:
             objects.append(obj)
             continue
-        root = strip(obj.root, tree.IDENTITY)
-        if root is not None or not has_space(obj.root):
+        root = stripper.strip(obj.root, tree.IDENTITY)
+        if root is not None or not stripper.has_space(obj.root):
             objects.append(obj if root is obj.root else tree.Object(obj.name, root, obj.where))
-    return scene.replace(objects=tuple(objects), spaces=tuple(spaces))
+    return scene.replace(objects=tuple(objects), spaces=tuple(stripper.spaces))
+
+
+class _Stripper:
+    """Takes the spaces out of a frame's trees, each shared subtree rebuilt once."""
+
+    def __init__(self, declared):
+        self.declared = declared
+        self.holds: dict[str, bool] = {}
+        self.rebuilt: dict[str, tree.Shared | None] = {}
+        self.spaces: list[SpaceUse] = []
+
+    def is_space(self, node) -> bool:
+        if type(node) is not tree.Use:
+            return False
+        mark = self.declared.of(node.shared.location)
+        return mark is not None and mark.role == "space"
+
+    def has_space(self, node) -> bool:
+        kind = type(node)
+        if kind is tree.Use:
+            key = node.shared.key
+            if key not in self.holds:
+                self.holds[key] = self.is_space(node) or (
+                    node.shared.child is not None and self.has_space(node.shared.child))
+            return self.holds[key]
+        if kind is tree.Boolean:
+            return any(self.has_space(o) for o in node.operands)
+        if kind is tree.Smooth:
+            return self.has_space(node.operand)
+        return False
+
+    def _note(self, node, placed) -> None:
+        shared = node.shared
+        self.spaces.append(SpaceUse(shared.name, self.declared.of(shared.location), placed,
+                                    shared, _where(shared.location)))
+
+    def strip(self, node, matrix):
+        """``node`` without its spaces (None when nothing is left); ``matrix``
+        places it in the scene."""
+        if not self.has_space(node):
+            return node
+        kind = type(node)
+        if kind is tree.Use:
+            placed = tree.compose(matrix, node.matrix)
+            shared = node.shared
+            if self.is_space(node):
+                self._note(node, placed)
+                return None
+            if shared.key not in self.rebuilt:
+                child = self.strip(shared.child, placed)
+                self.rebuilt[shared.key] = None if child is None else tree.Shared(
+                    shared.name, child, tree.content_key(shared.name, child), shared.location)
+            else:
+                self.collect(shared.child, placed)
+            new = self.rebuilt[shared.key]
+            return None if new is None else tree.Use(node.matrix, node.path, new)
+        if kind is tree.Smooth:
+            operand = self.strip(node.operand, tree.compose(matrix, node.matrix))
+            if operand is None:
+                return None
+            return tree.Smooth(node.angle, node.matrix, operand, node.tolerance,
+                               tree.smooth_key(node.angle, node.tolerance, operand), node.location)
+        return _boolean_of(node, [self.strip(o, matrix) for o in node.operands])
+
+    def collect(self, node, matrix) -> None:
+        """The spaces under a subtree already rebuilt (used again elsewhere)."""
+        if not self.has_space(node):
+            return
+        kind = type(node)
+        if kind is tree.Use:
+            placed = tree.compose(matrix, node.matrix)
+            if self.is_space(node):
+                self._note(node, placed)
+            elif node.shared.child is not None:
+                self.collect(node.shared.child, placed)
+        elif kind is tree.Smooth:
+            self.collect(node.operand, tree.compose(matrix, node.matrix))
+        elif kind is tree.Boolean:
+            for o in node.operands:
+                self.collect(o, matrix)
+
+
+def _boolean_of(node: tree.Boolean, operands: list):
+    """The boolean of what is left of its operands (None: empty), as the
+    evaluator makes one (castor.csg.evaluate)."""
+    if node.op == "D":
+        if operands[0] is None:
+            return None
+        if operands[1] is None:
+            return operands[0]
+    elif node.op == "I" and any(o is None for o in operands):
+        return None
+    operands = [o for o in operands if o is not None]
+    if not operands:
+        return None
+    if len(operands) == 1 and node.op != "D":
+        return operands[0]
+    return tree.Boolean(node.op, tuple(operands), node.location)

@@ -139,3 +139,17 @@ def test_params_lists_the_storeys(tmp_path: Path):
     assert found["M"]["control"] == "slider"
     warned = [line for line in run.stderr.splitlines() if ": warning: " in line]
     assert WARNINGS[0] in warned and WARNINGS[1] in warned
+
+
+def test_object_classes_for_an_editor():
+    from castor.language.classes import object_classes
+
+    lines = SCENE.split("\n")
+    definitions = [("murs", Location("s.cas", 6, 1)), ("p", Location("s.cas", 7, 1)),
+                   ("w", Location("s.cas", 13, 17))]
+    found = object_classes(definitions, lambda file, n: lines[n - 1] if n <= len(lines) else None)
+    (murs, _, wall, none), (p, _, unclassed, problem), (w, _, _, crowded) = found
+    assert (murs, wall.ifc_class, wall.description, none) == ("murs", "IfcWall", "façades", None)
+    assert unclassed is None and problem.location == Location("s.cas", 7, 30)
+    assert "did you mean wall?" in problem.message
+    assert "more than one statement" in crowded.message
