@@ -217,8 +217,9 @@ class Takeoff:
     solids out are new work)."""
 
     def __init__(self, scene, facetizer):
-        from castor.csg.elements import find
+        from castor.csg.elements import Boxes, find
 
+        self.boxes = Boxes()
         self.scene = scene
         self.facetizer = facetizer
         self.elements, self.openings = find(scene)
@@ -234,14 +235,21 @@ class Takeoff:
             else:
                 scene = tree.FrameTree(self.scene.number, self.scene.where, self.scene.location,
                                        (tree.Object(str(key), node),))
-                self._solids[key] = self.facetizer.frame(scene).objects[0]
+                # triangles: the figures are the same, and no polygons are written
+                merging = self.facetizer.merge_polygons
+                self.facetizer.merge_polygons = False
+                try:
+                    self._solids[key] = self.facetizer.frame(scene).objects[0]
+                finally:
+                    self.facetizer.merge_polygons = merging
         return self._solids[key]
 
     def solid(self, element) -> FrameObject:
         """The element's own solid, as polygons."""
         from castor.csg.elements import element_tree
 
-        return self._made(("element", element.number), element_tree(self.scene, element))
+        return self._made(("element", element.number),
+                          element_tree(self.scene, element, self.boxes))
 
     def figures(self, element) -> Figures:
         return object_figures(self.solid(element), element.name)

@@ -201,7 +201,70 @@ def _wrap(use: tree.Use, child, suffix: str) -> tree.Use:
                                 shared.location))
 
 
-def _reach(node, address, target):
+class Boxes:
+    """Boxes that hold the solids of tree nodes, from their primitives' boxes
+    (never smaller than the solid; a difference keeps its first operand's),
+    each shared subtree's made once: what lets an element's tree leave out the
+    operands its solid cannot meet."""
+
+    def __init__(self):
+        self.memo: dict[str, tuple | None] = {}
+
+    def of(self, node):
+        kind = type(node)
+        if kind is tree.Primitive:
+            from castor.primitives import PRIMITIVES
+
+            low, high = PRIMITIVES[node.kind].box(node.shape)
+            return _moved(node.matrix, (tuple(low), tuple(high)))
+        if kind is tree.Use:
+            key = node.shared.key
+            if key not in self.memo:
+                child = node.shared.child
+                self.memo[key] = None if child is None else self.of(child)
+            box = self.memo[key]
+            return None if box is None else _moved(node.matrix, box)
+        if kind is tree.Smooth:
+            box = self.of(node.operand)
+            return None if box is None else _moved(node.matrix, box)
+        boxes = [self.of(o) for o in node.operands]
+        if node.op == "D":
+            return boxes[0]
+        if node.op == "U":
+            boxes = [b for b in boxes if b is not None]
+            if not boxes:
+                return None
+            return (tuple(min(b[0][i] for b in boxes) for i in range(3)),
+                    tuple(max(b[1][i] for b in boxes) for i in range(3)))
+        if any(b is None for b in boxes):
+            return None
+        low = tuple(max(b[0][i] for b in boxes) for i in range(3))
+        high = tuple(min(b[1][i] for b in boxes) for i in range(3))
+        return (low, high) if all(a <= b for a, b in zip(low, high)) else None
+
+    def meet(self, a, b) -> bool:
+        box_a, box_b = self.of(a), self.of(b)
+        return box_a is not None and box_b is not None and all(
+            box_a[0][i] <= box_b[1][i] and box_b[0][i] <= box_a[1][i] for i in range(3))
+
+
+def _moved(matrix: tree.Matrix, box):
+    """The box that holds ``box`` moved by ``matrix``."""
+    if matrix == tree.IDENTITY:
+        return box
+    low, high = box
+    out_low, out_high = [], []
+    for row in range(3):
+        a, b, c, t = matrix[4 * row: 4 * row + 4]
+        centre = (a * (low[0] + high[0]) + b * (low[1] + high[1]) + c * (low[2] + high[2])) / 2 + t
+        reach = (abs(a) * (high[0] - low[0]) + abs(b) * (high[1] - low[1])
+                 + abs(c) * (high[2] - low[2])) / 2
+        out_low.append(centre - reach)
+        out_high.append(centre + reach)
+    return tuple(out_low), tuple(out_high)
+
+
+def _reach(node, address, target, boxes: Boxes):
     """The part of ``node``'s solid whose way down leads to the node at
     ``address``, that node replaced by ``target(node)``."""
     if not address:
@@ -209,10 +272,11 @@ def _reach(node, address, target):
     k, rest = address[0], address[1:]
     kind = type(node)
     if kind is tree.Use:
-        return _wrap(node, _reach(node.shared.child, rest, target), "#part")
-    inner = _reach(node.operands[k], rest, target)
+        return _wrap(node, _reach(node.shared.child, rest, target, boxes), "#part")
+    inner = _reach(node.operands[k], rest, target, boxes)
     if node.op == "U":
-        before = node.operands[:k]
+        # the operands before it have what they share with it: those it meets
+        before = tuple(o for o in node.operands[:k] if boxes.meet(o, node.operands[k]))
         if not before:
             return inner
         other = before[0] if len(before) == 1 else tree.Boolean("U", before, node.location)
@@ -223,20 +287,22 @@ def _reach(node, address, target):
     return tree.Boolean("I", (inner,) + others, node.location)
 
 
-def _less_parts(node, parts, location):
+def _less_parts(node, parts, location, boxes: Boxes):
     """``node``'s solid less the solids its classed parts take."""
     if not parts:
         return node
-    taken = [_reach(node, p, lambda n: n) for p in parts]
+    taken = [_reach(node, p, lambda n: n, boxes) for p in parts]
     other = taken[0] if len(taken) == 1 else tree.Boolean("U", tuple(taken), location)
     return tree.Boolean("D", (node, other), location)
 
 
-def element_tree(scene: tree.FrameTree, element: Element):
-    """The CSG tree, in scene units, of the element's own solid."""
+def element_tree(scene: tree.FrameTree, element: Element, boxes: Boxes | None = None):
+    """The CSG tree, in scene units, of the element's own solid (``boxes``:
+    those of the frame's nodes, kept from one element to the next)."""
+    boxes = Boxes() if boxes is None else boxes
     root = scene.objects[element.object].root
     return _reach(root, element.address,
-                  lambda node: _less_parts(node, element.parts, scene.location))
+                  lambda node: _less_parts(node, element.parts, scene.location, boxes), boxes)
 
 
 def opening_tree(scene: tree.FrameTree, opening: Opening):

@@ -177,3 +177,18 @@ def test_pavilion_take_off_by_hand(tmp_path: Path):
         ("Séjour", rez, 41.25, pytest.approx(41.25 * 2.8)),
         ("Chambre", etage, 20.625, pytest.approx(20.625 * 2.8)),
         ("Bureau", etage, pytest.approx(3.65 * 5.5), pytest.approx(3.65 * 5.5 * 2.8))]
+
+
+def test_spaces_are_absent_from_drawings(tmp_path: Path):
+    """A plan through a room is the plan without it, byte for byte."""
+    wall = "mur = @t(-5, 3, 0) @h(10, 0.2, 3) !cu(0.5, 0.5, 0.5);\n"
+    room = 'piece = @t(-1, -1, 0) @h(2, 2, 2.5) !cu(1, 0, 0); // [space "Salon"]\n'
+    (tmp_path / "a.cas").write_text(wall + room + "> $U(mur, piece);\n")
+    (tmp_path / "b.cas").write_text(wall + "\n> $U(mur);\n")
+    for name in ("a", "b"):
+        run = castor("-q", f"{name}.cas", "-o", f"{name}.svg", "--section", "z=1",
+                     "--title", "plan", cwd=tmp_path)
+        assert run.returncode == 0, run.stderr
+    a = (tmp_path / "a.svg").read_text().replace("a.cas", "X")
+    b = (tmp_path / "b.svg").read_text().replace("b.cas", "X")
+    assert a == b
