@@ -148,6 +148,32 @@ def summary_record(frame: Frame, scene=None, facetizer=None) -> dict:
     return record
 
 
+class Summary:
+    """Collects each frame's record; ``text`` is the --summary document."""
+
+    def __init__(self):
+        self.frames: list[dict] = []
+
+    def add(self, frame: Frame) -> None:
+        self.frames.append(summary_record(frame))
+
+    def text(self) -> str:
+        frames = sorted(self.frames, key=lambda record: record["number"])
+        # one line per object (per class total, opening, space): readable, and
+        # still easy for grep
+        parts = []
+        for record in frames:
+            head = json.dumps({k: v for k, v in record.items()
+                               if not isinstance(v, list)})[:-1]
+            for key, items in record.items():
+                if not isinstance(items, list):
+                    continue
+                listed = ",\n   ".join(json.dumps(o) for o in items)
+                head += (f', "{key}": [\n   {listed}]' if listed else f', "{key}": []')
+            parts.append(f" {head}}}")
+        return '{"frames": [\n' + ",\n".join(parts) + "]}\n"
+
+
 # --- the take-off by class and storey (LANGUAGE.md §11)
 
 LEVEL_SLACK = 0.01  # levels this close are one; an element this far below a level is on it
@@ -210,11 +236,95 @@ def shells(obj: FrameObject) -> list[FrameObject]:
     return pieces
 
 
+def footprint(vertices: np.ndarray) -> tuple[float, float, tuple[float, float]]:
+    """The smallest rectangle around the vertices seen from above: its long
+    side, its short side and the long side's direction. A block cut in a wall
+    at any angle has the wall's length along the long side and its thickness
+    across it."""
+    points = np.unique(np.round(vertices[:, :2], 9), axis=0)
+    if len(points) < 3:
+        span = points.max(axis=0) - points.min(axis=0) if len(points) else np.zeros(2)
+        return float(max(span)), float(min(span)), (1.0, 0.0)
+    hull = _hull(points)
+    edges = np.roll(hull, -1, axis=0) - hull
+    lengths = np.linalg.norm(edges, axis=1)
+    keep = lengths > 1e-12
+    along = edges[keep] / lengths[keep, None]
+    across = np.stack([-along[:, 1], along[:, 0]], axis=1)
+    u = hull @ along.T  # (points, directions)
+    v = hull @ across.T
+    a, b = u.max(axis=0) - u.min(axis=0), v.max(axis=0) - v.min(axis=0)
+    best = int(np.argmin(a * b))
+    # prefer the axes when they are as good (a box in a wall along x or y)
+    spans = hull.max(axis=0) - hull.min(axis=0)
+    if spans.prod() <= a[best] * b[best] * (1 + 1e-9):
+        return (float(spans.max()), float(spans.min()),
+                (1.0, 0.0) if spans[0] >= spans[1] else (0.0, 1.0))
+    if a[best] >= b[best]:
+        return float(a[best]), float(b[best]), tuple(map(float, along[best]))
+    return float(b[best]), float(a[best]), tuple(map(float, across[best]))
+
+
+def _hull(points: np.ndarray) -> np.ndarray:
+    """The convex hull of a few points in the plane, counter-clockwise
+    (Andrew's monotone chain; ``points`` sorted and distinct)."""
+    def half(seq):
+        chain: list = []
+        for p in seq:
+            while len(chain) >= 2 and _turn(chain[-2], chain[-1], p) <= 0:
+                chain.pop()
+            chain.append(p)
+        return chain[:-1]
+
+    return np.array(half(points) + half(points[::-1]))
+
+
+def _turn(a, b, c) -> float:
+    return float((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+
+
+class Placed(NamedTuple):
+    """An element measured and put on its storey."""
+
+    element: object  # castor.csg.elements.Element
+    figures: Figures
+    storey: str
+
+
+class Block(NamedTuple):
+    """One opening: a separate block a door or window cut out of its element."""
+
+    opening: object  # castor.csg.elements.Opening
+    piece: int  # which of the opening's blocks, from 0
+    solid: FrameObject
+    figures: Figures
+    host: object  # the Element it was cut from (by the boxes), or None
+    storey: str
+    width: float  # along the wall (the long side of its plan)
+    thickness: float  # across it: the wall's
+    height: float
+    sill: float
+    head: float
+    direction: tuple[float, float]  # of the width, in plan
+
+
+class Room(NamedTuple):
+    """A space measured: its name, storey, floor area and volume."""
+
+    space: object  # castor.csg.elements.SpaceUse
+    name: str  # the annotation's room name, else the object's
+    storey: str
+    floor_area: float
+    volume: float
+    solid: FrameObject
+
+
 class Takeoff:
     """The elements, openings, storeys and spaces of one frame, their solids made
     when first asked for, with the facetizer that made the frame (its caches
     hold the frame's shared subtrees, so only the booleans that part the
-    solids out are new work)."""
+    solids out are new work). What the take-off, the drawings and the IFC
+    handover read of a frame's classes."""
 
     def __init__(self, scene, facetizer):
         from castor.csg.elements import Boxes, find
@@ -224,6 +334,8 @@ class Takeoff:
         self.facetizer = facetizer
         self.elements, self.openings = find(scene)
         self._solids: dict = {}
+        self._storeys: list[tuple[str, float]] | None = None
+        self._placed: list[Placed] | None = None
 
     def _made(self, key, node) -> FrameObject:
         if key not in self._solids:
@@ -254,12 +366,6 @@ class Takeoff:
     def figures(self, element) -> Figures:
         return object_figures(self.solid(element), element.name)
 
-    def opening_pieces(self, opening) -> list[FrameObject]:
-        """The separate blocks the door or window took out of its element."""
-        from castor.csg.elements import opening_tree
-
-        return shells(self._made(("opening", opening.number), opening_tree(self.scene, opening)))
-
     def space_solid(self, index: int) -> FrameObject:
         from castor.csg import tree
 
@@ -268,13 +374,18 @@ class Takeoff:
 
     def storeys(self) -> list[tuple[str, float]]:
         """(name, floor level) from the lowest: LANGUAGE.md §11's rule."""
+        if self._storeys is None:
+            self._storeys = self._find_storeys()
+        return self._storeys
+
+    def _find_storeys(self) -> list[tuple[str, float]]:
         declared = self.scene.classes.storeys
         values = dict(self.scene.parameters)
         found = [(m.name, float(values[m.parameter])) for m in declared if m.parameter in values]
         if found:
             return sorted(found, key=lambda s: s[1])
-        tops = sorted(f.bbox[1][2] for f in (self.figures(e) for e in self._floor_slabs())
-                      if f.bbox is not None)
+        tops = sorted(f.bbox[1][2] for f in (self.figures(e) for e in self.elements
+                                             if _is_floor(e)) if f.bbox is not None)
         levels: list[float] = []
         for top in tops:
             if not levels or top - levels[-1] > LEVEL_SLACK:
@@ -283,105 +394,102 @@ class Takeoff:
             return [("Level 0", 0.0)]
         return [(f"Level {k}", level) for k, level in enumerate(levels)]
 
-    def _floor_slabs(self):
-        return [e for e in self.elements if e.classification is not None
-                and e.classification.ifc_class == "IfcSlab"
-                and e.classification.predefined == "floor"]
-
-    @staticmethod
-    def storey_at(storeys, height: float) -> str:
+    def storey_at(self, height: float) -> str:
         """The highest storey whose level is at most ``height`` (+ the slack), or
         the lowest."""
+        storeys = self.storeys()
         chosen = storeys[0][0]
         for name, level in storeys:
             if level <= height + LEVEL_SLACK:
                 chosen = name
         return chosen
 
-    def record(self) -> dict:
-        """What --summary adds to a frame: storeys, totals per class and storey,
-        openings, spaces."""
-        storeys = self.storeys()
-        totals: dict[tuple[str, str], list] = {}
-        floor = set(e.number for e in self._floor_slabs())
-        hosts = []
-        for element in self.elements:
-            f = self.figures(element)
-            if f.bbox is None:
-                continue  # the rest of an object wholly made of classed parts
-            height = f.bbox[1][2] if element.number in floor else f.bbox[0][2]
-            storey = self.storey_at(storeys, height)
-            total = totals.setdefault((element.ifc_class, storey), [0, 0.0, 0.0])
-            total[0] += 1
-            total[1] += f.volume
-            total[2] += f.area
-            hosts.append((element, f.bbox))
-        order = {name: k for k, (name, _) in enumerate(storeys)}
-        classes = [{"class": c, "storey": s, "count": n, "volume": _number(v), "area": _number(a)}
-                   for (c, s), (n, v, a) in sorted(totals.items(),
-                                                   key=lambda i: (order[i[0][1]], i[0][0]))]
-        openings = []
+    def placed(self) -> list[Placed]:
+        """Every element with a solid, measured, on its storey (by its bottom; a
+        floor slab by its top)."""
+        if self._placed is None:
+            self._placed = []
+            for element in self.elements:
+                f = self.figures(element)
+                if f.bbox is None:
+                    continue  # the rest of an object wholly made of classed parts
+                height = f.bbox[1][2] if _is_floor(element) else f.bbox[0][2]
+                self._placed.append(Placed(element, f, self.storey_at(height)))
+        return self._placed
+
+    def blocks(self) -> list[Block]:
+        """Every opening's blocks, in the order of the openings."""
+        from castor.csg.elements import opening_tree
+
+        out = []
         for opening in self.openings:
-            for piece in self.opening_pieces(opening):
-                openings.append(self._opening_record(opening, piece, hosts, storeys))
-        spaces = []
+            whole = self._made(("opening", opening.number), opening_tree(self.scene, opening))
+            for k, piece in enumerate(shells(whole)):
+                f = object_figures(piece, opening.name)
+                (_, _, z0), (_, _, z1) = f.bbox
+                width, thickness, direction = footprint(piece.vertices)
+                out.append(Block(opening, k, piece, f, _host(self.placed(), f.bbox),
+                                 self.storey_at(z0), width, thickness, z1 - z0, z0, z1,
+                                 direction))
+        return out
+
+    def rooms(self) -> list[Room]:
+        out = []
         for index, space in enumerate(self.scene.spaces):
             solid = self.space_solid(index)
             f = object_figures(solid, space.name)
             if f.bbox is None:
                 continue
             bottom = f.bbox[0][2]
-            spaces.append({"name": space.classification.long_name or space.name,
-                           "object": space.name, "storey": self.storey_at(storeys, bottom),
-                           "floor_area": _number(section_area(solid, bottom + 1e-3)),
-                           "volume": _number(f.volume)})
-        return {"storeys": [{"name": n, "level": _number(level)} for n, level in storeys],
-                "classes": classes, "openings": openings, "spaces": spaces}
-
-    def _opening_record(self, opening, piece, hosts, storeys) -> dict:
-        f = object_figures(piece, opening.name)
-        (x0, y0, z0), (x1, y1, z1) = f.bbox
-        host = _host(hosts, f.bbox)
-        out = {"class": opening.classification.ifc_class, "name": opening.name,
-               "host": host.name if host is not None else None,
-               "storey": self.storey_at(storeys, z0),
-               "width": _number(max(x1 - x0, y1 - y0)), "height": _number(z1 - z0),
-               "sill": _number(z0), "head": _number(z1), "volume": _number(f.volume)}
-        out.update(opening.classification.settings)
+            out.append(Room(space, space.classification.long_name or space.name,
+                            self.storey_at(bottom), section_area(solid, bottom + 1e-3),
+                            f.volume, solid))
         return out
 
+    def record(self) -> dict:
+        """What --summary adds to a frame: storeys, totals per class and storey,
+        openings, spaces."""
+        totals: dict[tuple[str, str], list] = {}
+        for p in self.placed():
+            total = totals.setdefault((p.element.ifc_class, p.storey), [0, 0.0, 0.0])
+            total[0] += 1
+            total[1] += p.figures.volume
+            total[2] += p.figures.area
+        order = {name: k for k, (name, _) in enumerate(self.storeys())}
+        classes = [{"class": c, "storey": s, "count": n, "volume": _number(v), "area": _number(a)}
+                   for (c, s), (n, v, a) in sorted(totals.items(),
+                                                   key=lambda i: (order[i[0][1]], i[0][0]))]
+        openings = []
+        for b in self.blocks():
+            openings.append({
+                "class": b.opening.classification.ifc_class, "name": b.opening.name,
+                "host": b.host.name if b.host is not None else None, "storey": b.storey,
+                "width": _number(b.width), "height": _number(b.height), "sill": _number(b.sill),
+                "head": _number(b.head), "volume": _number(b.figures.volume),
+                **dict(b.opening.classification.settings)})
+        spaces = [{"name": r.name, "object": r.space.name, "storey": r.storey,
+                   "floor_area": _number(r.floor_area), "volume": _number(r.volume)}
+                  for r in self.rooms()]
+        return {"storeys": [{"name": n, "level": _number(level)} for n, level in self.storeys()],
+                "classes": classes, "openings": openings, "spaces": spaces}
 
-def _host(hosts, box):
+
+def _is_floor(element) -> bool:
+    c = element.classification
+    return c is not None and c.ifc_class == "IfcSlab" and c.predefined == "floor"
+
+
+def _host(placed: list[Placed], box):
     """The element whose box holds most of the opening's box; of those that
     hold as much, the one whose box is smallest (a wall rather than the house)."""
     best, rank = None, None
     low, high = np.asarray(box[0]), np.asarray(box[1])
-    for element, (a, b) in hosts:
+    for p in placed:
+        a, b = p.figures.bbox
         overlap = float(np.clip(np.minimum(high, b) - np.maximum(low, a), 0, None).prod())
         if overlap <= 0:
             continue
         key = (-round(overlap, 9), float(np.prod(np.subtract(b, a))))
         if rank is None or key < rank:
-            best, rank = element, key
+            best, rank = p.element, key
     return best
-
-
-class Summary:
-    """Collects each frame's record; ``text`` is the --summary document."""
-
-    def __init__(self):
-        self.frames: list[dict] = []
-
-    def add(self, frame: Frame) -> None:
-        self.frames.append(summary_record(frame))
-
-    def text(self) -> str:
-        frames = sorted(self.frames, key=lambda record: record["number"])
-        # one line per object: readable, and still easy for grep
-        parts = []
-        for record in frames:
-            head = json.dumps({k: v for k, v in record.items() if k != "objects"})[:-1]
-            objects = ",\n   ".join(json.dumps(o) for o in record["objects"])
-            parts.append(f' {head}, "objects": [\n   {objects}]}}' if objects
-                         else f' {head}, "objects": []}}')
-        return '{"frames": [\n' + ",\n".join(parts) + "]}\n"

@@ -192,3 +192,28 @@ def test_spaces_are_absent_from_drawings(tmp_path: Path):
     a = (tmp_path / "a.svg").read_text().replace("a.cas", "X")
     b = (tmp_path / "b.svg").read_text().replace("b.cas", "X")
     assert a == b
+
+
+def test_an_opening_in_a_wall_at_an_angle_is_as_wide_as_its_window(tmp_path: Path):
+    text = ("fenetre = @t(2, -0.5, 1) @h(1.2, 1.25, 1.3) !cu(0, 0, 1); // [window]\n"
+            "mur = @rz(30) $D(@h(5, 0.25, 2.5) !cu(1, 1, 1), fenetre); // [wall]\n"
+            "> mur;\n")
+    (window,) = summary(tmp_path, text)["openings"]
+    assert window["width"] == pytest.approx(1.2) and window["height"] == pytest.approx(1.3)
+    assert window["volume"] == pytest.approx(1.2 * 0.25 * 1.3)
+    assert (window["sill"], window["head"]) == (1, 2.3)
+
+
+def test_footprint_of_a_turned_block():
+    import numpy as np
+
+    from castor.quantities import footprint
+
+    corners = np.array([[x, y, z] for x in (0, 2) for y in (0, 0.3) for z in (0, 1)], float)
+    turn = np.radians(40)
+    rotation = np.array([[np.cos(turn), -np.sin(turn), 0], [np.sin(turn), np.cos(turn), 0],
+                         [0, 0, 1]])
+    width, thickness, direction = footprint(corners @ rotation.T)
+    assert (width, thickness) == (pytest.approx(2), pytest.approx(0.3))
+    assert abs(np.dot(direction, (np.cos(turn), np.sin(turn)))) == pytest.approx(1)
+    assert footprint(corners)[:2] == (2, 0.3)
