@@ -315,11 +315,13 @@ def outside(annotation: Annotation, value: float | None) -> str | None:
     return None
 
 
-def read_comment(text: str, location: Location, value: float | None = None
-                 ) -> tuple[Annotation, str | None, Malformed | None]:
+def read_comment(text: str, location: Location, value: float | None = None,
+                 crowded: bool = False) -> tuple[Annotation, str | None, Malformed | None]:
     """A parameter's comment (``location``: where its text starts): its
     annotation, the storey it declares (LANGUAGE.md §11) and what is wrong
-    with it, a value out of the control's reach included."""
+    with it, a value out of the control's reach included. ``crowded``: another
+    statement stands before the definition on its line (a storey is then not
+    said of it)."""
     from castor.language.classes import is_class_annotation, read_parameter_annotation
 
     if is_class_annotation(text):
@@ -328,6 +330,12 @@ def read_comment(text: str, location: Location, value: float | None = None
         close = lead.find("]")
         description = lead[close + 1:].strip() if close >= 0 else ""
         annotation = Annotation(description=description)
+        if crowded:
+            at = Location(location.file, location.line,
+                          location.column + len(text) - len(text.lstrip()))
+            return annotation, None, Malformed(
+                "annotation: this line holds more than one statement, so the annotation does "
+                "not say which it is for; put the definition on a line of its own", at)
         if problem is not None:
             return annotation, None, Malformed(problem.message, problem.location)
         return annotation, storey.name, None
@@ -352,7 +360,13 @@ def malformed(line: str, location: Location, value: float | None = None) -> Malf
     if comment is None:
         return None
     text, start = comment
-    return read_comment(text, Location(location.file, location.line, start + 1), value)[2]
+    return read_comment(text, Location(location.file, location.line, start + 1), value,
+                        _crowded(line, location))[2]
+
+
+def _crowded(line: str, location: Location) -> bool:
+    """Whether a statement stands before the one starting at ``location`` on its line."""
+    return bool(_without_comments(line[:max(location.column - 1, 0)]).strip())
 
 
 def storey_of(line: str, location: Location) -> str | None:
@@ -362,13 +376,8 @@ def storey_of(line: str, location: Location) -> str | None:
     if comment is None or "storey" not in comment[0]:
         return None
     text, start = comment
-    from castor.language.classes import is_class_annotation, read_parameter_annotation
-
-    if not is_class_annotation(text):
-        return None
-    mark, _ = read_parameter_annotation("", text, Location(location.file, location.line,
-                                                           start + 1))
-    return None if mark is None else mark.name
+    return read_comment(text, Location(location.file, location.line, start + 1), None,
+                        _crowded(line, location))[1]
 
 
 def annotate(definitions, source_text) -> tuple[list[Parameter], list[Malformed]]:
@@ -404,7 +413,8 @@ def annotate(definitions, source_text) -> tuple[list[Parameter], list[Malformed]
         if comment is not None:
             text, start = comment
             annotation, storey, warning = read_comment(
-                text, Location(location.file, location.line, start + 1), value)
+                text, Location(location.file, location.line, start + 1), value,
+                _crowded(line, location))
             if warning is not None:
                 warnings.append(warning)
             if storey == "":

@@ -153,3 +153,17 @@ def test_object_classes_for_an_editor():
     assert unclassed is None and problem.location == Location("s.cas", 7, 30)
     assert "did you mean wall?" in problem.message
     assert "more than one statement" in crowded.message
+
+
+def test_storeys_a_crowded_line_and_a_storey_without_a_name(tmp_path: Path):
+    (tmp_path / "s.cas").write_text('R0 = 0; R1 = 3; // [storey "x"]\nK = 1; // [storey]\n'
+                                    "w = @h(1, 1, 1) !cu(1, 1, 1);\n> w;\n")
+    run = castor("--params", "s.cas", cwd=tmp_path)
+    found = {p["name"]: p.get("storey") for p in json.loads(run.stdout)["parameters"]}
+    assert found == {"R0": None, "R1": None, "K": "K"}
+    assert run.stderr.splitlines()[0] == (
+        "s.cas:1:20: warning: annotation: this line holds more than one statement, so the "
+        "annotation does not say which it is for; put the definition on a line of its own")
+    check = castor("--check", "s.cas", cwd=tmp_path)
+    assert check.stderr.splitlines()[0] == run.stderr.splitlines()[0]
+    assert check.stderr.count("warning") == 1
