@@ -379,7 +379,7 @@ class Takeoff:
         return self._storeys
 
     def _find_storeys(self) -> list[tuple[str, float]]:
-        declared = self.scene.classes.storeys
+        declared = self.scene.classes.storeys if self.scene.classes is not None else ()
         values = dict(self.scene.parameters)
         found = [(m.name, float(values[m.parameter])) for m in declared if m.parameter in values]
         if found:

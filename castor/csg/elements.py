@@ -140,6 +140,8 @@ class _Finder:
         for k, child in enumerate(_children(node)):
             if self.has_classes(child):
                 self.walk(child, index, address + (k,), owner)
+                if type(node) is tree.Boolean and node.op == "I":
+                    return  # the classed objects of the other operands are this one's
 
     def _cutters(self, node, index: int, address: tuple[int, ...], cut: tuple[int, ...]) -> None:
         """Doors and windows in the subtracted operand of a '$D', through unions."""

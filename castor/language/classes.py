@@ -264,8 +264,10 @@ def read_object_annotation(text: str, location: Location) -> tuple[Classificatio
                              "object is unclassed", at)
     info = BY_NAME.get(head.lower())
     if info is None:
-        return None, Problem(f"annotation: unknown class '{head}'"
-                             f"{_closest(head, BY_NAME) or _closest(head, [STOREY])}"
+        names = {n: (BY_NAME[n].ifc if n.startswith("ifc") else n) for n in BY_NAME}
+        close = difflib.get_close_matches(head.lower(), list(names) + [STOREY], n=1, cutoff=0.6)
+        hint = f" (did you mean {names.get(close[0], STOREY)}?)" if close else ""
+        return None, Problem(f"annotation: unknown class '{head}'{hint}"
                              f"; the object is unclassed", at)
     predefined, long_name = None, None
     settings = {s.name: s.default for s in info.settings}

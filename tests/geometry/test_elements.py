@@ -217,3 +217,51 @@ def test_footprint_of_a_turned_block():
     assert (width, thickness) == (pytest.approx(2), pytest.approx(0.3))
     assert abs(np.dot(direction, (np.cos(turn), np.sin(turn)))) == pytest.approx(1)
     assert footprint(corners)[:2] == (2, 0.3)
+
+
+from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E402
+
+CLASSES = [None, "wall", "door", "window", "space", "slab floor", "column"]
+
+
+@st.composite
+def classed_scenes(draw):
+    """Scenes of boxes and booleans of earlier objects, each maybe classed."""
+    lines = []
+    for k in range(draw(st.integers(2, 6))):
+        if k < 2 or draw(st.booleans()):
+            x, y, z = (draw(st.integers(0, 3)) * 0.5 for _ in range(3))
+            a, b, c = (draw(st.integers(1, 4)) * 0.5 for _ in range(3))
+            body = f"@t({x}, {y}, {z}) @h({a}, {b}, {c}) !cu(1, 1, 1)"
+        else:
+            op = draw(st.sampled_from(["$U", "$D", "$I"]))
+            first, second = draw(st.permutations(range(k)))[:2]
+            body = f"{op}(o{first}, o{second})"
+        mark = draw(st.sampled_from(CLASSES))
+        lines.append(f"o{k} = {body};" + (f" // [{mark}]" if mark else ""))
+    lines.append(f"> o{len(lines) - 1};")
+    return "\n".join(lines) + "\n"
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(classed_scenes())
+def test_the_elements_share_the_solid_out_without_overlap(text):
+    from castor.mesh.facetize import Facetizer
+    from castor.quantities import Takeoff, object_figures
+
+    trees, said = evaluated_frames(text)
+    assert "error" not in said
+    scene = trees[0]
+    facetizer = Facetizer()
+    frame = facetizer.frame(scene)
+    whole = sum(object_figures(obj, "").volume for obj in frame.objects)
+    takeoff = Takeoff(scene, facetizer)
+    parts = sum(p.figures.volume for p in takeoff.placed())
+    assert parts == pytest.approx(whole, abs=1e-6)
+    for block in takeoff.blocks():
+        assert block.figures.volume > 0 and block.height > 0
+    for room in takeoff.rooms():
+        span = room.solid.vertices.max(axis=0) - room.solid.vertices.min(axis=0)
+        assert 0 < room.floor_area <= span[0] * span[1] + 1e-9
+        assert room.volume <= room.floor_area * span[2] + 1e-9 or \
+            room.volume <= span.prod() + 1e-9

@@ -167,3 +167,22 @@ def test_storeys_a_crowded_line_and_a_storey_without_a_name(tmp_path: Path):
     check = castor("--check", "s.cas", cwd=tmp_path)
     assert check.stderr.splitlines()[0] == run.stderr.splitlines()[0]
     assert check.stderr.count("warning") == 1
+
+
+def test_an_ifc_name_misspelt_is_suggested_as_ifc_writes_it():
+    _, problem = read("[IfcWal]")
+    assert "(did you mean IfcWall?)" in problem.message
+
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(alphabet='[]"= wallsdoorhinge=leftstorey1:,./\\té', max_size=40))
+def test_no_annotation_text_breaks_the_reader(text):
+    from castor.language.annotations import read_comment
+
+    classification, problem = read(text)
+    assert classification is None or problem is None
+    annotation, storey, warning = read_comment(text, Location("f.cas", 1, 10), 3.0)
+    assert annotation.control in ("number", "slider", "choice")
