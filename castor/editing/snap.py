@@ -149,6 +149,7 @@ def _features(solids: Solids, view: _View, hit, number: int, face: int, found: d
     """Corners, midpoints, centres and edges near the hit; returns the hit
     face's plane (normal, offset) when it is flat, else None."""
     radius = RADIUS * view.metres(hit)
+    whole, solids = solids, solids.around(hit, 4 * radius + 10 * solids.step)
     near = solids.near(hit, radius)
     normals, offsets, centres, owners = solids.gathered(near)
     tolerance = 1e-9 * solids.size
@@ -158,7 +159,8 @@ def _features(solids: Solids, view: _View, hit, number: int, face: int, found: d
     mine = np.flatnonzero((owners == number) & (np.abs(normals @ hit - offsets) < 1e3 * tolerance)
                           & (normals @ normal > 1 - 1e-6))
     # centres of flat faces near the ray, where the solid has that face
-    close = np.flatnonzero(view.pixels(centres) <= RADIUS) if len(centres) else []
+    close = np.flatnonzero((view.pixels(centres) <= RADIUS) & _within(centres, hit, radius)) \
+        if len(centres) else []
     if len(close):
         there = solids.carries(normals[close], centres[close])
         found["centre"] = [(centres[k], "centre", int(owners[k])) for k in np.asarray(close)[there]]
@@ -168,14 +170,21 @@ def _features(solids: Solids, view: _View, hit, number: int, face: int, found: d
     plane = (normals[f], offsets[f])
     keep = distinct(normals, offsets, solids.size)
     others = [k for k in keep if abs(abs(normals[k] @ plane[0]) - 1) > _PARALLEL]
-    edges = _edges(solids, view, plane, normals[others], offsets[others])
-    found["edge"] = [(point, "edge", number) for point, _, _ in edges]
-    found["midpoint"] = [(m, "midpoint", number) for m in
-                         (_middle(solids, plane, line) for _, line, _ in edges[:3])
-                         if m is not None and view.pixels(m)[0] <= RADIUS]
     found["corner"] = [(c, "corner", number) for c in
-                       _corners(solids, view, plane, normals[keep], offsets[keep])]
+                       _corners(solids, view, hit, radius, plane, normals[keep], offsets[keep])]
+    if found["corner"]:
+        return plane  # the first feature in the order: no need to look further
+    edges = _edges(solids, view, hit, radius, plane, normals[others], offsets[others])
+    found["edge"] = [(point, "edge", number) for point, _ in edges]
+    middle = _middle(whole, plane, edges[0][1]) if edges else None
+    if middle is not None and view.pixels(middle)[0] <= RADIUS:
+        found["midpoint"] = [(middle, "midpoint", number)]
     return plane
+
+
+def _within(points: np.ndarray, hit: np.ndarray, radius: float) -> np.ndarray:
+    """The points near enough the hit for its neighbourhood to decide about them."""
+    return np.linalg.norm(points - hit, axis=1) <= 3 * radius
 
 
 def _line(plane, normal, offset):
@@ -188,18 +197,19 @@ def _line(plane, normal, offset):
     return start, u
 
 
-def _edges(solids: Solids, view: _View, plane, normals, offsets) -> list:
+def _edges(solids: Solids, view: _View, hit, radius: float, plane, normals, offsets) -> list:
     """The edges of the solid on the hit face's plane near the ray, nearest first:
-    (the point nearest the ray, its line, the other plane's normal)."""
+    (the point nearest the ray, its line)."""
     candidates = []
     for normal, offset in zip(normals, offsets):
         line = _line(plane, normal, offset)
         point = view.closest_on_line(*line)
-        if view.pixels(point)[0] <= RADIUS:
-            candidates.append((point, line, normal))
+        if view.pixels(point)[0] <= RADIUS and np.linalg.norm(point - hit) <= 3 * radius:
+            candidates.append((point, line))
     if not candidates:
         return []
-    ok = [_edge_along(solids, point[None], plane, line[1])[0] for point, line, _ in candidates]
+    ok = _edge_along(solids, np.array([c[0] for c in candidates]), plane,
+                     np.array([c[1][1] for c in candidates]))
     edges = [c for c, good in zip(candidates, ok) if good]
     edges.sort(key=lambda c: view.pixels(c[0])[0])
     return edges
@@ -235,9 +245,9 @@ def _middle(solids: Solids, plane, line) -> np.ndarray | None:
 
 
 def _edge_along(solids: Solids, points: np.ndarray, plane, u: np.ndarray) -> np.ndarray:
-    """Whether the solid has an edge along ``u`` at each point of a line in
-    ``plane``: the plane carries a face on one side of the line only, or the
-    solid's inside changes across it off the plane."""
+    """Whether the solid has an edge along ``u`` (one direction, or one for each
+    point) at each point of a line in ``plane``: the plane carries a face on
+    one side of the line only."""
     n = plane[0]
     w = np.cross(n, u)
     step, across = solids.step, solids.across
@@ -249,7 +259,7 @@ def _edge_along(solids: Solids, points: np.ndarray, plane, u: np.ndarray) -> np.
     return left != right
 
 
-def _corners(solids: Solids, view: _View, plane, normals, offsets) -> list:
+def _corners(solids: Solids, view: _View, hit, radius: float, plane, normals, offsets) -> list:
     """Points of the hit face's plane near the ray where three faces of the
     solid meet (planes whose normals span space)."""
     n1, o1 = plane
@@ -264,7 +274,7 @@ def _corners(solids: Solids, view: _View, plane, normals, offsets) -> list:
         return []
     b = np.column_stack([np.full(ok.sum(), o1), offsets[i[ok]], offsets[j[ok]]])
     points = np.linalg.solve(a[ok], b[:, :, None])[:, :, 0]
-    points = points[view.pixels(points) <= RADIUS]
+    points = points[(view.pixels(points) <= RADIUS) & _within(points, hit, radius)]
     if len(points) == 0:
         return []
     _, first = np.unique(np.round(points / (1e-9 * solids.size)), axis=0, return_index=True)

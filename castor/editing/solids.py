@@ -92,6 +92,7 @@ class Solids:
         self.step = 2e-6 * self.size
         self.across = self.step / 20
         self._planes: dict[int, Planes] = {}
+        self._region = None  # (low, high, the tree cut to that box): around()
 
     # --- points
 
@@ -101,7 +102,28 @@ class Solids:
         points = np.asarray(points, np.float64).reshape(-1, 3)
         if self.scene.root is None or len(points) == 0:
             return np.zeros(len(points), bool)
-        return _inside(self.scene.root, points, np.arange(len(points)))
+        if self._region is None:
+            return _inside(self.scene.root, points, np.arange(len(points)))
+        low, high, root = self._region
+        result = np.zeros(len(points), bool)
+        near = np.all((low <= points) & (points <= high), axis=1)
+        rows = np.flatnonzero(near)
+        if len(rows) and root is not None:
+            result[rows] = _inside(root, points, rows)
+        rows = np.flatnonzero(~near)
+        if len(rows):
+            result[rows] = _inside(self.scene.root, points, rows)
+        return result
+
+    def around(self, point: np.ndarray, radius: float) -> "Solids":
+        """The same solids, asked about points near ``point`` through a tree
+        cut down to the nodes whose boxes come within ``radius`` of it."""
+        local = Solids.__new__(Solids)
+        local.__dict__.update(self.__dict__)
+        low, high = point - radius, point + radius
+        local._region = (low, high, None if self.scene.root is None
+                         else _pruned(self.scene.root, low, high))
+        return local
 
     def carries(self, normals: np.ndarray, points: np.ndarray) -> np.ndarray:
         """Whether a face of the solid lies on each plane (its unit normal) at each
@@ -174,6 +196,29 @@ def distinct(normals: np.ndarray, offsets: np.ndarray, scale: float) -> np.ndarr
     rounded = np.round(keys * 1e8)
     _, rows = np.unique(rounded, axis=0, return_index=True)
     return np.sort(rows)
+
+
+def _pruned(node, low: np.ndarray, high: np.ndarray):
+    """The part of a compiled tree that decides about the points of the box
+    (low, high): nodes whose boxes miss it are empty there."""
+    if np.any(node.high < low) or np.any(node.low > high):
+        return None
+    if isinstance(node, Leaf):
+        return node
+    operands = [_pruned(o, low, high) for o in node.operands]
+    if node.op == "I":
+        if any(o is None for o in operands):
+            return None
+    elif node.op == "D":
+        if operands[0] is None:
+            return None
+        if operands[1] is None:
+            return operands[0]
+    else:
+        operands = [o for o in operands if o is not None]
+        if len(operands) <= 1:
+            return operands[0] if operands else None
+    return TracedBoolean(node.op, operands, node.low, node.high)
 
 
 def _inside(node, points: np.ndarray, rows: np.ndarray) -> np.ndarray:

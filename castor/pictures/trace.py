@@ -353,8 +353,12 @@ def _first(node, rays: _Rays, rows: np.ndarray):
     each (len(rows),); a union is the nearest of its operands' first surfaces."""
     n = len(rows)
     t_best, face_best = np.full(n, INF), np.zeros(n, np.int64)
+    if n == 0:
+        return t_best, face_best
     if isinstance(node, TracedBoolean) and node.op == "U":
         hit = np.flatnonzero(_crosses_box(node, rays, rows))
+        if len(hit) == 0:  # no ray comes near: nothing below is asked (one ray: a snap)
+            return t_best, face_best
         for operand in node.operands:
             t, face = _first(operand, rays, rows[hit])
             nearer = t < t_best[hit]
