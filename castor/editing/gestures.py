@@ -2,10 +2,11 @@
 scene, Measure from the exact solids (CLI.md, "Editing on screen").
 
 Each edit is a list of ``(file, TextEdit)``: comments and layout are left as
-they are, numbers written short (castor.editing.text.short), and nothing
-else changes. Place writes a new named object before the '>' command of the
-frame shown and adds it to that command's list (or to a chosen object's
-``$U``); Move changes the literal numbers of the ``@t`` written directly in
+they are, numbers written short (castor.editing.text.short), no line is
+added (a frame's header and messages name its line), and nothing else
+changes. Place writes a new named object just before the '>' command of the
+frame shown, on its line, and adds it to that command's list (or to a chosen
+object's ``$U``, written before that object's definition); Move changes the literal numbers of the ``@t`` written directly in
 front of the use moved, or writes ``@t(DX, DY, DZ)`` in front of it, never
 an expression. A use whose text is evaluated several times in the frame (in
 an object used twice) is moved by the use of that object instead, so that
@@ -48,15 +49,15 @@ def place(document: Document, frame_number: int, kind: str, extra: tuple, at, si
         raise CommandError(f"unknown primitive '!{kind}' (known: "
                            + ", ".join("!" + k for k in PRIMITIVES) + ")")
     shape = tuple(float(v) for v in extra)
+    wanted = len(declared.arguments)
+    if len(shape) < wanted or (not declared.pairs and len(shape) != wanted) or \
+            (declared.pairs and (len(shape) - wanted < 6 or (len(shape) - wanted) % 2)):
+        raise CommandError(f"'!{kind}' takes {declared.form} (the colour given apart)")
     try:
         if declared.check is not None:
             declared.check(shape, Location("<place>", 1, 1), f"!{kind}")
     except CastorError as error:
         raise CommandError(error.message) from None
-    wanted = len(declared.arguments)
-    if len(shape) < wanted or (not declared.pairs and len(shape) != wanted) or \
-            (declared.pairs and (len(shape) - wanted < 6 or (len(shape) - wanted) % 2)):
-        raise CommandError(f"'!{kind}' takes {declared.form} (the colour given apart)")
     low = [min(a, a + s) for a, s in zip(at, size)]
     extent = [abs(s) for s in size]
     if any(s == 0 for s in extent):
@@ -103,14 +104,10 @@ def _new_name(document: Document, kind: str, chosen: str | None) -> str:
 
 
 def _before_statement(document: Document, location, line: str) -> tuple[str, TextEdit]:
-    """``line`` written just before the statement at ``location``: on a line of its
-    own with the statement's indentation when the statement starts its line."""
+    """``line`` written just before the statement at ``location``, on its line:
+    no line moves, so every other frame (its '>' line, its messages) is the same."""
     path, text, start = document.offset_of(location)
-    line_start = text.rfind("\n", 0, start) + 1
-    indent = text[line_start:start]
-    if indent.strip():
-        return path, insertion(text, start, line + " ")
-    return path, insertion(text, line_start, indent + line + "\n")
+    return path, insertion(text, start, line + " ")
 
 
 def _named_in_frame(document: Document, frame, name: str):

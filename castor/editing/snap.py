@@ -176,7 +176,7 @@ def _features(solids: Solids, view: _View, hit, number: int, face: int, found: d
         return plane  # the first feature in the order: no need to look further
     edges = _edges(solids, view, hit, radius, plane, normals[others], offsets[others])
     found["edge"] = [(point, "edge", number) for point, _ in edges]
-    middle = _middle(whole, plane, edges[0][1]) if edges else None
+    middle = _middle(whole, plane, (edges[0][0], edges[0][1][1])) if edges else None
     if middle is not None and view.pixels(middle)[0] <= RADIUS:
         found["midpoint"] = [(middle, "midpoint", number)]
     return plane
@@ -216,8 +216,9 @@ def _edges(solids: Solids, view: _View, hit, radius: float, plane, normals, offs
 
 
 def _middle(solids: Solids, plane, line) -> np.ndarray | None:
-    """The middle of the edge along ``line`` through its point: its ends are
-    where the planes of the primitives along it cut it and the edge stops."""
+    """The middle of the edge along ``line`` (its point near the ray, its
+    direction): its ends are where the planes of the primitives along it cut
+    it and the edge stops."""
     start, u = line
     crossing = solids.along(start, u)
     normals, offsets, _, _ = solids.gathered(crossing)
