@@ -101,11 +101,17 @@ def move(arguments, cache: Cache) -> dict:
 
 def measure(arguments, cache: Cache) -> dict:
     """``castor.measure``: between ``from`` and ``to``, the distance and its dx,
-    dy, dz; of an ``object`` (a name), its volume, area and bounding box. Never
-    an edit."""
-    from castor.editing.gestures import distance, object_figures
+    dy, dz; of an ``object`` (a name), its volume, area and bounding box; of the
+    face a ray (``origin``, ``direction``) meets, its area. Never an edit."""
+    from castor.editing.gestures import distance, face_area, object_figures
 
     arguments = _object(arguments)
+    if arguments.get("origin") is not None:
+        document = _document(arguments, cache)
+        origin, direction = _vector(arguments, "origin"), _vector(arguments, "direction")
+        if math.hypot(*direction) == 0:
+            raise CommandError("'direction' is a ray of zero length")
+        return face_area(document, arguments.get("frame", 1), origin, direction)
     if arguments.get("object") is not None:
         document = _document(arguments, cache)
         name = arguments["object"]

@@ -177,6 +177,19 @@ class Document:
         """``FILE:LINE:COL`` as written: what a snap names and a move takes."""
         return str(self.written(location)[0])
 
+    def mesh(self, number: int):
+        """The frame's mesh (castor.mesh.frame.Frame), made once: for measures."""
+        key = -number
+        if key not in self._prepared:
+            from castor.diagnostics import CastorError
+            from castor.mesh.facetize import Facetizer
+
+            try:
+                self._prepared[key] = Facetizer().frame(self.frame(number))
+            except CastorError as error:
+                raise CommandError(error.message) from None
+        return self._prepared[key]
+
     def prepared(self, number: int):
         """The frame made ready for snapping (castor.editing.snap.Prepared), once."""
         if number not in self._prepared:

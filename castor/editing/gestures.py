@@ -360,3 +360,84 @@ def _shared_uses(node, name: str, matrix, matrices: list, roots: list) -> None:
             _shared_uses(operand, name, matrix, matrices, roots)
     elif isinstance(node, tree.Smooth):
         _shared_uses(node.operand, name, tree.compose(matrix, node.matrix), matrices, roots)
+
+
+def face_area(document: Document, frame_number: int, origin, direction) -> dict:
+    """The area of the face a ray meets: a flat face of the evaluated solid (every
+    polygon of the frame in its plane, joined to the one under the ray), exact;
+    a curved face, its facets' (within the facet tolerance)."""
+    import numpy as np
+
+    from castor.editing.snap import face_at
+
+    found = face_at(document.prepared(frame_number), origin, direction)
+    if found is None:
+        raise CommandError("the ray meets no face")
+    point, number, plane = found
+    source, path = document.prepared(frame_number).named(number)
+    size = document.prepared(frame_number).solids.size
+    for obj in document.mesh(frame_number).objects:
+        polygons = _polygons(obj)
+        if polygons is None:
+            continue
+        areas, normals, offsets, corners = polygons
+        if plane is not None:
+            on = (normals @ plane[0] > 1 - 1e-6) & (np.abs(offsets - plane[1]) < 1e-6 * size)
+        else:
+            on = np.array([str(obj.origins[k].steps) == path for k in obj.origin_of])
+        under = [k for k in np.flatnonzero(on) if _holds(obj, k, point, normals[k], size)]
+        if not under:
+            continue
+        if plane is None and obj.surface_of is not None:
+            on &= obj.surface_of == obj.surface_of[under[0]]
+        chosen = _joined(obj, np.flatnonzero(on), under[0])
+        return {"area": float(areas[chosen].sum()), "exact": plane is not None,
+                "source": source, "path": path}
+    raise CommandError("the face under the ray was not found in the frame's polygons")
+
+
+def _polygons(obj):
+    """Each polygon's area, unit normal, offset along it, and first corner."""
+    import numpy as np
+
+    if obj.polygon_count == 0:
+        return None
+    start = obj.offsets[:-1]
+    following = np.arange(1, len(obj.indices) + 1)
+    following[obj.offsets[1:] - 1] = start
+    a = obj.vertices[obj.indices]
+    b = obj.vertices[obj.indices[following]]
+    vector = np.add.reduceat(np.cross(a, b), start) / 2
+    areas = np.linalg.norm(vector, axis=1)
+    normals = vector / np.where(areas > 0, areas, 1)[:, None]
+    corners = obj.vertices[obj.indices[start]]
+    return areas, normals, np.einsum("ij,ij->i", normals, corners), corners
+
+
+def _holds(obj, k: int, point, normal, size: float) -> bool:
+    """Whether the convex polygon ``k`` holds the point (on its plane, within rounding)."""
+    import numpy as np
+
+    ring = obj.vertices[obj.indices[obj.offsets[k]:obj.offsets[k + 1]]]
+    if abs((point - ring[0]) @ normal) > 1e-3 * size:
+        return False
+    sides = np.roll(ring, -1, axis=0) - ring
+    return bool(np.all(np.cross(sides, point - ring) @ normal >= -1e-9 * size * size))
+
+
+def _joined(obj, candidates, first: int) -> list[int]:
+    """The polygons among ``candidates`` joined to ``first`` through shared corners."""
+    corners = {k: set(obj.indices[obj.offsets[k]:obj.offsets[k + 1]].tolist())
+               for k in candidates}
+    by_vertex: dict[int, list[int]] = {}
+    for k, ring in corners.items():
+        for v in ring:
+            by_vertex.setdefault(v, []).append(k)
+    seen, stack = {first}, [first]
+    while stack:
+        for v in corners[stack.pop()]:
+            for k in by_vertex[v]:
+                if k not in seen:
+                    seen.add(k)
+                    stack.append(k)
+    return sorted(seen)

@@ -152,12 +152,7 @@ def _features(solids: Solids, view: _View, hit, number: int, face: int, found: d
     whole, solids = solids, solids.around(hit, 4 * radius + 10 * solids.step)
     near = solids.near(hit, radius)
     normals, offsets, centres, owners = solids.gathered(near)
-    tolerance = 1e-9 * solids.size
-    # the hit face's plane: a flat face of the leaf hit, through the point,
-    # turned as the surface there
-    normal = solids.scene.normals(hit[None], np.array([face]))[0]
-    mine = np.flatnonzero((owners == number) & (np.abs(normals @ hit - offsets) < 1e3 * tolerance)
-                          & (normals @ normal > 1 - 1e-6))
+    mine = _own_plane(solids, hit, face, normals, offsets, owners == number)
     # centres of flat faces near the ray, where the solid has that face
     close = np.flatnonzero((view.pixels(centres) <= RADIUS) & _within(centres, hit, radius)) \
         if len(centres) else []
@@ -180,6 +175,31 @@ def _features(solids: Solids, view: _View, hit, number: int, face: int, found: d
     if middle is not None and view.pixels(middle)[0] <= RADIUS:
         found["midpoint"] = [(middle, "midpoint", number)]
     return plane
+
+
+def _own_plane(solids: Solids, hit, face: int, normals, offsets, owned) -> np.ndarray:
+    """The rows of the hit face's plane: a flat face of the leaf hit, through
+    the point, turned as the surface is there (none: the face is curved)."""
+    normal = solids.scene.normals(hit[None], np.array([face]))[0]
+    return np.flatnonzero(owned & (np.abs(normals @ hit - offsets) < 1e-6 * solids.size)
+                          & (normals @ normal > 1 - 1e-6))
+
+
+def face_at(prepared: Prepared, origin, direction):
+    """The face a ray meets first: (the point, the leaf, its plane (normal,
+    offset) when the face is flat, else None), or None."""
+    view = _View(origin, direction, 1.0, None)
+    solids = prepared.solids
+    t, face = solids.scene.first_hit(view.origin[None], view.direction[None])
+    if not np.isfinite(t[0]):
+        return None
+    hit = view.origin + t[0] * view.direction
+    number = int(face[0] >> 32)
+    planes = solids.planes(number)
+    mine = _own_plane(solids, hit, int(face[0]), planes.normals, planes.offsets,
+                      np.ones(len(planes.offsets), bool))
+    plane = (planes.normals[mine[0]], planes.offsets[mine[0]]) if len(mine) else None
+    return hit, number, plane
 
 
 def _within(points: np.ndarray, hit: np.ndarray, radius: float) -> np.ndarray:

@@ -253,3 +253,18 @@ def test_measure_gives_distances_volumes_and_boxes_and_edits_nothing(tmp_path):
     assert banc["volume"] == pytest.approx(2 * 0.4 * 0.45)
     assert banc["box"] == [[1, 0.5, 0.2], [3, 0.9, pytest.approx(0.65)]]
     assert scene.text == HOUSE
+
+
+def test_measure_a_face_of_the_evaluated_solid(tmp_path):
+    """The top of two blocks side by side is one face (6 x 2); a hole cut through
+    it takes its area away; a sphere's face is measured on its facets."""
+    scene = Scene(tmp_path, "> $D($U(@h(4, 2, 1) !cu(1, 1, 1), @t(4, 0, 0) @h(2, 2, 1) "
+                            "!cu(1, 1, 1)), @t(1, 0.5, -1) @h(1, 1, 3) !cu(0, 0, 1)), "
+                            "@t(10, 0, 0) @h(2) !sp(1, 0, 0);\n")
+    top = measure({"uri": scene.uri, "origin": [5.1, 1.3, 9], "direction": [0, 0, -1]},
+                  scene.cache)
+    assert top["area"] == pytest.approx(6 * 2 - 1) and top["exact"] is True
+    ball = measure({"uri": scene.uri, "origin": [10.3, -9, 0.2], "direction": [0, 1, 0]},
+                   scene.cache)
+    assert ball["exact"] is False and ball["path"] == "!sp"
+    assert ball["area"] == pytest.approx(4 * 3.141592653589793 * 4, rel=0.02)
