@@ -188,3 +188,20 @@ def test_bad_snaps_are_refused(tmp_path, arguments, message):
     path.write_text(CUBE)
     with pytest.raises(CommandError, match=message):
         command({"uri": path_to_uri(str(path)), **arguments}, Cache())
+
+
+def test_parallels_and_perpendiculars_of_the_edges_from_the_previous_point(tmp_path):
+    scene, _ = prepared("> @rz(30) @h(2, 1, 1) !cu(1, 1, 1);\n", tmp_path)
+    along = np.array([math.cos(math.radians(30)), math.sin(math.radians(30)), 0.0])
+    across = np.array([-along[1], along[0], 0.0])
+    eye = (1.0, -8.0, 6.0)
+    found = snap(scene, *ray(eye, 3.2 * along, 3, towards=(5, 5, 0)), pixel=PIXEL,
+                 previous=(0, 0, 0))
+    assert found.feature == "parallel"
+    assert np.linalg.norm(np.cross(found.point, along)) < 1e-9
+    # from the middle of the front edge, square to it in the ground
+    middle = 1.0 * along
+    found = snap(scene, *ray(eye, middle - 2.4 * across, 3, towards=(5, -5, 0)), pixel=PIXEL,
+                 previous=tuple(middle))
+    assert found.feature == "perpendicular"
+    assert np.linalg.norm(np.cross(found.point - middle, across)) < 1e-9
