@@ -20,11 +20,12 @@ from __future__ import annotations
 import math
 import re
 
-from castor.editing.document import Cache, CommandError, path_to_uri
+from castor.editing.document import Cache, CommandError, path_to_uri, uri_to_path
 from castor.editing.text import TextEdit, apply, digest, inverse
 
 __all__ = ["COMMANDS", "Cache", "CommandError", "apply_workspace_edit", "execute",
-           "inverse_workspace_edit", "measure", "move", "place", "snap"]
+           "inverse_workspace_edit", "measure", "move", "place", "snap", "text_version",
+           "write_workspace_edit"]
 
 
 def snap(arguments, cache: Cache) -> dict | None:
@@ -163,6 +164,28 @@ def inverse_workspace_edit(edit: dict, read) -> dict:
         undo = inverse(text, [TextEdit.from_json(e) for e in edits])
         changes[uri] = [e.as_json() for e in undo]
     return {"changes": changes}
+
+
+def write_workspace_edit(edit: dict, cache: Cache, uri: str) -> dict:
+    """Write a WorkspaceEdit into the files, as ``castor --serve`` does: only the
+    scene's own files (the main file ``uri`` and those it includes), each
+    atomically; returns the WorkspaceEdit that undoes it."""
+    from castor.formats.output import Unwritable, write_atomically
+
+    document = cache.document(uri)
+    allowed = {path_to_uri(path) for path in document.files}
+    for target in edit.get("changes", {}):
+        if target not in allowed:
+            raise CommandError(f"'{uri_to_path(target)}' is not one of the scene's files: "
+                               f"nothing was written")
+    undo = inverse_workspace_edit(edit, cache.read)
+    texts = apply_workspace_edit(edit, cache.read)
+    for target, text in texts.items():
+        try:
+            write_atomically(uri_to_path(target), text.encode("utf-8"))
+        except Unwritable as error:
+            raise CommandError(str(error)) from None
+    return undo
 
 
 # --- arguments

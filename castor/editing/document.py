@@ -67,6 +67,8 @@ class Document:
         self.frames: list = []  # castor.csg.tree.FrameTree, by number - 1
         self.statements: list = []  # ObjectDef and Facetize, in the order they ran
         self.objects: dict = {}  # name -> NamedNode, at the end
+        self.files: list[str] = []  # the scene's own: the main file and those it includes
+        self.included: dict[str, str] = {}  # included file -> digest of its text evaluated
         self.reporter = CollectingReporter(quiet=True)
         self._texts: dict[str, str | None] = {}
         self._prepared: dict[int, object] = {}
@@ -86,16 +88,24 @@ class Document:
                 super().execute(item)
 
         frames: list = []
+        included: list[str] = []
         try:
             interpreter = evaluate(Source(text=self.text, name=self.path), self.reporter,
                                    frames.append, reading=self.reading,
-                                   evaluation=EvaluationSettings(),
+                                   evaluation=EvaluationSettings(), included=included,
                                    unreadable=self.reporter.unreadable, interpreter=Recording)
         except RecursionError:
             raise CommandError("the scene is nested too deeply to edit") from None
         self.frames = frames
         self.objects = dict(interpreter.tables.objects)
+        self.files = [self.path] + [os.path.abspath(name) for name in included]
+        self.included = {path: digest(self.file_text(path) or "") for path in self.files[1:]}
         return self
+
+    def current(self) -> bool:
+        """Whether the files it includes are still as they were evaluated."""
+        return all(digest(self.read(path_to_uri(path)) or "") == known
+                   for path, known in self.included.items())
 
     @property
     def errors(self) -> list:
@@ -218,7 +228,7 @@ class Cache:
             raise CommandError(f"cannot read '{uri_to_path(uri)}'")
         key = (uri, digest(text))
         document = self._documents.get(key)
-        if document is None:
+        if document is None or not document.current():
             document = Document(uri, text, self.read, self.reading).evaluate()
             if len(self._documents) >= self.size:
                 self._documents.pop(next(iter(self._documents)))

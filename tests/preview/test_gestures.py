@@ -268,3 +268,29 @@ def test_measure_a_face_of_the_evaluated_solid(tmp_path):
                    scene.cache)
     assert ball["exact"] is False and ball["path"] == "!sp"
     assert ball["area"] == pytest.approx(4 * 3.141592653589793 * 4, rel=0.02)
+
+
+def test_the_preview_writes_only_the_scenes_own_files(tmp_path):
+    from castor.editing.commands import write_workspace_edit
+
+    (tmp_path / "parts.cas").write_text("/* parts */\nbloc = @t(1, 0, 0) !cu(1, 1, 1);\n")
+    scene = Scene(tmp_path, '#include "parts.cas"\n> bloc;\n')
+    edit = move({"uri": scene.uri, "source": f"{tmp_path / 'parts.cas'}:2:20", "by": [0, 1, 0]},
+                scene.cache)
+    undo = write_workspace_edit(edit, scene.cache, scene.uri)
+    assert (tmp_path / "parts.cas").read_text() == \
+        "/* parts */\nbloc = @t(1, 1, 0) !cu(1, 1, 1);\n"
+    write_workspace_edit(undo, scene.cache, scene.uri)
+    assert (tmp_path / "parts.cas").read_text() == \
+        "/* parts */\nbloc = @t(1, 0, 0) !cu(1, 1, 1);\n"
+    # the included file changes: each gesture sees it as it is
+    for _ in range(2):
+        edit = move({"uri": scene.uri, "source": f"{tmp_path / 'parts.cas'}:2:20",
+                     "by": [1, 0, 0]}, scene.cache)
+        write_workspace_edit(edit, scene.cache, scene.uri)
+    assert "bloc = @t(3, 0, 0) !cu" in (tmp_path / "parts.cas").read_text()
+    other = tmp_path / "other.cas"
+    other.write_text("x")
+    with pytest.raises(CommandError, match="not one of the scene's files"):
+        write_workspace_edit({"changes": {path_to_uri(str(other)): []}}, scene.cache, scene.uri)
+    assert other.read_text() == "x"
