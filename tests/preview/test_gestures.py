@@ -294,3 +294,36 @@ def test_the_preview_writes_only_the_scenes_own_files(tmp_path):
     with pytest.raises(CommandError, match="not one of the scene's files"):
         write_workspace_edit({"changes": {path_to_uri(str(other)): []}}, scene.cache, scene.uri)
     assert other.read_text() == "x"
+
+
+def test_gestures_on_the_bus_shelter_keep_it_clean(tmp_path):
+    """Seven files, macros, repetitions and '#ifdef': a snapped primitive moved in
+    an included file, a new object placed in the animation's '>' (in the #else)."""
+    import shutil
+
+    shutil.copy(ROOT / "examples" / "bus_shelter.cas", tmp_path)
+    shutil.copytree(ROOT / "examples" / "bus_shelter", tmp_path / "bus_shelter")
+    scene = Scene.__new__(Scene)
+    scene.path, scene.cache = tmp_path / "bus_shelter.cas", Cache()
+    scene.uri = path_to_uri(str(scene.path))
+    before = {p.name: p.read_text() for p in (tmp_path / "bus_shelter").iterdir()}
+    # the road's surface, under a ray straight down in front of the shelter
+    from castor.editing.commands import snap
+
+    found = snap({"uri": scene.uri, "frame": 2, "origin": [3.13, -3.52, 30],
+                  "direction": [0, 0, -1], "pixelSize": 0.01}, scene.cache)
+    assert found["path"] == "(arret).U1(decor).U1(rue).U1(chaussee)!cu"
+    assert found["point"][2] == pytest.approx(0.0, abs=1e-12)
+    edit = move({"uri": scene.uri, "frame": 2, "source": found["source"],
+                 "path": found["path"], "by": [0, 0, -0.02]}, scene.cache)
+    (street,) = edit["changes"]
+    assert street.endswith("/bus_shelter/street.cas")
+    after = apply_workspace_edit(edit, read_file)[street]
+    (tmp_path / "bus_shelter" / "street.cas").write_text(after)
+    scene.do(place, frame=3, primitive="!cu", at=[1, -2, 0], size=[0.4, 0.4, 1.2])
+    assert "bloc1 = @t(1, -2, 0) @h(0.4, 0.4, 1.2) !cu(0.8, 0.8, 0.8); " \
+           ">[PHASE = 0, 2] arret, bloc1;" in scene.text
+    scene.check()
+    changed = [name for name, text in before.items()
+               if (tmp_path / "bus_shelter" / name).read_text() != text]
+    assert changed == ["street.cas"]
