@@ -223,11 +223,19 @@ def _positive(value, name: str) -> float:
     return value
 
 
+# coordinates beyond this are refused: castor's own limit is 1e12
+# (castor.csg.evaluate.MAX_COORDINATE), and an edit must stay within it
+LARGEST = 1e9
+
+
 def _vector(arguments: dict, name: str) -> tuple[float, float, float]:
     value = arguments.get(name)
     if not isinstance(value, (list, tuple)) or len(value) != 3:
         raise CommandError(f"'{name}' must be three numbers [x, y, z]")
-    return tuple(_number(v, name) for v in value)
+    numbers = tuple(_number(v, name) for v in value)
+    if any(abs(v) > LARGEST for v in numbers):
+        raise CommandError(f"'{name}' reaches beyond {LARGEST:g}")
+    return numbers
 
 
 _PRIMITIVE = re.compile(r"\s*!([a-z]+)\s*(?:\((.*)\))?\s*\Z", re.DOTALL)

@@ -189,6 +189,7 @@ class Document:
 
     def mesh(self, number: int):
         """The frame's mesh (castor.mesh.frame.Frame), made once: for measures."""
+        self.frame(number)
         key = -number
         if key not in self._prepared:
             from castor.diagnostics import CastorError
@@ -202,6 +203,7 @@ class Document:
 
     def prepared(self, number: int):
         """The frame made ready for snapping (castor.editing.snap.Prepared), once."""
+        self.frame(number)
         if number not in self._prepared:
             from castor.editing.snap import prepare
 

@@ -12,6 +12,8 @@ import sys
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from castor.csg.tree import leaves
 from castor.editing.commands import (Cache, CommandError, apply_workspace_edit,
@@ -327,3 +329,33 @@ def test_gestures_on_the_bus_shelter_keep_it_clean(tmp_path):
     changed = [name for name, text in before.items()
                if (tmp_path / "bus_shelter" / name).read_text() != text]
     assert changed == ["street.cas"]
+
+
+_values = st.one_of(st.none(), st.booleans(), st.integers(-5, 5), st.text(max_size=6),
+                    st.sampled_from(["!pr(2)", "!to(1.5)", "!ex(0, 0, 1, 0)", "(abri).U9!cu",
+                                     "abri", "banc", "!sp", "B ad"]),
+                    st.floats(allow_nan=True, allow_infinity=True),
+                    st.lists(st.one_of(st.floats(-1e12, 1e12), st.integers(-3, 3),
+                                       st.text(max_size=2)), max_size=4))
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(st.sampled_from(["castor.snap", "castor.place", "castor.move", "castor.measure"]),
+       st.dictionaries(st.sampled_from(["frame", "origin", "direction", "pixel", "pixelSize",
+                                        "from", "distance", "primitive", "at", "size",
+                                        "colour", "name", "into", "source", "by", "path",
+                                        "to", "object", "version"]), _values, max_size=2))
+def test_no_arguments_make_a_traceback(tmp_path, command, arguments):
+    from castor.editing.commands import execute
+
+    path = tmp_path / "scene.cas"
+    path.write_text(HOUSE)
+    good = {"castor.snap": {"origin": [3, -4, 5], "direction": [0, 1, -1], "pixel": 0.001},
+            "castor.place": {"primitive": "!cu", "at": [0, 0, 0], "size": [1, 1, 1]},
+            "castor.move": {"source": f"{path}:3:37", "by": [1, 0, 0]},
+            "castor.measure": {"from": [0, 0, 0], "to": [1, 1, 1]}}[command]
+    try:
+        execute(command, {"uri": path_to_uri(str(path)), **good, **arguments}, Cache())
+    except CommandError:
+        pass
+    assert path.read_text() == HOUSE
