@@ -7,6 +7,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from castor.editing.document import Document, path_to_uri
 from castor.editing.snap import snap
@@ -205,3 +207,44 @@ def test_parallels_and_perpendiculars_of_the_edges_from_the_previous_point(tmp_p
                  previous=tuple(middle))
     assert found.feature == "perpendicular"
     assert np.linalg.norm(np.cross(found.point - middle, across)) < 1e-9
+
+
+HOUSE_PREPARED: dict = {}
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(-0.45, 0.45), st.floats(-0.35, 0.25), st.booleans())
+def test_a_snap_is_never_more_than_ten_pixels_off_the_ray(right, up, with_previous):
+    """On the house (a roof cut from two extrusions, walls with openings, a chimney
+    through a slope): whatever the ray, the point snapped is within 10 pixels
+    of it, and a corner, an edge or a centre lies on the solid's surface."""
+    from pathlib import Path
+
+    if not HOUSE_PREPARED:
+        path = Path(__file__).resolve().parents[2] / "examples" / "house.cas"
+        document = Document(path_to_uri(str(path)), path.read_text()).evaluate()
+        HOUSE_PREPARED["scene"] = document.prepared(1)
+    scene = HOUSE_PREPARED["scene"]
+    eye = np.array([-9.0, -12.0, 9.0])
+    forward = np.array([13.5, 15.25, -6.0]) / np.linalg.norm([13.5, 15.25, -6.0])
+    side = np.cross(forward, [0, 0, 1.0])
+    side /= np.linalg.norm(side)
+    direction = forward + right * side + up * np.cross(side, forward)
+    direction /= np.linalg.norm(direction)
+    previous = (4.5, 0.0, 2.9) if with_previous else None
+    found = snap(scene, eye, direction, pixel=0.002, previous=previous)
+    if found is None:
+        return
+    rel = np.array(found.point) - eye
+    depth = rel @ direction
+    assert depth > 0
+    assert np.linalg.norm(rel - depth * direction) <= 10 * 0.002 * depth * (1 + 1e-9)
+    if found.feature in ("corner", "edge", "midpoint", "centre"):
+        solids = scene.solids
+        k = np.arange(400) + 0.5  # directions spread over the sphere (a thin eave is a wedge)
+        z = 1 - 2 * k / 400
+        turn = np.pi * (1 + 5 ** 0.5) * k
+        ring = np.sqrt(1 - z * z)
+        directions = np.column_stack([ring * np.cos(turn), ring * np.sin(turn), z])
+        inside = solids.inside(np.array(found.point) + solids.step * directions)
+        assert inside.any() and not inside.all()  # on the boundary of the solid
