@@ -174,7 +174,56 @@ def _features(solids: Solids, view: _View, hit, number: int, face: int, found: d
     middle = _middle(whole, plane, (edges[0][0], edges[0][1][1])) if edges else None
     if middle is not None and view.pixels(middle)[0] <= RADIUS:
         found["midpoint"] = [(middle, "midpoint", number)]
+    if not edges and _curved_near(solids, near):  # a column's rim round its flat top
+        found["edge"] = [(point, "edge", number) for point in
+                         _boundary(solids, view, hit, 3 * radius, plane)]
     return plane
+
+
+def _boundary(solids: Solids, view: _View, hit, reach: float, plane, count: int = 16) -> list:
+    """Where the hit flat face ends, looked for along ``count`` directions of its
+    plane from the hit (within ``reach``): the point of its outline nearest the
+    ray, when within the radius (any outline, straight or curved): the end is
+    bracketed in eighths of the reach, then the most promising one halved."""
+    n = plane[0]
+    u = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
+    u /= np.linalg.norm(u)
+    v = np.cross(n, u)
+    angles = np.linspace(0, 2 * np.pi, count, endpoint=False)
+    ways = np.cos(angles)[:, None] * u + np.sin(angles)[:, None] * v
+    steps = np.linspace(reach / 8, reach, 8)
+    probes = (hit + steps[None, :, None] * ways[:, None, :]).reshape(-1, 3)
+    carried = solids.carries(np.broadcast_to(n, probes.shape), probes).reshape(count, 8)
+    ended = ~carried
+    found = np.flatnonzero(ended.any(axis=1))
+    if len(found) == 0:
+        return []
+    first = np.argmax(ended[found], axis=1)
+    high = steps[first]
+    low = np.where(first > 0, steps[np.maximum(first - 1, 0)], 0.0)
+    ways = ways[found]
+    rough = view.pixels(hit + ((low + high) / 2)[:, None] * ways)
+    keep = np.argsort(rough)[:1]
+    low, high, ways = low[keep], high[keep], ways[keep]
+    normals = np.broadcast_to(n, ways.shape)
+    for _ in range(60):
+        if np.max(high - low) <= 1e-11 * solids.size:
+            break
+        middle = (low + high) / 2
+        inner = solids.carries(normals, hit + middle[:, None] * ways)
+        low = np.where(inner, middle, low)
+        high = np.where(inner, high, middle)
+    points = hit + low[:, None] * ways
+    near = view.pixels(points)
+    best = int(np.argmin(near))
+    return [points[best]] if near[best] <= RADIUS else []
+
+
+def _curved_near(solids: Solids, numbers) -> bool:
+    from castor.primitives import PRIMITIVES
+
+    leaves = solids.scene.leaves
+    return any(leaves[k].kind == "smooth" or PRIMITIVES[leaves[k].kind].curved for k in numbers)
 
 
 def _own_plane(solids: Solids, hit, face: int, normals, offsets, owned) -> np.ndarray:

@@ -248,3 +248,14 @@ def test_a_snap_is_never_more_than_ten_pixels_off_the_ray(right, up, with_previo
         directions = np.column_stack([ring * np.cos(turn), ring * np.sin(turn), z])
         inside = solids.inside(np.array(found.point) + solids.step * directions)
         assert inside.any() and not inside.all()  # on the boundary of the solid
+
+
+def test_the_rim_of_a_column_is_an_edge(tmp_path):
+    scene, _ = prepared("> @t(2, 3, 0) @h(0.5, 0.5, 3) !cy(0.5, 0.5, 0.5);\n", tmp_path)
+    # looking down at the top, 4 pixels inside the rim
+    rim = np.array([2 + 0.5 * math.cos(0.7), 3 + 0.5 * math.sin(0.7), 3.0])
+    found = snap(scene, *ray((12.0, 11.0, 14.0), rim, 4, towards=(2, 3, 3)), pixel=PIXEL)
+    assert found.feature == "edge"
+    x, y, z = found.point
+    assert z == pytest.approx(3.0, abs=1e-12)
+    assert math.hypot(x - 2, y - 3) == pytest.approx(0.5, abs=1e-9)
