@@ -221,6 +221,10 @@ class Cache:
         self.reading = reading
         self.size = size
         self._documents: dict[tuple[str, str], Document] = {}
+        import threading
+
+        # the preview's server answers each request on a thread of its own
+        self._lock = threading.Lock()
 
     def document(self, uri: str) -> Document:
         if not isinstance(uri, str) or not uri:
@@ -229,10 +233,11 @@ class Cache:
         if text is None:
             raise CommandError(f"cannot read '{uri_to_path(uri)}'")
         key = (uri, digest(text))
-        document = self._documents.get(key)
-        if document is None or not document.current():
-            document = Document(uri, text, self.read, self.reading).evaluate()
-            if len(self._documents) >= self.size:
-                self._documents.pop(next(iter(self._documents)))
-            self._documents[key] = document
+        with self._lock:
+            document = self._documents.get(key)
+            if document is None or not document.current():
+                document = Document(uri, text, self.read, self.reading).evaluate()
+                if len(self._documents) >= self.size:
+                    self._documents.pop(next(iter(self._documents)))
+                self._documents[key] = document
         return document
