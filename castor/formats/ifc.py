@@ -32,13 +32,14 @@ from __future__ import annotations
 
 import os
 import uuid
+from typing import Iterator
 
 import numpy as np
 
 from castor.csg import tree
-from castor.formats import Format
+from castor.formats import WriteInfo
+from castor.formats.kinds import BuildingModel
 from castor.mesh.frame import Frame
-from castor.settings import FrameSettings
 
 INSTALL = "pip install 'castor[ifc]'"
 DEFAULT_CLASS = "IfcBuildingElementProxy"
@@ -100,6 +101,19 @@ def installed() -> bool:
         return False
 
 
+def unavailable() -> str | None:
+    """Why IFC cannot be written here (ifcopenshell missing), as a usage error
+    says it; None when it can."""
+    if installed():
+        return None
+    return f"writing IFC needs ifcopenshell, which is not installed; {INSTALL}"
+
+
+def parse_classes_option(items: list[str]) -> tuple[tuple[str, str], ...]:
+    """``--ifc-class`` options as (object name, IFC class) pairs (BimSettings.classes)."""
+    return tuple(parse_ifc_classes(items).items())
+
+
 def element_class(text: str) -> str:
     """The IFC class ``text`` names (``IfcWall``, ``ifcwall`` or ``wall``);
     ``ValueError`` with the message a usage error shows when it names none."""
@@ -137,12 +151,6 @@ def default_title(frame: Frame) -> str:
     file = frame.where.rpartition(":")[0] or frame.where
     stem = os.path.splitext(os.path.basename(file))[0]
     return stem if stem and stem != "<stdin>" else "castor"
-
-
-def write(scene: tree.FrameTree, frame: Frame, settings: FrameSettings) -> bytes:
-    """The registry's writer (a format of kind "bim"): the frame as an IFC4
-    file, titled by --title, of the classes --ifc-class gives."""
-    return export(scene, frame, settings.output.title, dict(settings.bim.classes))
 
 
 def export(scene: tree.FrameTree, frame: Frame, title: str | None = None,
@@ -342,5 +350,7 @@ def _face_maker(f):
     return make
 
 
-FORMATS = (Format("ifc", (".ifc",), "bim", "IFC4 for BIM programs, one element per object",
-                  write, binary=False, listed=65),)
+def write(building: BuildingModel, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the building model as an IFC4 file,
+    titled by --title, of the classes --ifc-class gives."""
+    return iter([export(building.tree, building.frame, building.title, building.classes)])
