@@ -206,13 +206,13 @@ def _check_macros(p: _Parser, args) -> None:
 def _choose_format(p: _Parser, args) -> None:
     """-f, else the format -o's ending names (the stream by default): one that
     can be written here."""
-    from castor.formats import FORMATS, format_for_suffix
+    from castor.formats import DEFAULT_FORMAT, FORMATS, format_for_suffix
     from castor.formats.output import is_device, suffix_message
 
     if args.format is None:
-        args.format = format_for_suffix(args.output) if args.output else "cps"
+        args.format = format_for_suffix(args.output) if args.output else DEFAULT_FORMAT
         if args.format is None and is_device(args.output):
-            args.format = "cps"  # -o /dev/null, a named pipe: the stream, as to standard output
+            args.format = DEFAULT_FORMAT  # -o /dev/null, a pipe: the stream, as standard output's
         if args.format is None:
             p.error(suffix_message(args.output))
     unavailable = FORMATS[args.format].unavailable  # its library is not installed
@@ -337,17 +337,10 @@ def main(argv=None) -> int:
         return params_command(source, reading, evaluation, quiet=args.quiet)
     if not args.serve:
         _warn_without_effect(args, reporter)
-    result: list = []
 
     def work():
-        try:
-            result.append(run(source, reporter, reading=reading, evaluation=evaluation,
-                              settings=frame, how=how))
-        except UsageError as exc:
-            sys.stderr.write(f"castor: {exc}\n")
-            result.append(USAGE_ERROR)
-        except BaseException as exc:  # handed to the main thread below
-            result.append(exc)
+        return run(source, reporter, reading=reading, evaluation=evaluation, settings=frame,
+                   how=how)
 
     # A scene graph is many long-lived objects and few cycles: collect rarely.
     gc.set_threshold(100_000, 50, 100)
@@ -356,7 +349,24 @@ def main(argv=None) -> int:
     if args.serve:
         return _serve(args, source, reading, evaluation)
     threading.stack_size(STACK_BYTES)
-    thread = threading.Thread(target=work, name="castor", daemon=True)
+    return _status(_on_thread(work))
+
+
+def _on_thread(work) -> object:
+    """What ``work`` (the run) gives, run on a thread of its own while this one
+    waits for Ctrl-C or SIGTERM, which end every process at once."""
+    result: list = []
+
+    def target():
+        try:
+            result.append(work())
+        except UsageError as exc:
+            sys.stderr.write(f"castor: {exc}\n")
+            result.append(USAGE_ERROR)
+        except BaseException as exc:  # handed to the main thread below
+            result.append(exc)
+
+    thread = threading.Thread(target=target, name="castor", daemon=True)
     stopped_by = _stop_on_signals()
     thread.start()
     try:
@@ -364,7 +374,12 @@ def main(argv=None) -> int:
             thread.join(0.2)
     except KeyboardInterrupt:
         _interrupted(128 + stopped_by[0])
-    outcome = result[0] if result else 1
+    return result[0] if result else 1
+
+
+def _status(outcome) -> int:
+    """The exit status of a run that gave ``outcome`` (its status, or what it
+    raised), and a one-line message for what it raised."""
     if isinstance(outcome, BrokenPipeError):
         _quiet_stdout()
         return PIPE_CLOSED
