@@ -15,8 +15,8 @@ import threading
 
 from castor import __version__
 from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
-from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE, OUTPUT_OPTIONS,
-                            negative_values, option_value, parse_count)
+from castor.options import (DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE,
+                            OUTPUT_OPTIONS, negative_values, option_value, parse_count)
 
 
 class _NotGiven(list):
@@ -206,7 +206,7 @@ def _check_macros(p: _Parser, args) -> None:
 def _choose_format(p: _Parser, args) -> None:
     """-f, else the format -o's ending names (the stream by default): one that
     can be written here."""
-    from castor.formats import DEFAULT_FORMAT, FORMATS, format_for_suffix
+    from castor.formats import FORMATS, format_for_suffix
     from castor.formats.output import is_device, suffix_message
 
     if args.format is None:

@@ -20,6 +20,7 @@ class CameraSun(NamedTuple):
     elevation: float
 
 
+DEFAULT_FORMAT = "cps"  # the polygon stream: standard output's, and a device's (-o /dev/null)
 DEFAULT_TOLERANCE = 0.01
 DEFAULT_MAX_POLYGONS = 20_000_000
 DEFAULT_SIZE = (800, 600)

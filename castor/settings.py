@@ -14,9 +14,8 @@ copy with some fields changed, as ``dataclasses.replace`` did.
 
 from __future__ import annotations
 
-from castor.formats import DEFAULT_FORMAT
-from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_SAMPLES, DEFAULT_SCALE, DEFAULT_SIZE,
-                            DEFAULT_SUN)
+from castor.options import (DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_SAMPLES, DEFAULT_SCALE,
+                            DEFAULT_SIZE, DEFAULT_SUN)
 from castor.records import Record
 
 
@@ -119,8 +118,9 @@ class OutputSettings(Record):
     __slots__ = ("format", "target", "stats", "summary", "title", "keep_mesh", "options",
                  "pieces", "spool", "spool_owner")
 
-    def __init__(self, format: str | None = DEFAULT_FORMAT, target: str | None = None, stats: bool = False,
-                 summary: bool = False, title: str | None = None, keep_mesh: bool = False,
+    def __init__(self, format: str | None = DEFAULT_FORMAT, target: str | None = None,
+                 stats: bool = False, summary: bool = False, title: str | None = None,
+                 keep_mesh: bool = False,
                  options: tuple[tuple[str, object], ...] = (), pieces: bool = False,
                  spool: str | None = None, spool_owner: int = 0):
         self.format = format  # castor.formats; None: the mesh frame only, in this process

@@ -161,8 +161,6 @@ _DECLARED = (
              "a plan, section or elevation on its sheet, for printing"),
 )
 
-DEFAULT_FORMAT = _DECLARED[0].name  # the polygon stream: standard output's, and a device's
-
 _registry: dict[str, Format] | None = None
 
 
