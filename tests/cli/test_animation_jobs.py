@@ -45,6 +45,22 @@ def test_an_animation_of_a_smooth_solid_is_made_by_worker_processes(tmp_path):
         assert gif.convert("RGB").tobytes() != turned.tobytes()
 
 
+def test_an_animation_made_on_a_dask_cluster_is_the_one_process_s(tmp_path):
+    import pytest
+
+    distributed = pytest.importorskip("distributed", reason="Dask's distributed is not installed")
+    (tmp_path / "s.cas").write_text(SMOOTH)
+    small = ["--size", "48x36", "--samples", "1"]
+    status, err = _castor(*small, "-o", "one.gif", "s.cas", cwd=tmp_path)
+    assert status == 0 and err == "", err
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        status, err = _castor("--scheduler", cluster.scheduler_address, *small, "-o",
+                              "dask.gif", "s.cas", cwd=tmp_path)
+    assert status == 0 and err == "", err
+    assert (tmp_path / "dask.gif").read_bytes() == (tmp_path / "one.gif").read_bytes()
+
+
 class _Failing:
     """An executor whose every frame fails as a process pool's does when the
     frame's result cannot be handed back (what --jobs 2 -o x.gif met)."""
