@@ -53,8 +53,8 @@ class Panel:
         return tuple(stamp)
 
     def parameters(self):
-        """The scene's parameters (castor.lsp.evaluate), listed again when a file changes."""
-        from castor.lsp.evaluate import analyse, parameters
+        """The scene's parameters (castor.analysis.scene), listed again when a file changes."""
+        from castor.analysis.scene import analyse, parameters
         from castor.settings import Source
 
         stamp = self._stamp()
@@ -101,7 +101,7 @@ class Panel:
             with self.lock:
                 self.values = {}
         elif "set" in request:
-            from castor.lsp.customizer import SetError, load_set
+            from castor.analysis.customizer import SetError, load_set
 
             name = request["set"]
             if not isinstance(name, str) or not _SET_NAME.fullmatch(name):
@@ -117,7 +117,7 @@ class Panel:
             with self.lock:
                 self.values = dict(values)
         elif "save" in request:
-            from castor.lsp.customizer import save_set
+            from castor.analysis.customizer import save_set
 
             name = request["save"]
             if not isinstance(name, str) or not _SET_NAME.fullmatch(name):
