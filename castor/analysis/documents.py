@@ -84,6 +84,11 @@ class Documents:
             found = [document.scene]
         return found
 
+    def parts_of(self, scene: Document) -> list[Document]:
+        """The open documents analysed as part of ``scene``."""
+        return [other for other in self.documents.values()
+                if other.open and other is not scene and self.owner(other) is scene]
+
     def owner(self, document: Document) -> Document:
         """The document whose analysis answers for this one."""
         scenes = self.scenes_of(document)

@@ -12,6 +12,7 @@ stopped analysis leaves nothing behind but the statements already remembered
 
 from __future__ import annotations
 
+import collections
 import ctypes
 import threading
 from dataclasses import dataclass, field
@@ -52,7 +53,8 @@ class Worker:
         self.stopped = False
         self.running: Job | None = None  # the job being analysed
         self.running_lock = threading.Lock()  # a C lock: no Python frame to interrupt
-        self.log: list[tuple[str, str, int]] = []  # ("started"|"stopped"|"finished", key, n)
+        # ("started" | "stopped" | "finished", key, number) of the latest jobs
+        self.log: collections.deque = collections.deque(maxlen=1000)
         size = threading.stack_size()
         if stack_bytes:
             threading.stack_size(stack_bytes)  # deep scenes recurse deeply, as in castor

@@ -193,12 +193,16 @@ class CastorServer(LanguageServer):
             for kind, message, location in found:
                 by_uri.setdefault(self._file_uri(location, analysis), []).append(
                     self._diagnostic(kind, message, location, analysis))
+        versions = {document.key: version}
+        for part in self.documents.parts_of(document):  # said, even when nothing is wrong
+            by_uri.setdefault(part.key, [])
+            versions[part.key] = part.version
         for uri in document.published - set(by_uri):
             by_uri[uri] = []  # cleared: no diagnostic there any more
         document.published = {uri for uri, found in by_uri.items() if found}
         for uri, found in by_uri.items():
             self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
-                uri=uri, diagnostics=found, version=version if uri == document.key else None))
+                uri=uri, diagnostics=found, version=versions.get(uri)))
 
     def _file_uri(self, location: Location | None, analysis=None) -> str:
         """The URI of a file as locations name it; with ``analysis``, its main
