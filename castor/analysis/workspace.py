@@ -3,7 +3,8 @@
 A part (``bus_shelter/shelter.cas``) means nothing alone: its parameters and
 macros come from the scene that includes it. ``scenes_including`` looks through
 the workspace's ``*.cas`` files (bounded: hidden folders skipped, at most
-``MAX_FILES`` files of at most ``MAX_BYTES`` read) for the ``#include "..."``
+``MAX_FOLDERS`` folders looked through and ``MAX_FILES`` files of at most
+``MAX_BYTES`` read) for the ``#include "..."``
 lines that name the file, directly or through other parts, and gives the
 scenes at the top: those no other file includes.
 """
@@ -14,6 +15,7 @@ import os
 import re
 
 MAX_FILES = 2000
+MAX_FOLDERS = 5000
 MAX_BYTES = 4_000_000
 _INCLUDE = re.compile(r'^[ \t]*#[ \t]*include[ \t]*"([^"\n]+)"', re.M)
 _SKIPPED = {"node_modules", "__pycache__", "venv", "build", "dist"}
@@ -22,8 +24,12 @@ _SKIPPED = {"node_modules", "__pycache__", "venv", "build", "dist"}
 def scene_files(roots: list[str]) -> list[str]:
     """The ``*.cas`` files under the roots (real paths), in a stable order."""
     found: list[str] = []
+    folders = 0
     for root in roots:
         for folder, subfolders, files in os.walk(root):
+            folders += 1
+            if folders > MAX_FOLDERS:
+                return list(dict.fromkeys(found))
             subfolders[:] = sorted(d for d in subfolders
                                    if not d.startswith(".") and d not in _SKIPPED)
             for name in sorted(files):
