@@ -238,7 +238,7 @@ class CastorServer(LanguageServer):
         deadline = time.monotonic() + FIRST_ANALYSIS_SECONDS
         while time.monotonic() < deadline and self.documents.get(uri) is document:
             owner = self.documents.owner(document)
-            if owner.analysis is not None or (owner.analysed and owner is document):
+            if owner.analysis is not None or owner.analysed:
                 break
             await asyncio.sleep(0.02)
         owner = self.documents.owner(document)
