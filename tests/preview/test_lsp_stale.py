@@ -80,3 +80,29 @@ def test_the_worker_goes_on_after_many_stops(tmp_path):
     finally:
         worker.stop()
     assert results[-1] == 40 and results == sorted(results)
+
+
+def test_the_last_of_many_quick_edits_is_answered(tmp_path):
+    """Thirty edits sent back to back, broken and whole, each stopping the
+    analysis of the one before wherever it stood: the server lives on and the
+    last text's diagnostics are published, for that version."""
+    import shutil
+
+    from test_lsp import EXAMPLES, started_client
+
+    shutil.copy(EXAMPLES / "bus_shelter.cas", tmp_path / "bus_shelter.cas")
+    shutil.copytree(EXAMPLES / "bus_shelter", tmp_path / "bus_shelter")
+    path = tmp_path / "bus_shelter.cas"
+    text = path.read_text()
+    for c in started_client(tmp_path):
+        uri = c.open(path)
+        for version in range(2, 32):
+            edited = text.replace("PHASE = 0;", f"PHASE = 0;\nX{version} = {version} +;"
+                                  if version % 2 else f"PHASE = 0;\nX{version} = {version};")
+            c.change(uri, edited, version)
+        found = c.diagnostics(uri, 31, timeout=60)
+        assert [d["message"] for d in found] and all("X31" not in d["message"] for d in found)
+        assert found[0]["range"]["start"]["line"] == text.split("\n").index("PHASE = 0;") + 1
+        hover = c.at("textDocument/hover", uri, text.split("\n").index("PHASE = 0;"), 0)
+        assert hover["contents"]["value"].startswith("PHASE = 0")
+        assert c.process.poll() is None
