@@ -62,3 +62,25 @@ def test_lsp_starts_and_answers_initialize(tmp_path: Path):
     run = subprocess.run([sys.executable, "-m", "castor", "--lsp"], input=data, cwd=tmp_path,
                          capture_output=True, timeout=60, env=dict(os.environ, PYTHONPATH=str(ROOT)))
     assert b'"renameProvider"' in run.stdout and b'"hoverProvider": true' in run.stdout, run.stderr
+
+
+def test_the_analysis_lives_apart_from_the_protocol():
+    """castor/lsp/ holds the protocol only: the preview and the command line
+    reach the analysis through castor.analysis, and castor.analysis never
+    imports the protocol (issue 28, item 3)."""
+    import ast
+
+    wrong = []
+    for path in sorted((ROOT / "castor").rglob("*.py")):
+        module = ".".join(path.relative_to(ROOT).with_suffix("").parts)
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = [node.module or ""] if isinstance(node, ast.ImportFrom) else \
+                [a.name for a in node.names] if isinstance(node, ast.Import) else []
+            for name in names:
+                if name.startswith("castor.lsp") and not module.startswith("castor.lsp") \
+                        and (module, name) != ("castor.cli", "castor.lsp.server"):
+                    wrong.append(f"{module} imports {name}")
+                if module.startswith("castor.analysis") and name.split(".")[0] in (
+                        "pygls", "lsprotocol"):
+                    wrong.append(f"{module} imports {name}")
+    assert wrong == []
