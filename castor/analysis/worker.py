@@ -39,6 +39,37 @@ def _settle() -> None:
     """Nothing: a call, where CPython delivers an exception sent to this thread."""
 
 
+class Stopper:
+    """Stops at once the work one thread does for a number (a submission, a
+    generation) as soon as that number is stale: ``begin`` and ``end`` around
+    the work, in that thread; ``stop`` from any thread. An ``Overtaken`` sent is
+    delivered inside the work or, at the latest, in ``end``."""
+
+    def __init__(self):
+        self.lock = threading.Lock()  # a C lock: no Python frame to interrupt
+        self.thread: int | None = None
+        self.number: int | None = None
+
+    def begin(self, number: int) -> None:
+        with self.lock:
+            self.thread, self.number = threading.get_ident(), number
+
+    def end(self) -> None:
+        with self.lock:
+            self.number = None
+        _settle()  # an Overtaken sent before the line above is delivered here
+
+    def stop(self, stale: Callable[[int], bool]) -> bool:
+        """Stop the work now if ``stale(its number)``; whether it was stopped."""
+        with self.lock:
+            if self.number is None or not stale(self.number):
+                return False
+            self.number = None  # sent once
+            ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(self.thread),
+                                                       ctypes.py_object(Overtaken))
+            return True
+
+
 class Worker:
     """Analyses each job with ``analyse(job, cancelled)`` and hands
     ``done(job, analysis, problem)`` the result (``problem``, a message, when
@@ -52,7 +83,7 @@ class Worker:
         self.submitted = 0
         self.stopped = False
         self.running: Job | None = None  # the job being analysed
-        self.running_lock = threading.Lock()  # a C lock: no Python frame to interrupt
+        self.stopper = Stopper()
         # ("started" | "stopped" | "finished", key, number) of the latest jobs
         self.log: collections.deque = collections.deque(maxlen=1000)
         size = threading.stack_size()
@@ -85,13 +116,12 @@ class Worker:
 
     def _interrupt(self, which: Callable[[Job], bool]) -> None:
         """Stop the running analysis now if ``which`` says it is stale."""
-        with self.running_lock:
+        def stale(number: int) -> bool:  # asked with the stopper's lock held
             job = self.running
-            if job is None or not which(job) or not self.overtaken(job):
-                return
-            self.running = None  # sent once
-            ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(self.thread.ident),
-                                                       ctypes.py_object(Overtaken))
+            return job is not None and job.number == number and which(job) \
+                and self.overtaken(job)
+
+        self.stopper.stop(stale)
 
     def _next(self) -> Job | None:
         with self.queue:
@@ -114,14 +144,14 @@ class Worker:
     def _one(self, job: Job) -> None:
         self.log.append(("started", job.key, job.number))
         try:
-            with self.running_lock:
-                self.running = job
+            self.running = job
+            self.stopper.begin(job.number)
             try:
+                if self.overtaken(job):  # a newer one came before begin(): not stopped
+                    raise Overtaken()
                 analysis, problem = self.analyse(job, lambda: self.overtaken(job)), None
             finally:
-                with self.running_lock:
-                    self.running = None
-                _settle()  # an Overtaken sent before the line above is delivered here
+                self.stopper.end()
         except Overtaken:
             self.log.append(("stopped", job.key, job.number))
             return
