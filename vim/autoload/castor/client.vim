@@ -27,6 +27,9 @@ function! castor#client#attach(buffer) abort
     let s:servers[l:root] = s:Start(l:root)
   endif
   let l:server = s:servers[l:root]
+  if get(l:server, 'failed', 0)
+    return
+  endif
   call setbufvar(a:buffer, 'castor_root', l:root)
   if l:server.ready
     call s:Open(l:server, a:buffer)
@@ -45,6 +48,13 @@ function! s:Start(root) abort
   let l:server = #{ready: 0, waiting: []}
   let l:server.job = job_start(castor#command(), #{in_mode: 'lsp', out_mode: 'lsp',
         \ err_io: 'null', out_cb: function('s:Received'), noblock: 1})
+  if job_status(l:server.job) !=# 'run'
+    echohl WarningMsg
+    echomsg 'castor: cannot start ' . join(castor#command()) . ' (is castor installed?)'
+    echohl None
+    let l:server.failed = 1
+    return l:server
+  endif
   let l:server.channel = job_getchannel(l:server.job)
   let l:folder = [#{uri: s:Uri(a:root), name: a:root}]
   call ch_sendexpr(l:server.channel, #{method: 'initialize', params: #{processId: getpid(),
