@@ -318,7 +318,7 @@ def main(argv=None) -> int:
 
         return language_server(args)
     if args.parameter_file is not None or args.parameter_set is not None:
-        from castor.lsp.customizer import SetError, readable, set_overrides
+        from castor.analysis.customizer import SetError, readable, set_overrides
 
         if args.parameter_file is None:
             parser.error(f"-P {args.parameter_set} names a set of a parameter file; give the "
@@ -332,7 +332,7 @@ def main(argv=None) -> int:
             sys.stderr.write(f"castor: error: {exc}\n")
             return USAGE_ERROR
     if args.params:
-        from castor.lsp.customizer import params_command
+        from castor.analysis.customizer import params_command
 
         return params_command(source, reading, evaluation, quiet=args.quiet)
     if not args.serve:
