@@ -1,0 +1,262 @@
+"""Facets sized to the screen (``--pixel-error E``, CLI.md): the tolerances of
+an evaluated tree set from a camera.
+
+The evaluator gives every curved leaf the frame's tolerance. Seen from a
+camera, a chord error of t scene units at depth z before a perspective camera
+covers at most t·c·scale/z pixels (``scale`` the camera's pixels per unit on
+the picture plane at distance 1, c = √(1 + tan²h + tan²v) the stretch of the
+picture's corners, where h and v are half the fields of view). So a leaf whose
+box lies at depth z or more may be faceted within E·z/(c·scale) scene units,
+and an orthographic camera allows E/scale everywhere. ``sized_to_screen`` gives
+each curved primitive and each smooth solid (``@s``) that tolerance at the
+nearest point of its box, in its own units, rounded down to a power of
+2^(1/4) (castor.primitives.facets.quantize) so that alike leaves share one
+facetization; never finer than the tolerance the evaluation gave it, and never
+coarser than its own size (by then every circle has its 8 segments). A leaf
+wholly outside the picture gets that coarsest tolerance; one whose box reaches
+the eye's plane keeps its own. Flat primitives are left as they are, and so is
+everything the camera changes nothing of: the same objects, the same keys.
+
+A shared subtree placed in several places may need several tolerances: each
+use gets the subtree its place needs, keyed by its content
+(castor.csg.tree.content_key), so uses that need the same share one subtree,
+made once.
+"""
+
+from __future__ import annotations
+
+import math
+
+from castor.csg import tree
+from castor.primitives import PRIMITIVES
+from castor.primitives.facets import largest_stretch, linear_part, product, quantize
+
+
+def sized_to_screen(frame: tree.FrameTree, picture, pixel_error: float) -> tree.FrameTree:
+    """``frame`` with the tolerances the camera of the picture settings
+    ``picture`` (castor.settings.PictureSettings: size, view, eye, look) needs
+    for a chord error of at most ``pixel_error`` pixels."""
+    screen = Screen(frame_camera(frame, picture), pixel_error)
+    objects = tuple(obj if obj.root is None else obj.replace(root=screen.node(obj.root,
+                                                                              tree.IDENTITY))
+                    for obj in frame.objects)
+    if all(new is old for new, old in zip(objects, frame.objects)):
+        return frame
+    return frame.replace(objects=objects)
+
+
+def frame_camera(frame: tree.FrameTree, picture):
+    """The camera of the picture options (castor.pictures.camera.make_camera),
+    framing the box of the frame's solids where it frames anything."""
+    from castor.pictures.camera import make_camera
+
+    if picture.eye is not None and picture.look is not None:
+        low = high = (0.0, 0.0, 0.0)
+    else:
+        low, high = frame_box(frame)
+    return make_camera(low, high, picture.size, picture.view, picture.eye, picture.look)
+
+
+def frame_box(frame: tree.FrameTree) -> tuple[tuple, tuple]:
+    """The box of the frame's solids, as the ray tracer bounds them: a union's
+    operands' boxes, an intersection's common part, a difference's first operand."""
+    known: dict[str, object] = {}
+    boxes = [_box(obj.root, tree.IDENTITY, known) for obj in frame.objects
+             if obj.root is not None]
+    return _union([b for b in boxes if b is not None]) or ((0.0,) * 3, (0.0,) * 3)
+
+
+def _box(node, matrix, known: dict):
+    kind = type(node)
+    if kind is tree.Primitive:
+        low, high = PRIMITIVES[node.kind].box(node.shape)
+        return _placed_box(tree.compose(matrix, node.matrix), low, high)
+    if kind is tree.Boolean:
+        boxes = [_box(o, matrix, known) for o in node.operands]
+        if node.op == "D":
+            return boxes[0] if boxes else None
+        if node.op == "I":
+            return _intersection(boxes)
+        return _union([b for b in boxes if b is not None])
+    if kind is tree.Smooth:  # a smooth solid lies within its control mesh's box
+        return _box(node.operand, tree.compose(matrix, node.matrix), known)
+    shared = node.shared
+    if shared.key not in known:
+        known[shared.key] = (None if shared.child is None
+                             else _box(shared.child, tree.IDENTITY, known))
+    own = known[shared.key]
+    return None if own is None else _placed_box(tree.compose(matrix, node.matrix), *own)
+
+
+def _placed_box(matrix, low, high) -> tuple[tuple, tuple]:
+    """The box of the box (low, high) moved by the affine ``matrix``."""
+    lows, highs = [], []
+    for row in range(3):
+        g = [0.0, 0.0, 0.0]
+        g[row] = 1.0
+        a, b = _extent(matrix, low, high, g)
+        lows.append(a)
+        highs.append(b)
+    return tuple(lows), tuple(highs)
+
+
+def _union(boxes):
+    if not boxes:
+        return None
+    return (tuple(min(b[0][i] for b in boxes) for i in range(3)),
+            tuple(max(b[1][i] for b in boxes) for i in range(3)))
+
+
+def _intersection(boxes):
+    if not boxes or any(b is None for b in boxes):
+        return None
+    low = tuple(max(b[0][i] for b in boxes) for i in range(3))
+    high = tuple(min(b[1][i] for b in boxes) for i in range(3))
+    return None if any(lo > hi for lo, hi in zip(low, high)) else (low, high)
+
+
+def _extent(matrix, low, high, g, offset: float = 0.0) -> tuple[float, float]:
+    """The least and greatest of g·p + offset over the points p of the box
+    (low, high) moved by the affine ``matrix``."""
+    smallest = largest = offset + sum(g[r] * matrix[4 * r + 3] for r in range(3))
+    for axis in range(3):
+        h = sum(g[r] * matrix[4 * r + axis] for r in range(3))
+        a, b = h * low[axis], h * high[axis]
+        smallest += min(a, b)
+        largest += max(a, b)
+    return smallest, largest
+
+
+class Screen:
+    """The tolerances one camera needs: ``node`` gives a subtree with them."""
+
+    def __init__(self, camera, pixel_error: float):
+        self.error = pixel_error
+        self.eye = tuple(float(x) for x in camera.eye)
+        self.forward = tuple(float(x) for x in camera.forward)
+        self.right = tuple(float(x) for x in camera.right)
+        self.up = tuple(float(x) for x in camera.up)
+        self.scale = camera.scale
+        self.orthographic = camera.orthographic
+        half_w, half_h = camera.width / 2 / self.scale, camera.height / 2 / self.scale
+        self.half = (half_w, half_h)  # tangents (perspective) or scene units (orthographic)
+        self.corner = math.sqrt(1 + half_w * half_w + half_h * half_h)
+        self.shared: dict[str, tree.Shared] = {}  # the subtrees made, by key
+        self.curved: dict[str, bool] = {}  # whether a shared subtree holds anything curved
+
+    # --- what one box needs, in scene units
+    def world_tolerance(self, matrix, low, high) -> float | None:
+        """The chord error that covers at most E pixels anywhere in the box
+        (low, high) moved by ``matrix``: 0 where it reaches the eye's plane,
+        None where the camera does not see it at all."""
+        rel = -sum(f * e for f, e in zip(self.forward, self.eye))
+        near, far = _extent(matrix, low, high, self.forward, rel)
+        if self._outside(matrix, low, high):
+            return None
+        if self.orthographic:
+            return self.error / self.scale
+        if far <= 0:
+            return None
+        if near <= 0:
+            return 0.0
+        return self.error * near / (self.corner * self.scale)
+
+    def _outside(self, matrix, low, high) -> bool:
+        """Whether the box lies wholly beyond one side of the picture."""
+        half_w, half_h = self.half
+        for axis, half in ((self.right, half_w), (self.up, half_h)):
+            for sign in (1.0, -1.0):
+                if self.orthographic:  # sign·(axis·rel) <= half
+                    g = tuple(sign * a for a in axis)
+                    offset = -sum(x * e for x, e in zip(g, self.eye)) - half
+                else:  # sign·(axis·rel) <= half·(forward·rel)
+                    g = tuple(sign * a - half * f for a, f in zip(axis, self.forward))
+                    offset = -sum(x * e for x, e in zip(g, self.eye))
+                if _extent(matrix, low, high, g, offset)[0] > 0:
+                    return True
+        return False
+
+    # --- the tree
+    def node(self, node, matrix, above: float = 1.0):
+        """``node`` (placed in the scene by ``matrix``; its tolerances in units
+        that are ``above`` scene units at most) with the camera's tolerances:
+        the same object where nothing changes."""
+        kind = type(node)
+        if kind is tree.Primitive:
+            return self._primitive(node, matrix, above)
+        if kind is tree.Boolean:
+            operands = tuple(self.node(o, matrix, above) for o in node.operands)
+            if all(new is old for new, old in zip(operands, node.operands)):
+                return node
+            return tree.Boolean(node.op, operands, node.location)
+        if kind is tree.Smooth:
+            return self._smooth(node, matrix)
+        return self._use(node, matrix)
+
+    def _primitive(self, leaf: tree.Primitive, matrix, above: float) -> tree.Primitive:
+        declared = PRIMITIVES[leaf.kind]
+        if not declared.curved:
+            return leaf
+        low, high = declared.box(leaf.shape)
+        world = self.world_tolerance(tree.compose(matrix, leaf.matrix), low, high)
+        linear = linear_part(leaf.matrix)
+        if leaf.metric is not None:
+            linear = product(leaf.metric, linear)
+        size = largest_stretch(linear) * declared.extent(leaf.shape)
+        tolerance = _bounded(world, above, leaf.tolerance, size)
+        if tolerance == leaf.tolerance or (declared.facet_counts(leaf.shape, linear, tolerance)
+                                           == declared.facet_counts(leaf.shape, linear,
+                                                                    leaf.tolerance)):
+            return leaf
+        return leaf.replace(tolerance=tolerance)
+
+    def _smooth(self, node: tree.Smooth, matrix) -> tree.Smooth:
+        placed = tree.compose(matrix, node.matrix)
+        boxes = [_placed_box(m, *PRIMITIVES[leaf.kind].box(leaf.shape))
+                 for leaf, m, _ in tree.leaves(node.operand)]
+        own = _union(boxes)
+        if own is None:
+            return node
+        world = self.world_tolerance(placed, *own)
+        size = math.dist(*own)  # in its own units
+        tolerance = _bounded(world, largest_stretch(linear_part(placed)), node.tolerance, size)
+        if tolerance == node.tolerance:
+            return node
+        return tree.Smooth(node.angle, node.matrix, node.operand, tolerance,
+                           tree.smooth_key(node.angle, tolerance, node.operand), node.location)
+
+    def _use(self, use: tree.Use, matrix) -> tree.Use:
+        shared = use.shared
+        if shared.child is None or not self._holds_curved(shared):
+            return use
+        placed = tree.compose(matrix, use.matrix)
+        child = self.node(shared.child, placed, largest_stretch(linear_part(placed)))
+        if child is shared.child:
+            return use
+        key = tree.content_key(shared.name, child)
+        made = self.shared.get(key)
+        if made is None:
+            made = self.shared[key] = tree.Shared(shared.name, child, key, shared.location)
+        return tree.Use(use.matrix, use.path, made)
+
+    def _holds_curved(self, shared: tree.Shared) -> bool:
+        found = self.curved.get(shared.key)
+        if found is None:
+            found = self.curved[shared.key] = any(
+                PRIMITIVES[leaf.kind].curved for leaf, _, _ in tree.leaves(shared.child))
+        return found
+
+
+def _bounded(world: float | None, above: float, finest: float, size: float) -> float:
+    """A tolerance in units of which one is ``above`` scene units at most: the
+    scene's ``world`` (None: the coarsest) rounded down, no finer than
+    ``finest`` and no coarser than the first power of 2^(1/4) beyond four times
+    ``size`` (any coarser makes no fewer facets)."""
+    coarsest = 2.0 ** (math.ceil(math.log2(max(4 * size, 1e-300)) * 4 - 1e-9) / 4)
+    if world is None:
+        tolerance = coarsest
+    elif world <= 0 or above <= 0:
+        return finest
+    else:
+        tolerance = min(quantize(world / above), coarsest)
+    return max(tolerance, finest)
