@@ -4,9 +4,10 @@ an evaluated tree set from a camera.
 The evaluator gives every curved leaf the frame's tolerance. Seen from a
 camera, a chord error of t scene units at depth z before a perspective camera
 covers at most t·c·scale/z pixels (``scale`` the camera's pixels per unit on
-the picture plane at distance 1, c = √(1 + tan²h + tan²v) the stretch of the
-picture's corners, where h and v are half the fields of view). So a leaf whose
-box lies at depth z or more may be faceted within E·z/(c·scale) scene units,
+the picture plane at distance 1, c = √(1 + a² + b²) at the picture point
+(a, b) = (x/z, y/z) it is seen at, at most that of the picture's corners). So
+a leaf whose box lies at depth z or more, seen within (a, b), may be faceted
+within E·z/(c·scale) scene units,
 and an orthographic camera allows E/scale everywhere. ``sized_to_screen`` gives
 each curved primitive and each smooth solid (``@s``) that tolerance at the
 nearest point of its box, in its own units, rounded down to a power of
@@ -37,12 +38,15 @@ def sized_to_screen(frame: tree.FrameTree, picture, pixel_error: float) -> tree.
     ``picture`` (castor.settings.PictureSettings: size, view, eye, look) needs
     for a chord error of at most ``pixel_error`` pixels."""
     screen = Screen(frame_camera(frame, picture), pixel_error)
-    objects = tuple(obj if obj.root is None else obj.replace(root=screen.node(obj.root,
-                                                                              tree.IDENTITY))
-                    for obj in frame.objects)
+    objects = tuple(_sized(obj, screen) for obj in frame.objects)
     if all(new is old for new, old in zip(objects, frame.objects)):
         return frame
     return frame.replace(objects=objects)
+
+
+def _sized(obj: tree.Object, screen: "Screen") -> tree.Object:
+    root = obj.root if obj.root is None else screen.node(obj.root, tree.IDENTITY)
+    return obj if root is obj.root else obj.replace(root=root)
 
 
 def frame_camera(frame: tree.FrameTree, picture):
@@ -115,6 +119,15 @@ def _intersection(boxes):
     return None if any(lo > hi for lo, hi in zip(low, high)) else (low, high)
 
 
+def _corners(matrix, low, high):
+    """The eight corners of the box (low, high) moved by the affine ``matrix``."""
+    for x in (low[0], high[0]):
+        for y in (low[1], high[1]):
+            for z in (low[2], high[2]):
+                yield tuple(matrix[4 * r] * x + matrix[4 * r + 1] * y + matrix[4 * r + 2] * z
+                            + matrix[4 * r + 3] for r in range(3))
+
+
 def _extent(matrix, low, high, g, offset: float = 0.0) -> tuple[float, float]:
     """The least and greatest of g·p + offset over the points p of the box
     (low, high) moved by the affine ``matrix``."""
@@ -140,7 +153,6 @@ class Screen:
         self.orthographic = camera.orthographic
         half_w, half_h = camera.width / 2 / self.scale, camera.height / 2 / self.scale
         self.half = (half_w, half_h)  # tangents (perspective) or scene units (orthographic)
-        self.corner = math.sqrt(1 + half_w * half_w + half_h * half_h)
         self.shared: dict[str, tree.Shared] = {}  # the subtrees made, by key
         self.curved: dict[str, bool] = {}  # whether a shared subtree holds anything curved
 
@@ -159,7 +171,22 @@ class Screen:
             return None
         if near <= 0:
             return 0.0
-        return self.error * near / (self.corner * self.scale)
+        return self.error * near / (self._stretch(matrix, low, high) * self.scale)
+
+    def _stretch(self, matrix, low, high) -> float:
+        """How much more than at the picture's centre a length across the line
+        of sight covers on the picture, at most, where the box shows: √(1 + a² + b²)
+        for the picture coordinates (a, b) = (x/z, y/z) of its points, which lie
+        between those of its corners (all before the eye) and within the picture."""
+        half_w, half_h = self.half
+        most = [0.0, 0.0]
+        for corner in _corners(matrix, low, high):
+            rel = [c - e for c, e in zip(corner, self.eye)]
+            z = sum(r * f for r, f in zip(rel, self.forward))
+            for k, (axis, half) in enumerate(((self.right, half_w), (self.up, half_h))):
+                across = abs(sum(r * a for r, a in zip(rel, axis))) / z
+                most[k] = max(most[k], min(across, half))
+        return math.sqrt(1 + most[0] ** 2 + most[1] ** 2)
 
     def _outside(self, matrix, low, high) -> bool:
         """Whether the box lies wholly beyond one side of the picture."""
@@ -202,8 +229,9 @@ class Screen:
         linear = linear_part(leaf.matrix)
         if leaf.metric is not None:
             linear = product(leaf.metric, linear)
-        size = largest_stretch(linear) * declared.extent(leaf.shape)
-        tolerance = _bounded(world, above, leaf.tolerance, size)
+        stretch = largest_stretch(linear)
+        tolerance = _bounded(world, above, leaf.tolerance, stretch * declared.extent(leaf.shape),
+                             stretch)
         if tolerance == leaf.tolerance or (declared.facet_counts(leaf.shape, linear, tolerance)
                                            == declared.facet_counts(leaf.shape, linear,
                                                                     leaf.tolerance)):
@@ -240,23 +268,37 @@ class Screen:
         return tree.Use(use.matrix, use.path, made)
 
     def _holds_curved(self, shared: tree.Shared) -> bool:
+        """Whether a curved primitive or a smooth solid lies below."""
         found = self.curved.get(shared.key)
         if found is None:
-            found = self.curved[shared.key] = any(
-                PRIMITIVES[leaf.kind].curved for leaf, _, _ in tree.leaves(shared.child))
+            found = self.curved[shared.key] = self._curved_below(shared.child)
         return found
 
+    def _curved_below(self, node) -> bool:
+        kind = type(node)
+        if kind is tree.Primitive:
+            return PRIMITIVES[node.kind].curved
+        if kind is tree.Boolean:
+            return any(self._curved_below(o) for o in node.operands)
+        if kind is tree.Smooth:
+            return True
+        return node.shared.child is not None and self._holds_curved(node.shared)
 
-def _bounded(world: float | None, above: float, finest: float, size: float) -> float:
+
+def _bounded(world: float | None, above: float, finest: float, size: float,
+             unit: float = 1.0) -> float:
     """A tolerance in units of which one is ``above`` scene units at most: the
     scene's ``world`` (None: the coarsest) rounded down, no finer than
     ``finest`` and no coarser than the first power of 2^(1/4) beyond four times
-    ``size`` (any coarser makes no fewer facets)."""
+    ``size`` (any coarser makes no fewer facets). It is rounded as a multiple
+    of ``unit``, the primitive's own stretch, which its facet counts divide it
+    by and round again (castor.primitives.facets): so that a uniform scale is
+    rounded once."""
     coarsest = 2.0 ** (math.ceil(math.log2(max(4 * size, 1e-300)) * 4 - 1e-9) / 4)
     if world is None:
         tolerance = coarsest
     elif world <= 0 or above <= 0:
         return finest
     else:
-        tolerance = min(quantize(world / above), coarsest)
+        tolerance = min(quantize(world / above / unit) * unit, coarsest)
     return max(tolerance, finest)
