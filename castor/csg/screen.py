@@ -95,12 +95,17 @@ def _box(node, matrix, known: dict):
 def _placed_box(matrix, low, high) -> tuple[tuple, tuple]:
     """The box of the box (low, high) moved by the affine ``matrix``."""
     lows, highs = [], []
-    for row in range(3):
-        g = [0.0, 0.0, 0.0]
-        g[row] = 1.0
-        a, b = _extent(matrix, low, high, g)
-        lows.append(a)
-        highs.append(b)
+    for row in range(0, 12, 4):
+        smallest = largest = matrix[row + 3]
+        for axis in range(3):
+            h = matrix[row + axis]
+            a, b = h * low[axis], h * high[axis]
+            if a > b:
+                a, b = b, a
+            smallest += a
+            largest += b
+        lows.append(smallest)
+        highs.append(largest)
     return tuple(lows), tuple(highs)
 
 
@@ -119,27 +124,6 @@ def _intersection(boxes):
     return None if any(lo > hi for lo, hi in zip(low, high)) else (low, high)
 
 
-def _corners(matrix, low, high):
-    """The eight corners of the box (low, high) moved by the affine ``matrix``."""
-    for x in (low[0], high[0]):
-        for y in (low[1], high[1]):
-            for z in (low[2], high[2]):
-                yield tuple(matrix[4 * r] * x + matrix[4 * r + 1] * y + matrix[4 * r + 2] * z
-                            + matrix[4 * r + 3] for r in range(3))
-
-
-def _extent(matrix, low, high, g, offset: float = 0.0) -> tuple[float, float]:
-    """The least and greatest of g·p + offset over the points p of the box
-    (low, high) moved by the affine ``matrix``."""
-    smallest = largest = offset + sum(g[r] * matrix[4 * r + 3] for r in range(3))
-    for axis in range(3):
-        h = sum(g[r] * matrix[4 * r + axis] for r in range(3))
-        a, b = h * low[axis], h * high[axis]
-        smallest += min(a, b)
-        largest += max(a, b)
-    return smallest, largest
-
-
 class Screen:
     """The tolerances one camera needs: ``node`` gives a subtree with them."""
 
@@ -153,7 +137,13 @@ class Screen:
         self.orthographic = camera.orthographic
         half_w, half_h = camera.width / 2 / self.scale, camera.height / 2 / self.scale
         self.half = (half_w, half_h)  # tangents (perspective) or scene units (orthographic)
+        # scene point -> the camera's frame (right, up, forward from the eye)
+        rows = (self.right, self.up, self.forward)
+        self.view = tuple(v for axis in rows for v in
+                          (*axis, -sum(a * e for a, e in zip(axis, self.eye))))
         self.shared: dict[str, tree.Shared] = {}  # the subtrees made, by key
+        self.leaf_memo: dict[int, tuple] = {}  # id(leaf) -> (leaf, its unit box, stretch, ...)
+        self.stretches: dict[tuple, float] = {}  # a linear map's largest stretch
         self.curved: dict[str, bool] = {}  # whether a shared subtree holds anything curved
 
     # --- what one box needs, in scene units
@@ -161,47 +151,34 @@ class Screen:
         """The chord error that covers at most E pixels anywhere in the box
         (low, high) moved by ``matrix``: 0 where it reaches the eye's plane,
         None where the camera does not see it at all."""
-        rel = -sum(f * e for f, e in zip(self.forward, self.eye))
-        near, far = _extent(matrix, low, high, self.forward, rel)
-        if self._outside(matrix, low, high):
-            return None
+        # the box's corners in the camera's frame: across, up, along the line of sight
+        m = tree.compose(self.view, matrix)
+        corners = [(m[0] * x + m[1] * y + m[2] * z + m[3], m[4] * x + m[5] * y + m[6] * z + m[7],
+                    m[8] * x + m[9] * y + m[10] * z + m[11])
+                   for x in (low[0], high[0]) for y in (low[1], high[1])
+                   for z in (low[2], high[2])]
+        half_w, half_h = self.half
         if self.orthographic:
+            if (all(c[0] > half_w for c in corners) or all(c[0] < -half_w for c in corners)
+                    or all(c[1] > half_h for c in corners)
+                    or all(c[1] < -half_h for c in corners)):
+                return None
             return self.error / self.scale
-        if far <= 0:
-            return None
+        if (all(c[0] > half_w * c[2] for c in corners)
+                or all(c[0] < -half_w * c[2] for c in corners)
+                or all(c[1] > half_h * c[2] for c in corners)
+                or all(c[1] < -half_h * c[2] for c in corners)):
+            return None  # wholly beyond one side of the picture (or behind the eye)
+        near = min(c[2] for c in corners)
         if near <= 0:
             return 0.0
-        return self.error * near / (self._stretch(matrix, low, high) * self.scale)
-
-    def _stretch(self, matrix, low, high) -> float:
-        """How much more than at the picture's centre a length across the line
-        of sight covers on the picture, at most, where the box shows: √(1 + a² + b²)
-        for the picture coordinates (a, b) = (x/z, y/z) of its points, which lie
-        between those of its corners (all before the eye) and within the picture."""
-        half_w, half_h = self.half
-        most = [0.0, 0.0]
-        for corner in _corners(matrix, low, high):
-            rel = [c - e for c, e in zip(corner, self.eye)]
-            z = sum(r * f for r, f in zip(rel, self.forward))
-            for k, (axis, half) in enumerate(((self.right, half_w), (self.up, half_h))):
-                across = abs(sum(r * a for r, a in zip(rel, axis))) / z
-                most[k] = max(most[k], min(across, half))
-        return math.sqrt(1 + most[0] ** 2 + most[1] ** 2)
-
-    def _outside(self, matrix, low, high) -> bool:
-        """Whether the box lies wholly beyond one side of the picture."""
-        half_w, half_h = self.half
-        for axis, half in ((self.right, half_w), (self.up, half_h)):
-            for sign in (1.0, -1.0):
-                if self.orthographic:  # sign·(axis·rel) <= half
-                    g = tuple(sign * a for a in axis)
-                    offset = -sum(x * e for x, e in zip(g, self.eye)) - half
-                else:  # sign·(axis·rel) <= half·(forward·rel)
-                    g = tuple(sign * a - half * f for a, f in zip(axis, self.forward))
-                    offset = -sum(x * e for x, e in zip(g, self.eye))
-                if _extent(matrix, low, high, g, offset)[0] > 0:
-                    return True
-        return False
+        # how much more than at the picture's centre a length across the line of
+        # sight covers on the picture, at most, where the box shows: √(1 + a² + b²)
+        # at the picture coordinates (a, b) = (x/z, y/z), which lie between those
+        # of its corners (all before the eye) and within the picture
+        a = min(max(abs(c[0]) / c[2] for c in corners), half_w)
+        b = min(max(abs(c[1]) / c[2] for c in corners), half_h)
+        return self.error * near / (math.sqrt(1 + a * a + b * b) * self.scale)
 
     # --- the tree
     def node(self, node, matrix, above: float = 1.0):
@@ -221,22 +198,42 @@ class Screen:
         return self._use(node, matrix)
 
     def _primitive(self, leaf: tree.Primitive, matrix, above: float) -> tree.Primitive:
+        known = self.leaf_memo.get(id(leaf))
+        if known is None or known[0] is not leaf:
+            known = self.leaf_memo[id(leaf)] = self._leaf_figures(leaf)
+        _, curved, low, high, linear, stretch, extent, counts = known
+        if not curved:
+            return leaf
+        world = self.world_tolerance(tree.compose(matrix, leaf.matrix), low, high)
+        tolerance = _bounded(world, above, leaf.tolerance, stretch * extent, stretch)
+        if tolerance == leaf.tolerance:
+            return leaf
+        same = counts.get(tolerance)
+        if same is None:
+            same = counts[tolerance] = (PRIMITIVES[leaf.kind].facet_counts(leaf.shape, linear, tolerance)
+                                  == counts[None])
+        return leaf if same else leaf.replace(tolerance=tolerance)
+
+    def _leaf_figures(self, leaf: tree.Primitive) -> tuple:
+        """What does not change from one use of a leaf to the next: whether it is
+        curved, its unit box, its linear map, that map's largest stretch, its
+        extent, and its facet counts (None: with its own tolerance)."""
         declared = PRIMITIVES[leaf.kind]
         if not declared.curved:
-            return leaf
+            return (leaf, False) + (None,) * 6
         low, high = declared.box(leaf.shape)
-        world = self.world_tolerance(tree.compose(matrix, leaf.matrix), low, high)
         linear = linear_part(leaf.matrix)
         if leaf.metric is not None:
             linear = product(leaf.metric, linear)
-        stretch = largest_stretch(linear)
-        tolerance = _bounded(world, above, leaf.tolerance, stretch * declared.extent(leaf.shape),
-                             stretch)
-        if tolerance == leaf.tolerance or (declared.facet_counts(leaf.shape, linear, tolerance)
-                                           == declared.facet_counts(leaf.shape, linear,
-                                                                    leaf.tolerance)):
-            return leaf
-        return leaf.replace(tolerance=tolerance)
+        counts = {None: declared.facet_counts(leaf.shape, linear, leaf.tolerance)}
+        return (leaf, True, low, high, linear, self._largest(linear), declared.extent(leaf.shape),
+                counts)
+
+    def _largest(self, linear) -> float:
+        found = self.stretches.get(linear)
+        if found is None:
+            found = self.stretches[linear] = largest_stretch(linear)
+        return found
 
     def _smooth(self, node: tree.Smooth, matrix) -> tree.Smooth:
         placed = tree.compose(matrix, node.matrix)
@@ -247,7 +244,7 @@ class Screen:
             return node
         world = self.world_tolerance(placed, *own)
         size = math.dist(*own)  # in its own units
-        tolerance = _bounded(world, largest_stretch(linear_part(placed)), node.tolerance, size)
+        tolerance = _bounded(world, self._largest(linear_part(placed)), node.tolerance, size)
         if tolerance == node.tolerance:
             return node
         return tree.Smooth(node.angle, node.matrix, node.operand, tolerance,
@@ -258,7 +255,7 @@ class Screen:
         if shared.child is None or not self._holds_curved(shared):
             return use
         placed = tree.compose(matrix, use.matrix)
-        child = self.node(shared.child, placed, largest_stretch(linear_part(placed)))
+        child = self.node(shared.child, placed, self._largest(linear_part(placed)))
         if child is shared.child:
             return use
         key = tree.content_key(shared.name, child)
