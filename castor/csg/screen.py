@@ -33,11 +33,14 @@ from castor.primitives import PRIMITIVES
 from castor.primitives.facets import largest_stretch, linear_part, product, quantize
 
 
-def sized_to_screen(frame: tree.FrameTree, picture, pixel_error: float) -> tree.FrameTree:
+def sized_to_screen(frame: tree.FrameTree, picture, pixel_error: float,
+                    camera=None) -> tree.FrameTree:
     """``frame`` with the tolerances the camera of the picture settings
     ``picture`` (castor.settings.PictureSettings: size, view, eye, look) needs
-    for a chord error of at most ``pixel_error`` pixels."""
-    screen = Screen(frame_camera(frame, picture), pixel_error)
+    for a chord error of at most ``pixel_error`` pixels; or those of
+    ``camera`` (castor.pictures.camera.Camera) where given: the live
+    preview's, as its page looks."""
+    screen = Screen(camera if camera is not None else frame_camera(frame, picture), pixel_error)
     objects = tuple(_sized(obj, screen) for obj in frame.objects)
     if all(new is old for new, old in zip(objects, frame.objects)):
         return frame

@@ -19,6 +19,7 @@ import pytest
 
 from castor.csg.screen import frame_box, sized_to_screen
 from castor.mesh.facetize import Facetizer
+from castor.options import parse_view
 from castor.pictures.camera import make_camera
 from castor.pipeline import evaluated_frames
 from castor.settings import PictureSettings
@@ -148,6 +149,16 @@ def test_a_far_column_gets_8_segments_and_a_near_one_more():
     assert _segments(near) > 30
     plain_near, plain_far = _frame(text, error=None).objects
     assert _segments(plain_near) == _segments(plain_far) > _segments(near)
+
+
+def test_an_orthographic_view_asks_the_same_everywhere():
+    text = ("TOLERANCE = 1e-5;\n> @t(0, 0, -1) @h(0.3) !sp(1, 0, 0), @t(1, 0, -30) @h(0.3) !sp(1, 0, 0),"
+            " @t(40, 0, 0) @h(0.3) !sp(1, 0, 0);\n")
+    top = PictureSettings(size=SIZE, view=parse_view("top"))
+    near, far, aside = _frame(text, picture=top).objects
+    assert near.polygon_count == far.polygon_count == aside.polygon_count
+    [plain, _, _] = _frame(text, None).objects
+    assert near.polygon_count < plain.polygon_count
 
 
 def test_the_frame_tolerance_is_the_finest():
