@@ -44,13 +44,16 @@ IDENTITY: Matrix = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0)
 
 
 class Primitive(Record):
+    """One primitive placed in the frame, a leaf of the tree: ``kind`` names its
+    declaration (a castor.primitives.PrimitiveKind, ``PRIMITIVES[kind]``)."""
+
     __slots__ = ("kind", "shape", "colour", "matrix", "tolerance", "metric", "path", "location")
     _compared = ("kind", "shape", "colour", "matrix", "tolerance", "metric", "path")
 
     def __init__(self, kind: str, shape: tuple[float, ...], colour: tuple[float, float, float],
                  matrix: Matrix, tolerance: float, metric: tuple[float, ...] | None, path: str,
                  location: Location):
-        self.kind = kind  # "cu", "sp", ... (castor.language.vocabulary.PRIMITIVES)
+        self.kind = kind  # "cu", "sp", ... (castor.primitives.PRIMITIVES)
         self.shape = shape  # the arguments after the colour
         self.colour = colour
         self.matrix = matrix

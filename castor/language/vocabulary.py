@@ -8,11 +8,10 @@ parser and the editor files find them all by name.
 
 from __future__ import annotations
 
-from castor.primitives import PRIMITIVES, Argument, Primitive
+from castor.primitives import PRIMITIVES, Argument, PrimitiveKind
 from castor.transformations import TRANSFORMS, Transformation
 
 # the names the rest of castor knew them by
-PrimitiveKind = Primitive
 TransformKind = Transformation
 
 BOOLEANS = {"U": "union", "I": "intersection", "D": "difference"}

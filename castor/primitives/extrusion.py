@@ -9,7 +9,7 @@ import math
 
 from castor.diagnostics import Location
 from castor.primitives import rays
-from castor.primitives.base import Mesh, Primitive
+from castor.primitives.base import Mesh, PrimitiveKind
 from castor.primitives.facets import joined, quads
 
 INF = math.inf
@@ -147,7 +147,7 @@ def normal(shape, p, face):
 
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=90, name="ex", title="extrusion", solid="a simple polygon in z = 0 swept to z = 1",
     arguments=(), pair_names=("x", "y"), curved=False, check=check, box=box,
     mesh=lambda shape, facets: extrusion(shape),

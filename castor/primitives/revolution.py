@@ -10,7 +10,7 @@ import math
 
 from castor.diagnostics import Location
 from castor.primitives import rays
-from castor.primitives.base import FLAT, Mesh, Primitive
+from castor.primitives.base import FLAT, Mesh, PrimitiveKind
 from castor.primitives.facets import circle_segments, joined, plane_stretch, quantize, signed_volume
 
 INF = math.inf
@@ -153,7 +153,7 @@ def normal(shape, p, face):
 
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=95, name="rv", title="revolution", solid="a simple profile (r, z), r >= 0, turned about z",
     arguments=(), pair_names=("r", "z"), curved=True, check=check, box=box,
     mesh=lambda shape, facets: revolution(shape, facets[0]),
