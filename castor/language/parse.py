@@ -16,11 +16,13 @@ import threading
 from functools import lru_cache
 from typing import Iterator
 
+from castor.booleans import BOOLEANS
 from castor.diagnostics import CastorError, EvaluationError, LimitError, SceneError
 from castor.language.expressions import FUNCTIONS, arity_message, evaluate
 from castor.language.lalr import Failed, Token
 from castor.language.reader import Chunk
-from castor.language.vocabulary import PRIMITIVES, TRANSFORMS
+from castor.primitives import PRIMITIVES
+from castor.transformations import TRANSFORMS
 from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, Facetize, NamedNode, Number, ObjectDef, Param,
                     ParamDef, PrimitiveNode, Repeat, Step, Tables, TransformedNode, Unary)
 
@@ -180,10 +182,10 @@ class Builder:
         repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
         operands = rest[1:] if repeat else rest
         op = token[1:]
-        if op not in ("U", "I", "D"):
-            self.faults.append(SceneError(
-                f"unknown boolean operator '{token}' (known: $U union, $I intersection, $D difference)",
-                location))
+        if op not in BOOLEANS:
+            known = ", ".join(f"${name} {meaning}" for name, meaning in BOOLEANS.items())
+            self.faults.append(SceneError(f"unknown boolean operator '{token}' (known: {known})",
+                                          location))
         elif op == "D" and repeat is not None:
             self.faults.append(SceneError(
                 "'$D' cannot repeat; subtract a repeated union instead: $D(a, $U[I = ...](b))", location))

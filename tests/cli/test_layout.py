@@ -11,7 +11,7 @@ PACKAGE = Path(__file__).resolve().parents[2] / "castor"
 STAGES = {
     "castor": 0, "castor.diagnostics": 0, "castor.options": 0, "castor.progress": 0,
     "castor.settings": 0,
-    "castor.language": 1, "castor.primitives": 1, "castor.transformations": 1,
+    "castor.language": 1, "castor.primitives": 1, "castor.transformations": 1, "castor.booleans": 1,
     "castor.csg": 2,
     "castor.mesh": 3, "castor.pictures": 3,
     "castor.formats": 4, "castor.drawings": 4, "castor.quantities": 4,

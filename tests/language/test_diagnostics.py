@@ -6,7 +6,7 @@ import subprocess
 import pytest
 
 from meshcheck import parse_stream, run, write
-from castor.language.vocabulary import TRANSFORMS
+from castor.transformations import TRANSFORMS
 
 CUBE = "!cu(0.5, 0.5, 0.5)"
 

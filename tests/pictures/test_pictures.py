@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from castor.settings import PictureSettings
-from castor.language.vocabulary import PRIMITIVES
+from castor.primitives import PRIMITIVES
 from castor.options import View
 from castor.pictures import picture
 from castor.pictures.camera import make_camera
