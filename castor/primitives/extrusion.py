@@ -16,7 +16,7 @@ INF = math.inf
 
 
 def check(shape: tuple, location: Location, path: object) -> None:
-    from castor.language.outline import polygon
+    from castor.primitives.simple_polygon import polygon
 
     polygon(shape, "polygon", location, path)
 
@@ -25,7 +25,7 @@ def extrusion(values: tuple) -> Mesh:
     """The simple polygon (x1, y1, ...) in z = 0 swept to z = 1."""
     import numpy as np
 
-    from castor.language.outline import polygon, signed_area
+    from castor.primitives.simple_polygon import polygon, signed_area
     from castor.mesh.adapter import triangulate
 
     points = polygon(values, "polygon", None, "")

@@ -17,7 +17,7 @@ INF = math.inf
 
 
 def check(shape: tuple, location: Location, path: object) -> None:
-    from castor.language.outline import profile
+    from castor.primitives.simple_polygon import profile
 
     profile(shape, location, path)
 
@@ -26,7 +26,7 @@ def revolution(values: tuple, segments: int) -> Mesh:
     """The simple profile (r1, z1, ...) turned a full circle about the z axis."""
     import numpy as np
 
-    from castor.language.outline import profile, signed_area
+    from castor.primitives.simple_polygon import profile, signed_area
 
     outline = profile(values, None, "")
     if signed_area(outline) < 0:
