@@ -18,7 +18,7 @@ from castor.diagnostics import CastorError, Reporter, TooManyErrors
 from castor.language.expressions import UndefinedParameter, evaluate
 from castor.language.parse import Parser, SkippedDefinition
 from castor.language.reader import Chunk
-from castor.language.scene import Facetize, ObjectDef, ParamDef, Tables
+from castor.language.scene import FrameCommand, ObjectDef, ParamDef, Tables
 from castor.options import DEFAULT_TOLERANCE
 from castor.settings import EvaluationSettings
 
@@ -85,8 +85,8 @@ class Interpreter:
                 self._define_parameter(item)
             elif isinstance(item, ObjectDef):
                 self._define_object(item)
-            elif isinstance(item, Facetize):
-                self._facetize(item)
+            elif isinstance(item, FrameCommand):
+                self._run_frame_command(item)
         except CastorError as exc:
             self.reporter.error(exc)
 
@@ -130,7 +130,7 @@ class Interpreter:
         self.tables.objects[name] = statement.node
         self.tables.broken.discard(name)
 
-    def _facetize(self, statement: Facetize) -> None:
+    def _run_frame_command(self, statement: FrameCommand) -> None:
         """One frame, or one for each value of ``>[T = ...]``; an error found in
         several of its frames is reported once, with the frames it concerns."""
         from castor.csg.evaluate import FrameErrors, repeat_values

@@ -110,7 +110,7 @@ def analyse(source: Source, reading: ReadSettings = ReadSettings(),
     A file that cannot be read goes to ``unreadable`` (None: UsageError)."""
     import time
 
-    from castor.language.scene import Facetize, ObjectDef, ParamDef
+    from castor.language.scene import FrameCommand, ObjectDef, ParamDef
     from castor.analysis.reuse import ReusingInterpreter
 
     started = time.perf_counter()
@@ -131,7 +131,7 @@ def analyse(source: Source, reading: ReadSettings = ReadSettings(),
             elif isinstance(item, ObjectDef):
                 analysis.definitions.append(Definition("object", item.name, item.location,
                                                        node=item.node))
-            elif isinstance(item, Facetize):
+            elif isinstance(item, FrameCommand):
                 analysis.definitions.append(Definition("frame", ">", item.location,
                                                        node=item.objects))
 

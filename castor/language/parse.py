@@ -23,7 +23,7 @@ from castor.language.lalr import Failed, Token
 from castor.language.reader import Chunk
 from castor.primitives import PRIMITIVES
 from castor.transformations import TRANSFORMS
-from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, Facetize, NamedNode, Number, ObjectDef, Param,
+from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, FrameCommand, NamedNode, Number, ObjectDef, Param,
                     ParamDef, PrimitiveNode, Repeat, Step, Tables, TransformedNode, Unary)
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
@@ -113,7 +113,7 @@ class Builder:
         mark, rest = children[0], children[1:]
         repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
         objects = rest[1:] if repeat else rest
-        return self._statement(Facetize(tuple(objects), repeat, self._at(mark)))
+        return self._statement(FrameCommand(tuple(objects), repeat, self._at(mark)))
 
     def program(self, children):
         return None
@@ -358,7 +358,7 @@ class Parser:
         """Every parameter name the statements parsed so far assign or use."""
         return set(self.param_sets)
 
-    def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | Facetize | CastorError"]:
+    def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | FrameCommand | CastorError"]:
         """Parse one chunk. A missing ';' is reported, the statement is taken as if it
         were there, and parsing resumes with the next line."""
         parser = self._ready()

@@ -199,7 +199,12 @@ class ObjectDef(Record):
         self.location = location
 
 
-class Facetize(Record):
+class FrameCommand(Record):
+    """A '>' command (LANGUAGE.md §3): its objects, evaluated with the parameters
+    in force, make one frame, or one for each value of its repetition; what a
+    frame becomes (polygons, a picture, a drawing, a building model) the output
+    says, not the command."""
+
     __slots__ = ("objects", "repeat", "location")
 
     def __init__(self, objects: tuple[SceneNode, ...], repeat: Repeat | None, location: Location):
@@ -208,7 +213,7 @@ class Facetize(Record):
         self.location = location
 
 
-Statement = ParamDef | ObjectDef | Facetize
+Statement = ParamDef | ObjectDef | FrameCommand
 
 
 class Tables:
