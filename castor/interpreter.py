@@ -148,7 +148,7 @@ class Interpreter:
             self.frames_attempted += 1
             number = self.frames_attempted
             try:
-                scene = self.evaluator.frame(statement.objects, env, number, where,
+                tree = self.evaluator.frame(statement.objects, env, number, where,
                                              statement.location)
             except FrameErrors as group:
                 for error in group.errors:
@@ -158,7 +158,7 @@ class Interpreter:
                 failures.setdefault((error.message, error.location), (error, []))[1].append(number)
                 continue
             if self.submit is not None:
-                self.submit(scene)
+                self.submit(tree)
         for error, numbers in failures.values():
             if len(values) > 1:
                 error.message += f" (in {frames_text(numbers)})"

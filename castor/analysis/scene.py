@@ -202,10 +202,10 @@ def object_figures(analysis: Analysis, name: str, tolerance: float | None = None
     if tolerance is not None:
         env["TOLERANCE"] = tolerance
     try:
-        scene = Evaluator().frame((node,), env, 1, name, node.location)
+        tree = Evaluator().frame((node,), env, 1, name, node.location)
     except (CastorError, RecursionError):
         return None
-    result = make(Job(scene, FrameSettings(output=OutputSettings(format=None, summary=True),
+    result = make(Job(tree, FrameSettings(output=OutputSettings(format=None, summary=True),
                                            mesh=MeshSettings(max_polygons=HOVER_POLYGONS))))
     if result.errors:
         return {"refused": result.errors[0].message}

@@ -36,7 +36,7 @@ from typing import Iterator
 
 import numpy as np
 
-from castor.csg import tree
+from castor.csg.tree import FrameTree
 from castor.formats import WriteInfo
 from castor.formats.kinds import BuildingModel
 from castor.mesh.frame import Frame
@@ -153,16 +153,16 @@ def default_title(frame: Frame) -> str:
     return stem if stem and stem != "<stdin>" else "castor"
 
 
-def export(scene: tree.FrameTree, frame: Frame, title: str | None = None,
+def export(tree: FrameTree, frame: Frame, title: str | None = None,
            classes: dict[str, str] | None = None) -> bytes:
     """The frame as an IFC4 file (STEP physical file text): ``scene`` is its
     evaluated CSG tree (the parameters, each object's source), ``frame`` its
     polygons. ``classes`` maps an object's name to its IFC class
     (``element_class``'s spelling)."""
-    return model(scene, frame, title, classes).to_string().encode("utf-8")
+    return model(tree, frame, title, classes).to_string().encode("utf-8")
 
 
-def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
+def model(tree: FrameTree, frame: Frame, title: str | None = None,
           classes: dict[str, str] | None = None):
     """The frame as an ``ifcopenshell.file``: the header, the project and its
     spatial structure, the parameters, then one element per object (in this
@@ -174,8 +174,8 @@ def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
     _header(f, title)
     built = _Builder(f, title)
     project, storey, storey_place, body = _structure(built, frame)
-    _parameters(built, scene, project)
-    elements = _elements(built, scene, frame, classes or {}, body, storey_place)
+    _parameters(built, tree, project)
+    elements = _elements(built, tree, frame, classes or {}, body, storey_place)
     if elements:
         built.create("IfcRelContainedInSpatialStructure", built.guid("contains", "storey"), None,
                      None, None, elements, storey)
@@ -243,12 +243,12 @@ def _structure(built: _Builder, frame: Frame):
     return project, storey, storey_place, body
 
 
-def _parameters(built: _Builder, scene: tree.FrameTree, project) -> None:
+def _parameters(built: _Builder, tree: FrameTree, project) -> None:
     """The frame's parameters: the project's property set Castor_Parameters."""
     create = built.create
     parameters = [create("IfcPropertySingleValue", name, None,
                          create("IfcReal", float(value)), None)
-                  for name, value in scene.parameters]
+                  for name, value in tree.parameters]
     if parameters:
         pset = create("IfcPropertySet", built.guid("Castor_Parameters"), None,
                       "Castor_Parameters",
@@ -257,7 +257,7 @@ def _parameters(built: _Builder, scene: tree.FrameTree, project) -> None:
                None, None, [project], pset)
 
 
-def _elements(built: _Builder, scene: tree.FrameTree, frame: Frame, classes: dict[str, str],
+def _elements(built: _Builder, tree: FrameTree, frame: Frame, classes: dict[str, str],
               body, storey_place) -> list:
     """One element per object with polygons: its body in its colours, its class,
     its quantities (those of --summary)."""
@@ -278,7 +278,7 @@ def _elements(built: _Builder, scene: tree.FrameTree, frame: Frame, classes: dic
         return styles[m]
 
     elements = []
-    for obj, source, name, material in zip(frame.objects, scene.objects, object_names(frame),
+    for obj, source, name, material in zip(frame.objects, tree.objects, object_names(frame),
                                            material_of):
         if obj.polygon_count == 0:
             continue  # nothing to show: an element without a body helps no one
