@@ -475,7 +475,7 @@ def _serve(args, source, reading, evaluation) -> int:
     if args.output or args.check:
         return usage("--serve shows the frames in a web browser; it writes nothing "
                      f"({'-o' if args.output else '--check'} goes without --serve)")
-    from castor.serve.scene import Watched
+    from castor.serve.evaluation import Watched
     from castor.serve.server import serve
 
     try:

@@ -66,7 +66,7 @@ def test_the_wedge_in_a_front_elevation_is_a_triangle(tmp_path):
 
 
 def test_the_wedge_in_the_live_preview(tmp_path, monkeypatch):
-    from castor.serve.scene import Watched
+    from castor.serve.evaluation import Watched
     from castor.settings import Source
     from castor.serve.server import PreviewServer
     from test_serve import get, triangles, volume, wait_for
