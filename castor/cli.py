@@ -15,8 +15,8 @@ import threading
 
 from castor import __version__
 from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
-from castor.options import (DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE,
-                            OUTPUT_OPTIONS, negative_values, option_value, parse_count)
+from castor.options import OUTPUT_OPTIONS, negative_values, option_value, parse_count
+from castor.settings import DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE
 
 
 class _NotGiven(list):

@@ -19,7 +19,7 @@ from castor.language.expressions import UndefinedParameter, evaluate
 from castor.language.parse import Parser, SkippedDefinition
 from castor.language.reader import Chunk
 from castor.language.scene import FrameCommand, ObjectDef, ParamDef, Tables
-from castor.options import DEFAULT_TOLERANCE
+from castor.settings import DEFAULT_TOLERANCE
 from castor.settings import EvaluationSettings
 
 

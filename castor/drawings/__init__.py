@@ -14,16 +14,16 @@ from __future__ import annotations
 import os
 import unicodedata
 
-from castor.drawings.model import Drawing, Layer, ViewBasis, view_for
+from castor.drawings.model import Drawing, Layer, view_for
 from castor.drawings.cut import cut_loops, section_area
 from castor.drawings.hidden import seen_lines
 
-__all__ = ["Drawing", "Layer", "ViewBasis", "draw", "section_area", "sheet_of", "title_of"]
+__all__ = ["Drawing", "Layer", "draw", "section_area", "sheet_of", "title_of"]
 
 
 def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
-    """The drawing of a mesh frame: cut by ``section`` (castor.options.Section)
-    if given, seen from ``view`` (castor.options.View) otherwise."""
+    """The drawing of a mesh frame: cut by ``section`` (castor.settings.Section)
+    if given, seen from ``view`` (castor.settings.View) otherwise."""
     seen = view_for(section, view)
     depth = seen.plane_depth(section)
     objects = [o for o in frame.objects if o.polygon_count]

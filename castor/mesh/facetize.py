@@ -25,7 +25,7 @@ from castor.mesh.frame import (FaceSurfaces, Frame, Origin, compact, curved_orig
                                polygon_surfaces)
 from castor.mesh.regularize import regular_triangles
 from castor.mesh.solid import EMPTY, Solid, instance
-from castor.options import DEFAULT_MAX_POLYGONS
+from castor.settings import DEFAULT_MAX_POLYGONS
 
 # A frame whose estimate is this many times --max-polygons is refused before
 # it is built (operands of a union add up; their overlap would only remove).

@@ -115,7 +115,7 @@ class _Samples:
 def render_traced(traced: TracedTree, camera: Camera, sun, samples: int, edges: bool,
                  ground: float | None = None) -> np.ndarray:
     """The picture of a compiled frame (a TracedTree) from ``camera``: sun ``(az, el)``, None or a
-    castor.options.CameraSun beside the camera (castor.pictures.shade.sun_light);
+    castor.settings.CameraSun beside the camera (castor.pictures.shade.sun_light);
     the ground at height ``ground`` (by default, the foot of the scene)."""
     width, height = camera.width, camera.height
     low, high = traced.box

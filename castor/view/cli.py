@@ -44,7 +44,8 @@ def readable_suffixes(streams: bool = True) -> list[str]:
 
 def _arguments(argv):
     from castor import __version__
-    from castor.options import VIEW_NAMES, parse_view
+    from castor.options import parse_view
+    from castor.settings import VIEW_NAMES
 
     mesh_suffixes = " ".join(readable_suffixes(streams=False))
     p = _Parser(prog="castor-view", description="Draw castor's polygon stream or a mesh file.",

@@ -67,7 +67,7 @@ def _lit(colours: np.ndarray, normals: np.ndarray, camera: Camera) -> np.ndarray
     """Colours lit by the default sun for unit normals turned to the viewer,
     with one direction to the viewer for all, so that the pieces of a flat face
     are lit alike."""
-    from castor.options import DEFAULT_SUN
+    from castor.settings import DEFAULT_SUN
     from castor.pictures.shade import intensity, sun_light
 
     towards = np.broadcast_to(-camera.forward, normals.shape)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from castor.options import View
+from castor.settings import View
 from meshcheck import check_closed, check_convex_planar, frames_of, run
 from test_drawings import Drawn, _draw
 from test_pictures import camera_of, covered, draw

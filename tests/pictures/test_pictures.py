@@ -12,7 +12,7 @@ import pytest
 
 from castor.settings import PictureSettings
 from castor.primitives import PRIMITIVES
-from castor.options import View
+from castor.settings import View
 from castor.pictures import picture
 from castor.pictures.camera import make_camera
 from castor.run import evaluated_frames
