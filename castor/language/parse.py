@@ -24,7 +24,8 @@ from castor.language.reader import Chunk
 from castor.primitives import PRIMITIVES
 from castor.transformations import TRANSFORMS
 from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, FrameCommand, NamedNode, Number, ObjectDef, Param,
-                    ParamDef, PrimitiveNode, Repeat, Step, Tables, TransformedNode, Unary)
+                    ParamDef, PrimitiveNode, Repeat, Step, Tables, TransformedNode, Unary,
+                    UndefinedReference)
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
 MAX_DEPTH = 100_000
@@ -215,7 +216,7 @@ class Builder:
             else:
                 hint = _suggest(name, self.tables.objects)
                 self.faults.append(SceneError(f"object '{name}' is not defined{hint}", location))
-            return PrimitiveNode("cu", (), location)  # placeholder; the statement is dropped
+            return UndefinedReference(name, location)  # the statement is dropped
         return node
 
     def repeat(self, children):

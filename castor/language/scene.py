@@ -178,6 +178,21 @@ class NamedNode(Identified):
 SceneNode = PrimitiveNode | TransformedNode | BooleanNode | NamedNode
 
 
+class UndefinedReference(Identified):
+    """Where a statement names an object that is not defined. The parser has
+    reported it; the node stands in the graph only so that the rest of the
+    statement is built and checked (its other faults reported with it), and
+    the statement is dropped: no stage ever evaluates it."""
+
+    __slots__ = ("name", "location", "params", "depth")
+
+    def __init__(self, name: str, location: Location):
+        self.name = name
+        self.location = location
+        self.params = EMPTY
+        self.depth = 1
+
+
 # --- statements ------------------------------------------------------------
 
 
