@@ -83,7 +83,7 @@ class Sequencer:
         if self.executor is None:
             from castor.progress import Progress
 
-            with Progress(f"frame {scene.number} {scene.where}", self.stderr):
+            with Progress(f"frame {tree.number} {tree.where}", self.stderr):
                 result = make(job)
             with self.lock:
                 self._handle(result)

@@ -261,10 +261,10 @@ def _feed(digest, node: TreeNode) -> None:
             update(pack_matrix(*node.matrix))
 
 
-def dump(frame: FrameTree) -> str:
+def dump(tree: FrameTree) -> str:
     """The tree as indented text, shared subtrees written once: for tests and
     for reading what a frame is made of."""
-    lines: list[str] = [f"frame {frame.number} {frame.where}"]
+    lines: list[str] = [f"frame {tree.number} {tree.where}"]
     written: set[str] = set()
 
     def number(x: float) -> str:
@@ -299,7 +299,7 @@ def dump(frame: FrameTree) -> str:
             if shared.child is not None:
                 walk(shared.child, depth + 1, "")
 
-    for obj in frame.objects:
+    for obj in tree.objects:
         lines.append(f"object {obj.name}")
         if obj.root is not None:
             walk(obj.root, 1, "")

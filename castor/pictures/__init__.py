@@ -1,6 +1,6 @@
 """Pictures of the exact solids: rays cast against a frame's evaluated CSG tree.
 
-``picture(frame, spec)`` gives an (H, W, 3) uint8 image (OUTPUT.md, "Pictures").
+``picture(tree, spec)`` gives an (H, W, 3) uint8 image (OUTPUT.md, "Pictures").
 One ray through each pixel's centre finds the visible surface, its normal, its
 colour and whether the sun reaches it; pixels that differ from a neighbour (an
 outline, a crease, a change of colour or of shadow) are traced again with
@@ -23,9 +23,9 @@ CHUNK = 16384  # rays traced at once
 __all__ = ["draw", "draw_tree", "framing", "picture", "probe", "render_traced", "sample_offsets"]
 
 
-def picture(frame, spec) -> np.ndarray:
+def picture(tree, spec) -> np.ndarray:
     """The frame drawn with the picture settings ``spec`` (castor.settings.PictureSettings)."""
-    return draw(compile_frame(frame), spec)
+    return draw(compile_frame(tree), spec)
 
 
 def draw(traced: TracedTree, spec) -> np.ndarray:
@@ -45,10 +45,10 @@ def framing(boxes: list, spec) -> tuple[Camera, float]:
     return make_camera(low, high, spec.size, spec.view, spec.eye, spec.look), float(low[2])
 
 
-def draw_tree(frame, camera: Camera, spec, ground: float) -> np.ndarray:
+def draw_tree(tree, camera: Camera, spec, ground: float) -> np.ndarray:
     """A frame's evaluated tree drawn from ``camera`` (an animation's frame, in
     whatever process draws it: the picture comes back as an array)."""
-    return render_traced(compile_frame(frame), camera, spec.sun, spec.samples, spec.edges,
+    return render_traced(compile_frame(tree), camera, spec.sun, spec.samples, spec.edges,
                         ground=ground)
 
 

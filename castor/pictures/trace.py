@@ -194,11 +194,11 @@ class Projection:
         return rect
 
 
-def compile_frame(frame: tree.FrameTree) -> TracedTree:
+def compile_frame(frame_tree: tree.FrameTree) -> TracedTree:
     """The frame's objects as one scene of primitives placed in the scene."""
     traced = TracedTree(None)
     roots = []
-    for obj in frame.objects:
+    for obj in frame_tree.objects:
         if obj.root is not None:
             node = _compile(obj.root, np.eye(4), traced.leaves, "")
             if node is not None:
