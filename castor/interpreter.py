@@ -184,7 +184,7 @@ class Interpreter:
                 self.classified[(where.file, where.line, where.column)] = classification
                 self.declared_changed = True
 
-    def _stray_annotation(self, statement: Facetize) -> None:
+    def _stray_annotation(self, statement: FrameCommand) -> None:
         """An annotation on a '>' command says nothing of anything: a warning."""
         found = self._comment(statement.location)
         if found is None or not found[0].lstrip().startswith("["):

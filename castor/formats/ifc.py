@@ -285,7 +285,7 @@ def _elements(built: _Builder, frame_tree: tree.FrameTree, frame: Frame, classes
         items = _face_sets(built.f, obj, material, style)
         shape = create("IfcProductDefinitionShape", None, None, [
             create("IfcShapeRepresentation", body, "Body", "Tessellation", items)])
-        cls = classes.get(obj.name) or classes.get(name) or _annotated(scene, source) \
+        cls = classes.get(obj.name) or classes.get(name) or _annotated(frame_tree, source) \
             or DEFAULT_CLASS
         element = create(cls, guid("element", name), None, name, source.where or frame.where,
                          None, built.placement(storey_place), shape, None)
@@ -303,13 +303,13 @@ def _elements(built: _Builder, frame_tree: tree.FrameTree, frame: Frame, classes
     return elements
 
 
-def _annotated(scene: tree.FrameTree, source: tree.Object) -> str | None:
+def _annotated(frame_tree: tree.FrameTree, source: tree.Object) -> str | None:
     """The class an annotation gives the '>' object itself (LANGUAGE.md §11);
     --ifc-class overrides it. (The elements inside it are the BIM handover's.)"""
     root = source.root
-    if scene.classes is None or not isinstance(root, tree.Use):
+    if frame_tree.classes is None or not isinstance(root, tree.Use):
         return None
-    mark = scene.classes.of(root.shared.location)
+    mark = frame_tree.classes.of(root.shared.location)
     return None if mark is None or mark.ifc_class not in ELEMENT_CLASSES else mark.ifc_class
 
 
