@@ -14,8 +14,8 @@ import math
 import re
 from typing import NamedTuple
 
-from castor.settings import DEFAULT_SAMPLES, DEFAULT_SCALE, DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, \
-    PAPER_SIZES, VIEW_NAMES, Paper, Section, View
+from castor.settings import (DEFAULT_SAMPLES, DEFAULT_SCALE, DEFAULT_SIZE, DEFAULT_SUN,
+                             DEFAULT_VIEW, PAPER_SIZES, VIEW_NAMES, Paper, Section, View)
 
 MAX_PIXELS = 16384  # the largest --size, each way
 

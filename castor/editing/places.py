@@ -21,7 +21,8 @@ from typing import NamedTuple
 from castor.csg import tree
 from castor.editing.document import CommandError, Document
 from castor.editing.text import Token, tokens
-from castor.language.scene import BooleanNode, FrameCommand, NamedNode, PrimitiveNode, TransformedNode
+from castor.language.scene import (BooleanNode, FrameCommand, NamedNode, PrimitiveNode,
+                                   TransformedNode)
 
 _SEGMENT = re.compile(r"\(([a-z]\w*)\)|\.?([UID])(\d+)|!([a-z]\w*)")
 

@@ -21,11 +21,11 @@ from castor.diagnostics import CastorError, EvaluationError, LimitError, SceneEr
 from castor.language.expressions import FUNCTIONS, arity_message, evaluate
 from castor.language.lalr import Failed, Token
 from castor.language.reader import Chunk
+from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, FrameCommand, NamedNode,
+                                   Number, ObjectDef, Param, ParamDef, PrimitiveNode, Repeat,
+                                   Step, Tables, TransformedNode, Unary, UndefinedReference)
 from castor.primitives import PRIMITIVES
 from castor.transformations import TRANSFORMS
-from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, FrameCommand, NamedNode, Number, ObjectDef, Param,
-                    ParamDef, PrimitiveNode, Repeat, Step, Tables, TransformedNode, Unary,
-                    UndefinedReference)
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
 MAX_DEPTH = 100_000

@@ -50,7 +50,8 @@ def _normals(picture: StreamFrame) -> np.ndarray:
     return np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
 
 
-def _shade(picture: StreamFrame, camera: Camera, normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _shade(picture: StreamFrame, camera: Camera,
+           normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Polygon colours lit as castor's pictures are (castor.pictures.shade), by
     the default sun, without shadows; the normals are turned to the viewer, and
     which were is returned beside the colours."""
