@@ -11,7 +11,6 @@ together; lark's exceptions are translated into messages in the user's words.
 from __future__ import annotations
 
 import math
-import os
 import threading
 from functools import lru_cache
 from typing import Iterator
@@ -31,9 +30,11 @@ MAX_DEPTH = 100_000
 
 @lru_cache(maxsize=1)
 def grammar_text() -> str:
-    """The grammar, castor.lark, shipped beside this module."""
-    with open(os.path.join(os.path.dirname(os.path.realpath(__file__)), "castor.lark"),
-              encoding="utf-8") as handle:
+    """The grammar: shipped beside this module in an installed package, else the
+    checkout's grammar/castor.lark (castor.language.tables.grammar_path)."""
+    from castor.language.tables import grammar_path
+
+    with open(grammar_path(), encoding="utf-8") as handle:
         return handle.read()
 
 
