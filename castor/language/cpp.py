@@ -73,6 +73,8 @@ def _spaced(text: str) -> str:
 
 
 _PARAMETER = re.compile(r"[A-Za-z_]\w*(\s*\.\.\.)?|\.\.\.")
+_CONDITION = re.compile(r"Could not evaluate expression due to .* \(passed to evaluator: '(.*)'\)",
+                        re.S)
 _ARGUMENT_COUNT = re.compile(r"Macro (\w+) requires (\d+) arguments but was passed (\d+)")
 
 
@@ -123,7 +125,14 @@ class Hooks:
         self.return_code += 1
         if self.quiet:
             return  # a use expanded again to map a position: said at its pass already
+        if file == "unknown":  # pcpp's name for a place it lost: the directive's
+            file, line = (getattr(self.lastdirective, "source", None),
+                          getattr(self.lastdirective, "lineno", 0))
         location = Location(file, int(line or 0), 1) if file else None  # None: from -D
+        condition = _CONDITION.fullmatch(msg)
+        if condition:  # not Python's exception, in castor's words
+            msg = (f"#if or #elif cannot evaluate '{condition[1]}'; write a condition of "
+                   f"numbers, macros, defined(NAME) and C's operators")
         counted = _ARGUMENT_COUNT.fullmatch(msg)
         if counted and location is not None:
             location, msg = self._argument_count(location, *counted.groups())

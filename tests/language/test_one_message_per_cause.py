@@ -129,3 +129,10 @@ def test_a_repetition_bracket_inside_an_expression_is_a_syntax_error(tmp_path):
     assert status == 1
     assert errors(err) == ["e.cas:1:39: error: expected ',' or ')' after an argument, "
                            "found '['"], err
+
+
+def test_a_condition_that_cannot_be_evaluated_is_said_in_castor_s_words(tmp_path):
+    status, err = castor(tmp_path, "c.cas", "#if 1 +\n#endif\n> !cu(1,1,1);\n")
+    assert status == 1
+    assert errors(err) == ["c.cas:1:1: error: #if or #elif cannot evaluate '1 +'; write a "
+                           "condition of numbers, macros, defined(NAME) and C's operators"], err
