@@ -307,3 +307,23 @@ def cpp_scenes(draw):
 def test_preprocessor_and_brackets_never_crash(text):
     check(text)
     _run_file(text)
+
+
+def test_a_scale_whose_square_underflows_is_no_internal_error():
+    """@h(1e-300): the squares of the stretch underflowed to 0 and every curved
+    primitive's facet count divided by it (found by the random texts above once
+    the failed frame's message named an internal error)."""
+    from castor.primitives import PRIMITIVES
+
+    sizes = {"to": "0.3", "pr": "6", "py": "5"}
+    for name, declared in PRIMITIVES.items():
+        if not declared.curved:
+            continue
+        args = [sizes.get(name, "1")] * len(declared.arguments)
+        if declared.pair_names:
+            args += ["0", "0", "1", "0", "1", "1", "0", "1"]
+        for scale in ("1e-300", "1e-300, 1, 1", "1, 1, 1e-300"):
+            text = f"> @h({scale}) !{name}({', '.join(['1', '1', '1', *args])});\n"
+            status, out, err, _ = run_inprocess(text, "--no-cpp")
+            assert "internal error" not in err and "Traceback" not in err, (text, err)
+            assert status in (0, 1), (text, err)
