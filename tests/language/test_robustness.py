@@ -304,9 +304,19 @@ def cpp_scenes(draw):
 @given(cpp_scenes())
 @example("#define MUR(LX, LY,) @t(LX, LY, 0) !cu(1,1,1)\n> MUR(1, 2,);\n")
 @example("E = round(sqrt(16) + cos(60) * 1e-308 [I = 0, 3] 1);\n> !cu(1,1,1);\n")
+@example("#define M(X) @t(X,0,0) !cu(1,1,1)\na = $U(M(1), M(1, 2));\n> a;\n")
 def test_preprocessor_and_brackets_never_crash(text):
     check(text)
-    _run_file(text)
+    # from a file: parsed in batches, and every message names the file, never <stdin>
+    with tempfile.NamedTemporaryFile("w", suffix=".cas", delete=False,
+                                     dir=tempfile.gettempdir()) as f:
+        f.write(text)
+    try:
+        status, _, err, _ = run_inprocess("", f.name)
+    finally:
+        os.unlink(f.name)
+    assert status in (0, 1) and "internal error" not in err, (text, err)
+    assert "<stdin>" not in err or "<stdin>" in text or "#line" in text, (text, err)
 
 
 def test_a_scale_whose_square_underflows_is_no_internal_error():
