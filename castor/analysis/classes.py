@@ -216,21 +216,26 @@ def _class_offers() -> list[Offer]:
 
 def annotation_hover(text: str, file: str, line: int, column: int, word: str,
                      analysis: Analysis | None) -> str | None:
-    """The hover of a word inside a definition's annotation: what the class is,
-    or what a type or setting of it means; None outside an annotation."""
+    """The hover of a word in the comment after a definition: inside its
+    annotation, what the class is, or what a type or setting of it means; ""
+    for any other word of the comment (it names nothing of the scene); None
+    outside such a comment."""
     lines = text.split("\n")
     source = lines[line - 1] if 0 < line <= len(lines) else ""
     comment = _comment_start(lines, line, analysis, file)
     if comment is None or comment[0] > column - 1:
         return None
     bracket = source[comment[0]:]
-    if not bracket.lstrip().startswith("["):
-        return None
-    inside = bracket.lstrip()[1:].partition("]")[0]
+    lead = len(bracket) - len(bracket.lstrip())
+    inside, closed, _ = bracket.lstrip()[1:].partition("]")
+    if not bracket.lstrip().startswith("[") or (
+            closed and column - 1 > comment[0] + lead + 1 + len(inside)):
+        return ""  # the description, or a comment that is no annotation
     head = (inside.split() or [""])[0]
     info = BY_NAME.get(head.lower())
     if info is None:
-        return "annotation: a storey's floor level" if head.lower() == STOREY else None
+        return "a storey: the parameter's value is its floor level" \
+            if head.lower() == STOREY else ""
     if word.lower() == head.lower():
         return class_text(info)
     if word.lower() in info.types:
@@ -240,4 +245,4 @@ def annotation_hover(text: str, file: str, line: int, column: int, word: str,
     if setting is not None:
         return (f"{info.short}'s {setting.name}: {'|'.join(setting.values)} "
                 f"(default {setting.default})")
-    return None
+    return ""

@@ -288,8 +288,8 @@ def hover(analysis: Analysis, file: str, line: int, column: int,
 
     annotated = classes.annotation_hover(analysis.source_text(file) or "", file, line, column,
                                          word.name, analysis)
-    if annotated is not None:
-        return annotated, word
+    if annotated is not None:  # a word of the comment after a definition
+        return (annotated, word) if annotated else None
     name = word.name
     found = macros(analysis).get(name)
     if found is not None:

@@ -130,6 +130,12 @@ def test_hover_shows_an_object_s_class(client: Client, house: Path):
     column = text.split("\n")[line].index("[door") + 2
     value = client.at("textDocument/hover", uri, line, column)["contents"]["value"]
     assert value.startswith("IfcDoor (door)") and "hinge=left|right (default left)" in value
+    column = text.split("\n")[line].index("hinge=") + 2
+    value = client.at("textDocument/hover", uri, line, column)["contents"]["value"]
+    assert value == "door's hinge: left|right (default left)"
+    # a word of the description names nothing
+    column = text.split("\n")[line].index("front door") + 2
+    assert client.at("textDocument/hover", uri, line, column) is None
 
 
 def test_the_outline_gives_each_object_its_class(client: Client, house: Path):
