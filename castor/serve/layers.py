@@ -146,41 +146,63 @@ def classified(frame, scene: tree.FrameTree):
     except RecursionError:
         return frame  # too deep to say: the faces say their paths only
     n = frame.triangles
-    corners = np.frombuffer(frame.data, "<f4", n * 9).reshape(n, 3, 3)
     numbers = np.frombuffer(frame.data, "<u4", n, offset=n * 36)
-    renumbered = np.zeros(n, "<u4")
-    origins, layers, index = [], [], {}
+    table = _Table(frame.origins)
+    rules = [walker.rules.get(path) or [((None, UNCLASSED), None, None)]
+             for path, _ in frame.origins]
+    # a primitive whose faces are all one element's: one entry, looked up at once
+    single = np.array([table.entry(k, rule[0][0]) if len(rule) == 1 else 0
+                       for k, rule in enumerate(rules)] or [0], "<u4")
+    renumbered = single[numbers] if n else np.zeros(0, "<u4")
+    split = np.array([len(rule) > 1 for rule in rules] or [False])
+    if split.any():
+        corners = np.frombuffer(frame.data, "<f4", n * 9).reshape(n, 3, 3)
+        faces = np.nonzero(split[numbers])[0]
+        faces = faces[np.argsort(numbers[faces], kind="stable")]
+        bounds = np.searchsorted(numbers[faces], np.arange(len(rules) + 1))
+        for k in np.nonzero(split)[0]:
+            mine = faces[bounds[k]:bounds[k + 1]]
+            for label, inside in _shared_out(walker, rules[k], corners[mine]):
+                renumbered[mine[inside]] = table.entry(int(k), label)
+    data = frame.data[:n * 36] + renumbered.astype("<u4").tobytes()
+    return replace(frame, origins=tuple(table.origins), layers=tuple(table.layers), data=data)
 
-    def entry(k: int, label) -> int:
+
+class _Table:
+    """The page's table of origins: one entry per primitive and element."""
+
+    def __init__(self, given):
+        self.given = given
+        self.origins: list = []
+        self.layers: list = []
+        self.index: dict = {}
+
+    def entry(self, k: int, label) -> int:
         key = (k, label)
-        if key not in index:
-            index[key] = len(origins)
-            origins.append(frame.origins[k])
-            layers.append(label)
-        return index[key]
+        if key not in self.index:
+            self.index[key] = len(self.origins)
+            self.origins.append(self.given[k])
+            self.layers.append(label)
+        return self.index[key]
 
-    order = np.argsort(numbers, kind="stable")
-    bounds = np.searchsorted(numbers[order], np.arange(len(frame.origins) + 1))
-    for k, (path, _) in enumerate(frame.origins):
-        mine = order[bounds[k]:bounds[k + 1]]
-        rule = walker.rules.get(path) or [((None, UNCLASSED), None, None)]
-        if len(rule) == 1 or not len(mine):
-            renumbered[mine] = entry(k, rule[0][0])
-            continue
-        middles = corners[mine].astype(float).mean(axis=1)
-        left = np.ones(len(mine), bool)
-        for place, (label, node, matrix) in enumerate(rule):
-            box = walker.box(node, matrix) if place < len(rule) - 1 else None
-            if box is None:
-                inside = left.copy()
-            else:
-                slack = 1e-6 * max(1.0, float(np.abs(np.concatenate(box)).max()))
-                inside = left & np.all((middles >= box[0] - slack)
-                                       & (middles <= box[1] + slack), axis=1)
-            if inside.any():
-                renumbered[mine[inside]] = entry(k, label)
-                left &= ~inside
-            if not left.any():
-                break
-    data = frame.data[:n * 36] + renumbered.tobytes()
-    return replace(frame, origins=tuple(origins), layers=tuple(layers), data=data)
+
+def _shared_out(walker: _Walker, rule: list, corners):
+    """(label, which faces) of the faces of a subtracted primitive: each to the
+    first element whose box holds its middle, the last (the rest) taking the others."""
+    import numpy as np
+
+    middles = corners.astype(float).mean(axis=1)
+    left = np.ones(len(middles), bool)
+    for place, (label, node, matrix) in enumerate(rule):
+        if not left.any():
+            return
+        box = walker.box(node, matrix) if place < len(rule) - 1 else None
+        if box is None:
+            inside = left.copy()
+        else:
+            slack = 1e-6 * max(1.0, float(np.abs(np.concatenate(box)).max()))
+            inside = left & np.all((middles >= box[0] - slack)
+                                   & (middles <= box[1] + slack), axis=1)
+        if inside.any():
+            left &= ~inside
+            yield label, inside
