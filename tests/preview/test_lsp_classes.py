@@ -180,3 +180,24 @@ def test_a_misspelt_class_is_a_warning_as_it_is_typed(client: Client, house: Pat
         "swing; the object is unclassed"]
     client.change(uri, text, 4)
     assert client.diagnostics(uri, 4) == []
+
+
+def test_a_room_s_name_and_a_storey_in_hover_and_outline():
+    """castor.analysis as the server reads it (no server needed): a space's long
+    name, and a storey parameter's annotation explained."""
+    from castor.analysis import knowledge
+    from castor.analysis.scene import analyse
+    from castor.settings import Source
+
+    text = (EXAMPLES / "pavilion.cas").read_text()
+    analysis = analyse(Source(text=text, name="pavilion.cas"))
+    assert [d for d in analysis.diagnostics if d.kind == "error"] == []
+    line = _line(text, "sejour =") + 1
+    shown, _ = knowledge.hover(analysis, "pavilion.cas", line, 2, figures=lambda *_: None)
+    assert "class: space (IfcSpace)" in shown and "long name: Séjour" in shown
+    detail = {s.name: s.detail for s in knowledge.symbols(analysis, "pavilion.cas")}
+    assert detail["sejour"] == 'space ("Séjour")'
+    line = _line(text, "R1 =") + 1
+    column = text.split("\n")[line - 1].index("storey") + 2
+    shown, _ = knowledge.hover(analysis, "pavilion.cas", line, column)
+    assert shown == "a storey: the parameter's value is its floor level"
