@@ -48,7 +48,8 @@ def test_the_layers_hide_and_show_the_walls(page):
     before = picture(page, "layers-all")
     page.click("#layers-toggle")
     page.wait_for_selector("#layers:not([hidden])")
-    names = page.eval_on_selector_all("#layers-list input", "boxes => boxes.map(b => b.dataset.layer)")
+    names = page.eval_on_selector_all("#layers-list input",
+                                      "boxes => boxes.map(b => b.dataset.layer)")
     # the classes of its faces (its windows and door are holes in the walls)
     assert names == ["chimney", "roof", "slab", "wall", "unclassed"]
     page.uncheck("#layer-wall")
