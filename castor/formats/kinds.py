@@ -99,8 +99,9 @@ def _polygons(tree, settings, made, merge: bool = True):
     return frame, facetizer
 
 
-def _figures(tree, settings, made, frame, facetizer) -> None:
-    """The mesh frame kept where asked, its --stats line and --summary record."""
+def _figures(settings, made, frame, facetizer, tree=None) -> None:
+    """The mesh frame kept where asked, its --stats line and --summary record
+    (with the frame's tree, its take-off by class too: LANGUAGE.md §11)."""
     output = settings.output
     if output.keep_mesh:
         made.mesh = frame
@@ -127,7 +128,7 @@ class Polygons(Kind):
         # counts the frame's polygons
         merge = chosen is None or not chosen.triangles_only or settings.output.summary
         frame, facetizer = _polygons(tree, settings, made, merge)
-        _figures(tree, settings, made, frame, facetizer)
+        _figures(settings, made, frame, facetizer, tree)
         return frame
 
     def weight(self, product) -> int:
@@ -190,7 +191,7 @@ class Drawings(Kind):
         frame, facetizer = _polygons(tree, settings, made)
         sheet = sheet_of(tree, frame, settings.drawing, settings.output.title,
                          lambda message: made.warnings.append((message, tree.location)))
-        _figures(tree, settings, made, frame, facetizer)
+        _figures(settings, made, frame, facetizer, tree)
         return sheet
 
 
@@ -203,7 +204,7 @@ class BuildingModels(Kind):
     def make(self, tree, settings, chosen, made):
         frame, facetizer = _polygons(tree, settings, made)
         model = BuildingModel(tree, frame, settings.output.title, dict(settings.bim.classes))
-        _figures(tree, settings, made, frame, facetizer)
+        _figures(settings, made, frame, facetizer, tree)
         return model
 
     def after_run(self, settings, objects: set[str]) -> list[str]:
