@@ -29,32 +29,17 @@ class Classified(NamedTuple):
     problem: object  # castor.language.classes.Problem, or None
 
 
-def _lines_of(analysis: Analysis):
-    """``line_of(file, number)`` over the analysis's texts, each file split once."""
-    split: dict[str, list[str] | None] = {}
-
-    def line_of(file: str, number: int) -> str | None:
-        if file not in split:
-            text = analysis.source_text(file)
-            split[file] = None if text is None else text.split("\n")
-        lines = split[file]
-        return lines[number - 1] if lines is not None and 0 < number <= len(lines) else None
-
-    return line_of
-
-
 def object_classes(analysis: Analysis) -> dict[tuple[str, int, int], Classified]:
-    """The class of each annotated object definition, by the place of its name
-    (FILE, LINE, COLUMN); kept on the analysis (it does not change)."""
+    """The class of each annotated object definition (castor.analysis.scene.
+    object_classes), by the place of its name (FILE, LINE, COLUMN); kept on the
+    analysis (it does not change)."""
     kept = analysis.__dict__.get("object_classes")
     if kept is not None:
         return kept
-    from castor.language import classes
+    from castor.analysis import scene
 
-    definitions = [(d.name, d.location) for d in analysis.definitions if d.kind == "object"]
     found = {(where.file, where.line, where.column): Classified(classification, problem)
-             for _, where, classification, problem in classes.object_classes(
-                 definitions, _lines_of(analysis))}
+             for _, where, classification, problem in scene.object_classes(analysis)}
     analysis.__dict__["object_classes"] = found
     return found
 
