@@ -157,7 +157,7 @@ def test_capabilities_and_clean_shutdown(scene: Path):
     for name in ("hoverProvider", "definitionProvider", "referencesProvider",
                  "documentSymbolProvider", "completionProvider"):
         assert capabilities.get(name), name
-    assert set(capabilities["completionProvider"]["triggerCharacters"]) == {"!", "@", "$"}
+    assert set(capabilities["completionProvider"]["triggerCharacters"]) == {"!", "@", "$", "[", "="}
     assert c.stop() == 0
     assert b"Traceback" not in c.process.stderr.read()
 

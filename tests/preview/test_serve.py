@@ -115,7 +115,8 @@ def test_the_frames_as_triangles(preview):
     [frame] = scene["frames"]
     assert frame["where"] == "scene.cas:2"
     assert frame["origins"] == [{"path": "(boite)!cu", "colour": [0.25, 0.45, 0.85],
-                                 "source": "scene.cas:1:21: !cu"}]
+                                 "source": "scene.cas:1:21: !cu",
+                                 "element": "boite", "class": None}]
     assert frame["box"] == [[0, 0, 0], [2, 3, 4]]
     status, kind, data = get(port, frame["url"])
     assert status == 200 and kind == "application/octet-stream"
