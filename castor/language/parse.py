@@ -15,6 +15,7 @@ import threading
 from functools import lru_cache
 from typing import Iterator
 
+from castor.booleans import BOOLEANS
 from castor.diagnostics import (ArgumentCountError, CastorError, EvaluationError, LimitError,
                                 SceneError, UndefinedObject)
 from castor.language.expressions import FUNCTIONS, arity_message, evaluate
@@ -220,7 +221,7 @@ class Builder:
                 hint = _suggest(name, self.tables.objects)
                 self.faults.append(UndefinedObject(f"object '{name}' is not defined{hint}",
                                                    location, name))
-            return PrimitiveNode("cu", (), location)  # placeholder; the statement is dropped
+            return UndefinedReference(name, location)  # the statement is dropped
         return node
 
     def repeat(self, children):
