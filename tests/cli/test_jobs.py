@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from meshcheck import run
+from tests.support.cli import OUTSIDE, run
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.cas"))
@@ -87,6 +87,6 @@ def test_a_closed_pipe_ends_two_jobs_quietly():
     tracker (leaked semaphores) once castor has gone (CLI.md: a closed pipe ends quietly)."""
     door = ROOT / "examples" / "door.cas"
     result = subprocess.run(f"'{sys.executable}' -m castor --jobs 2 '{door}' | head -1",
-                            shell=True, capture_output=True, text=True, timeout=120, cwd=ROOT.parent)
+                            shell=True, capture_output=True, text=True, timeout=120, cwd=OUTSIDE)
     assert result.stdout == "castor-polygons 1\n"
     assert result.stderr == ""

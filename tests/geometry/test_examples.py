@@ -10,7 +10,9 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from meshcheck import check_solid, parse_stream, run
+from tests.support.checks import check_solid
+from tests.support.cli import run
+from tests.support.stream import parse_stream
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.cas"))

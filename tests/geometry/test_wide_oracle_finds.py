@@ -1,15 +1,16 @@
 """Scenes the oracle's wide generator found (issue 18, items 4 and 5), each
-judged as the oracle judges a frame (tests/oracle.py) and against the
-volume and area of exact booleans (tests/exact.py): never against castor's
+judged as the oracle judges a frame (tests/oracle/) and against the
+volume and area of exact booleans (tests/oracle/exact.py): never against castor's
 own earlier output."""
 
 import numpy as np
 import pytest
 
-import exact
-import oracle
-from meshcheck import check_closed, regularity_defects
-from oracle import Bool, Param, Prim, Rep, Scene, Tf
+from tests import oracle
+from tests.oracle import exact
+from tests.support.checks import check_closed
+from tests.support.regularity import regularity_defects
+from tests.oracle import Bool, Param, Prim, Rep, Scene, Tf
 
 needs_exact = pytest.mark.skipif(not exact.available(), reason="needs pymeshlab")
 
@@ -135,7 +136,8 @@ def test_the_judge_reads_a_thin_triangle_far_from_the_origin_as_planar():
     a shared object, moved), 2.3e-4 long and 1.4e-7 wide at x = -2: its
     normal taken about the origin was 2 % off (the rounding of coordinates
     of 2), so the judge found its own corners 2.4e-7 off its plane."""
-    from meshcheck import Polygon, polygon_defects
+    from tests.support.regularity import polygon_defects
+    from tests.support.stream import Polygon
 
     corners = np.array([[-2.0175520307082437, -0.3671558291210445, -0.3993812032469618],
                         [-2.0173210497029217, -0.3671575394512535, -0.3993866435291141],
@@ -168,7 +170,7 @@ def test_a_flattened_turned_row_leaves_no_needle():
     the small triangle across it (1.9e-7 from both ends). That corner goes
     onto one end first, then the short edge: no polygon of zero area
     (LANGUAGE.md §7), the volume exact."""
-    from meshcheck import frames_of
+    from tests.support.cli import frames_of
 
     (frame,) = frames_of("> @h(1.0, 1.0, 0.5) @r(0.5, 1.0, 1.0, 356.731) "
                          "$U[W = 0, 10](@t(0.1 * W, 0.0, 0.0) !cu(1.0, 0.0, 0.0));\n")

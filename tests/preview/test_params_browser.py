@@ -19,7 +19,9 @@ from castor.serve.scene import Watched
 from castor.settings import Source
 from castor.serve.server import PreviewServer
 
-from test_serve_browser import CHROMIUM, FLAGS, HEIGHT, ROOF, ROOT, WIDTH, near, picture
+from tests.support.browser import CHROMIUM, FLAGS, HEIGHT, ROOF, WIDTH, near, picture
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 playwright = pytest.importorskip("playwright.sync_api",
                                  reason="the playwright package is not installed")
@@ -152,7 +154,7 @@ def test_values_from_the_page_are_checked_numbers(house):
 def test_a_face_shows_where_its_primitive_is_written_and_a_click_copies_it(page, house):
     import re
 
-    from test_serve_browser import inside_reveal
+    from tests.support.browser import inside_reveal
 
     path, _ = house
     page.mouse.move(*inside_reveal(picture(page, "source")))

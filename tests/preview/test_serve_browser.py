@@ -6,7 +6,6 @@ the primitive it comes from."""
 
 from __future__ import annotations
 
-import io
 import os
 import shutil
 
@@ -16,13 +15,9 @@ import pytest
 from castor.serve.scene import Watched
 from castor.settings import Source
 from castor.serve.server import PreviewServer
+from tests.support.browser import CHROMIUM, drawn, FLAGS, GREEN, HEIGHT, inside_reveal, near, next_version, outline, picture, REVEAL, ROOF, WIDTH
 
-CHROMIUM = "/usr/bin/chromium"
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-FLAGS = ["--headless", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync",
-         "--no-first-run", "--disable-gpu-sandbox"]
-WIDTH, HEIGHT, BAR = 900, 650, 38  # the page, and its bar of controls at the top
 
 if not os.path.exists(CHROMIUM):
     pytest.skip(f"Debian's chromium is not installed ({CHROMIUM} is absent; "
@@ -61,34 +56,6 @@ def page(browser, house):
     assert problems == []
 
 
-def picture(page, name: str) -> np.ndarray:
-    """The view (below the bar), as RGB; also kept in /tmp to be looked at."""
-    from PIL import Image
-
-    png = page.screenshot()
-    with open(f"/tmp/castor-serve-{name}.png", "wb") as handle:
-        handle.write(png)
-    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))[BAR:].astype(int)
-
-
-def drawn(image: np.ndarray) -> np.ndarray:
-    """Pixels that are not the white background."""
-    return np.any(image < 245, axis=2)
-
-
-def outline(image: np.ndarray, bottom: int = 0) -> np.ndarray:
-    """Drawn pixels, leaving out the status and the pointed face's box (at the top)
-    and ``bottom`` rows (where the list of errors is)."""
-    return drawn(image)[80:image.shape[0] - bottom]
-
-
-def near(image: np.ndarray, colour, tolerance: float = 0.1) -> np.ndarray:
-    """Pixels of this hue, at any light: their colour over its brightest channel."""
-    rgb = image / np.maximum(image.max(axis=2, keepdims=True), 1)
-    target = np.array(colour) / max(colour)
-    return np.all(np.abs(rgb - target) < tolerance, axis=2) & (image.max(axis=2) > 60)
-
-
 def save(path, old: str, new: str) -> None:
     text = path.read_text()
     assert old in text
@@ -96,15 +63,6 @@ def save(path, old: str, new: str) -> None:
     path.write_text(text.replace(old, new))
     if os.stat(path).st_mtime_ns == before:
         os.utime(path, ns=(before + 1_000_000, before + 1_000_000))
-
-
-def next_version(page, version: str, seconds: float = 10) -> str:
-    page.wait_for_function("(seen) => document.body.dataset.version !== seen", arg=version,
-                           timeout=seconds * 1000)
-    return page.evaluate("document.body.dataset.version")
-
-
-ROOF, REVEAL, GREEN = (0.70, 0.28, 0.18), (0.25, 0.45, 0.85), (0.15, 0.65, 0.25)
 
 
 def test_the_page_draws_the_house(page):
@@ -152,19 +110,6 @@ def test_an_error_is_listed_beside_the_last_good_picture(page, house):
     assert page.inner_text("#status") == "the scene has errors: showing the last good frames"
     # the list of errors covers the bottom of the view
     assert (outline(good, 200) != outline(shown, 200)).mean() < 0.002
-
-
-def inside_reveal(image: np.ndarray) -> tuple[int, int]:
-    """A point of the page well inside the blue window reveals of a picture of the
-    view (away from their edges), in page pixels."""
-    blue = near(image, REVEAL)
-    inner = blue.copy()
-    for dy in (-2, 0, 2):
-        for dx in (-2, 0, 2):
-            inner &= np.roll(np.roll(blue, dy, axis=0), dx, axis=1)
-    ys, xs = np.nonzero(inner)
-    assert len(ys) > 20
-    return int(xs[len(xs) // 2]), int(ys[len(ys) // 2]) + BAR
 
 
 def test_pointing_at_a_blue_reveal_names_its_primitive(page):
