@@ -37,7 +37,8 @@ from .evaluate import NOT_MADE, Oracle, convex_caps, frame_commands, smooth_soli
 from .generate import Generator, WideGenerator, scenes
 from .judge import (ORACLE_WRONG, UNSURE, closed_defects, faces_the_right_way, has_sheets, judge,
                     kind_of, lies_on_face)
-from .scene import Bool, Param, Prim, Ref, Rep, Scene, Smooth, Tf, expression, number, scene_text, text
+from .scene import (Bool, Param, Prim, Ref, Rep, Scene, Smooth, Tf, expression, number, read_scene,
+                    scene_text, text)
 from .shrink import shrink
 from .solids import (Use, _value, cut_parity, outward_normals, polygon_points, primitive_faces,
                      primitive_solid, step_matrix, without_thin_shells)
