@@ -29,9 +29,9 @@ def wrong_imports(root: Path) -> list[str]:
     for path in sorted(root.rglob("*.py")):
         helper = path.relative_to(root).parts[0] in HELPERS
         for name in _imported(path):
-            last, first = name.split(".")[-1], name.split(".")[0]
-            if (last.startswith("test_") or (first in bare and not helper)
-                    or (first == "tests" and name.split(".")[1:2] not in ([], ["support"], ["oracle"]))):
+            parts = name.split(".")
+            if (parts[-1].startswith("test_") or (parts[0] in bare and not helper)
+                    or (parts[0] == "tests" and parts[1:2] not in ([], ["support"], ["oracle"]))):
                 wrong.append(f"{path.relative_to(root)} imports {name}")
     return wrong
 

@@ -54,3 +54,14 @@ def test_a_finding_of_the_oracle_stays_fixed(path: Path):
         if frame.number in volumes:
             assert abs(frame.volume() - volumes[frame.number]) < 1e-9
             assert truth is None or abs(truth[0] - volumes[frame.number]) < 1e-9
+
+
+def test_the_oracle_reads_back_the_text_it_prints():
+    """``read_scene`` is what the corpus stands on: every scene the generators
+    make (wide and smooth ones too) printed, read back and printed again is
+    the same text."""
+    for wide in (False, True):
+        for smooth in (False, True):
+            for scene in oracle.scenes(60, 5, wide, smooth):
+                text = oracle.scene_text(scene)
+                assert oracle.scene_text(oracle.read_scene("// found\n" + text)) == text

@@ -19,7 +19,7 @@ from castor.serve.scene import Watched
 from castor.settings import Source
 from castor.serve.server import PreviewServer
 
-from tests.support.browser import CHROMIUM, FLAGS, HEIGHT, ROOF, WIDTH, near, picture
+from tests.support.browser import CHROMIUM, FLAGS, HEIGHT, ROOF, WIDTH, near, painted, picture
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -80,7 +80,10 @@ def test_the_h_slider_raises_the_roof_and_never_writes_the_scene(page, house):
     elapsed = time.monotonic() - started
     page.wait_for_function(
         "() => document.getElementById('parameters-command').textContent.includes('H=4')")
-    page.wait_for_timeout(300)  # the final value's evaluation after the draft
+    # the final value's evaluation after the draft: nothing left evaluating, then drawn
+    page.wait_for_function("() => !document.getElementById('status').textContent"
+                           ".includes('evaluating')", timeout=15000)
+    painted(page)
     after = picture(page, "params-after")
     right = slice(320, None)
     assert roof_top(after[:, right]) < roof_top(before[:, right]) - 10  # the roof is higher
@@ -92,6 +95,10 @@ def test_the_h_slider_raises_the_roof_and_never_writes_the_scene(page, house):
     page.click("#parameters-reset")
     page.wait_for_function("(seen) => document.body.dataset.version !== seen", arg=version,
                            timeout=15000)
+    # the panel shows the reset when the server's answer comes, not with the new frames
+    page.wait_for_function("() => document.getElementById('parameters-command').textContent"
+                           " === 'castor house.cas' && document.getElementById('parameter-H')"
+                           ".value === '2.9'", timeout=15000)
     assert page.inner_text("#parameters-command") == "castor house.cas"
     assert page.eval_on_selector("#parameter-H", "e => e.value") == "2.9"
 

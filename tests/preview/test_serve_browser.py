@@ -15,7 +15,8 @@ import pytest
 from castor.serve.scene import Watched
 from castor.settings import Source
 from castor.serve.server import PreviewServer
-from tests.support.browser import CHROMIUM, drawn, FLAGS, GREEN, HEIGHT, inside_reveal, near, next_version, outline, picture, REVEAL, ROOF, WIDTH
+from tests.support.browser import (CHROMIUM, FLAGS, GREEN, HEIGHT, REVEAL, ROOF, WIDTH, drawn,
+                                   inside_reveal, near, next_version, outline, painted, picture)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -83,12 +84,12 @@ def test_a_save_changes_the_picture_without_a_reload(page, house):
     page.mouse.down()
     page.mouse.move(520, 380, steps=5)
     page.mouse.up()
-    page.wait_for_timeout(200)
+    painted(page)
     before = picture(page, "turned")
     version = page.evaluate("document.body.dataset.version")
     save(path, "#define TUILE    0.70, 0.28, 0.18", "#define TUILE    0.15, 0.65, 0.25")
     next_version(page, version)
-    page.wait_for_timeout(100)
+    painted(page)
     after = picture(page, "green-roof")
     assert page.evaluate("window.notReloaded") is True
     assert near(before, ROOF).sum() > 5000 and near(after, ROOF).sum() < 50
@@ -127,13 +128,13 @@ def test_pointing_at_a_blue_reveal_names_its_primitive(page):
 
 def test_a_face_turned_to_the_viewer_shows_its_own_colour(page):
     page.click("#view-front")
-    page.wait_for_timeout(200)
+    painted(page)
     image = picture(page, "front")
     render = np.round(np.array([0.93, 0.90, 0.82]) * 255)  # ENDUIT, the walls' colour
     full = np.all(np.abs(image - render) <= 2, axis=2)
     assert full.sum() > 20000  # the south wall, at full strength
     page.click("#view-perspective")
-    page.wait_for_timeout(200)
+    painted(page)
     turned = picture(page, "perspective")
     walls = np.all(np.abs(turned / turned.max(axis=2, keepdims=True).clip(1)
                           - render / render.max()) < 0.03, axis=2) & (turned.max(axis=2) > 60)
@@ -143,11 +144,11 @@ def test_a_face_turned_to_the_viewer_shows_its_own_colour(page):
 
 def test_the_section_plane_shows_a_plan(page):
     page.click("#view-top")
-    page.wait_for_timeout(100)
+    painted(page)
     roof = picture(page, "top")
     page.fill("#section", "250")
     page.dispatch_event("#section", "input")
-    page.wait_for_timeout(200)
+    painted(page)
     plan = picture(page, "plan")
     label = page.inner_text("#section-label")
     assert label.startswith("z = ") and 1.3 < float(label[4:]) < 1.5

@@ -68,3 +68,9 @@ def inside_reveal(image: np.ndarray) -> tuple[int, int]:
     ys, xs = np.nonzero(inner)
     assert len(ys) > 20
     return int(xs[len(xs) // 2]), int(ys[len(ys) // 2]) + BAR
+
+
+def painted(page) -> None:
+    """Wait until the page has drawn what it was last told (two animation
+    frames later, so that the screenshot shows it): a state, not a time."""
+    page.evaluate("() => new Promise(done => requestAnimationFrame(() => requestAnimationFrame(done)))")
