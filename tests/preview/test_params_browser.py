@@ -42,18 +42,25 @@ def house(tmp_path, monkeypatch):
     server.close()
 
 
-@pytest.fixture
-def page(house):
+@pytest.fixture(scope="module")
+def browser():
+    """One chromium for the module's pages (each test opens a page of its own)."""
     with playwright.sync_playwright() as driver:
-        browser = driver.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
-        opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
-        problems = []
-        opened.on("pageerror", lambda error: problems.append(str(error)))
-        opened.goto(house[1].url)
-        opened.wait_for_selector("body[data-version]", timeout=15000)
-        yield opened
-        browser.close()
-        assert problems == []
+        launched = driver.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
+        yield launched
+        launched.close()
+
+
+@pytest.fixture
+def page(browser, house):
+    opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
+    problems = []
+    opened.on("pageerror", lambda error: problems.append(str(error)))
+    opened.goto(house[1].url)
+    opened.wait_for_selector("body[data-version]", timeout=15000)
+    yield opened
+    opened.close()
+    assert problems == []
 
 
 def roof_top(image: np.ndarray) -> int:
