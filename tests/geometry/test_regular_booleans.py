@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from tests.support.checks import check_closed
-from tests.support.cli import frames_of, run
+from tests.support.cli import frames_of, run, run_once
 from tests.support.regularity import polygon_defects, regularity_defects
 from tests.support.stream import parse_stream
 
@@ -141,8 +141,8 @@ EXAMPLES = sorted((__import__("pathlib").Path(__file__).resolve().parents[2] / "
 
 
 @pytest.mark.parametrize("example", EXAMPLES, ids=lambda p: p.name)
-def test_every_example_frame_has_the_volume_of_a_fresh_evaluation(example, monkeypatch, tmp_path):
-    status, out, err = run(str(example), cwd=tmp_path)
+def test_every_example_frame_has_the_volume_of_a_fresh_evaluation(example, monkeypatch):
+    status, out, err = run_once(str(example))
     assert status == 0, err
     reused = parse_stream(out)
     fresh = _fresh_frames(example, monkeypatch)

@@ -23,20 +23,38 @@ def check_closed(frame: Frame) -> None:
 
 
 def check_convex_planar(frame: Frame, slack: float = 1e-7) -> None:
-    for p in frame.polygons:
-        pts = p.points
-        assert len(pts) >= 3
-        normal = newell(pts)
-        length = np.linalg.norm(normal)
-        assert length > 0, f"degenerate polygon {p.path}"
-        normal /= length
-        size = np.ptp(pts, axis=0).max()
-        distance = (pts - pts.mean(axis=0)) @ normal
-        assert np.abs(distance).max() <= slack * max(size, 1.0), f"non-planar polygon {p.path}"
-        edges = np.roll(pts, -1, axis=0) - pts
-        turns = np.cross(edges, np.roll(edges, -1, axis=0)) @ normal
-        scale = np.linalg.norm(edges, axis=1) * np.linalg.norm(np.roll(edges, -1, axis=0), axis=1)
-        assert np.all(turns >= -slack * scale), f"non-convex polygon {p.path}"
+    """Every polygon has 3 corners or more, an area, lies in its plane (within
+    ``slack`` of its size) and turns one way (convex), tested on all the
+    polygons' arrays at once; the first polygon that fails says why."""
+    if not frame.polygons:
+        return
+    corners, starts = frame.arrays()
+    sizes = np.diff(starts)
+    polygon = np.repeat(np.arange(len(sizes)), sizes)
+    centre = np.add.reduceat(corners, starts[:-1], axis=0) / sizes[:, None]
+    about = corners - centre[polygon]
+    following = np.arange(len(corners)) + 1
+    following[starts[1:] - 1] = starts[:-1]
+    normal = np.zeros((len(sizes), 3))
+    np.add.at(normal, polygon, np.cross(about, about[following]))  # Newell's, as ``newell``
+    length = np.linalg.norm(normal, axis=1)
+    degenerate = length <= 0
+    unit = normal / np.where(degenerate, 1.0, length)[:, None]
+    size = (np.maximum.reduceat(corners, starts[:-1], axis=0)
+            - np.minimum.reduceat(corners, starts[:-1], axis=0)).max(axis=1)
+    distance = np.abs(np.einsum("ij,ij->i", about, unit[polygon]))
+    not_planar = np.maximum.reduceat(distance, starts[:-1]) > slack * np.maximum(size, 1.0)
+    edges = corners[following] - corners
+    turns = np.einsum("ij,ij->i", np.cross(edges, edges[following]), unit[polygon])
+    scale = np.linalg.norm(edges, axis=1) * np.linalg.norm(edges[following], axis=1)
+    concave = np.zeros(len(sizes), bool)
+    concave[polygon[turns < -slack * scale]] = True
+    for i in np.flatnonzero((sizes < 3) | degenerate | not_planar | concave)[:1].tolist():
+        path = frame.polygons[i].path
+        assert sizes[i] >= 3
+        assert not degenerate[i], f"degenerate polygon {path}"
+        assert not not_planar[i], f"non-planar polygon {path}"
+        assert not concave[i], f"non-convex polygon {path}"
 
 
 def check_solid(frame: Frame) -> None:

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import functools
 import subprocess
 import sys
 import tempfile
@@ -43,6 +44,15 @@ def run(*args, stdin: str | None = None, cwd=None, check_status=None):
     if check_status is not None:
         assert result.returncode == check_status, result.stderr
     return result.returncode, result.stdout, result.stderr
+
+
+@functools.lru_cache(maxsize=None)
+def run_once(*args):
+    """``run(*args)`` made once per session: for runs over files the tests only
+    read (the examples), which several tests check for different things (one
+    process and two jobs agree, every frame closed, volumes as a fresh
+    evaluation's). Returns (status, stdout, stderr) as ``run`` does."""
+    return run(*args)
 
 
 def frames_of(scene: str, *args) -> list[Frame]:

@@ -24,7 +24,7 @@ class Frame:
         """The signed volume enclosed: each polygon a fan of triangles from its
         first corner, all the frame's triangles at once (a forest of 400 trees
         took a minute one triangle at a time)."""
-        corners, starts = self._arrays()
+        corners, starts = self.arrays()
         fans = np.maximum(np.diff(starts) - 2, 0)
         first = np.repeat(starts[:-1], fans)
         k = np.arange(int(fans.sum())) - np.repeat(np.cumsum(fans) - fans, fans)
@@ -40,7 +40,7 @@ class Frame:
             at += count
         return total
 
-    def _arrays(self):
+    def arrays(self):
         """All the corners (C, 3), and where each polygon's start (P + 1,)."""
         sizes = [len(p.points) for p in self.polygons]
         if not sizes:
@@ -57,7 +57,7 @@ class Frame:
         """The polygons' area (of those of a colour, or whose path holds
         ``path_part``): each polygon's Newell normal about its centre, as
         ``newell`` takes it, all polygons at once."""
-        corners, starts = self._arrays()
+        corners, starts = self.arrays()
         sizes = np.diff(starts)
         if not len(sizes):
             return 0.0
