@@ -1,4 +1,4 @@
-"""Meshes closed as written, and closed as opened after the clicks the README gives.
+"""Meshes closed as written, and closed as opened after the clicks docs/formats.md gives.
 
 Issue 18, item 16. glTF: every primitive of an object indexes one accessor of
 positions, so the object's triangles pair every edge as written; importers still
