@@ -52,17 +52,16 @@ def lies_on_face(points: np.ndarray, use: Use, tol: float) -> bool:
 def _inside(polygon: np.ndarray, point: np.ndarray, tol: float) -> bool:
     """Point in a simple polygon (crossings), or within tol of its outline."""
     x, y = point
-    inside = False
-    n = len(polygon)
-    for k in range(n):
-        (x1, y1), (x2, y2) = polygon[k], polygon[(k + 1) % n]
-        d = np.array([x2 - x1, y2 - y1])
-        t = np.clip(((x - x1) * d[0] + (y - y1) * d[1]) / max(d @ d, 1e-300), 0, 1)
-        if math.hypot(x1 + t * d[0] - x, y1 + t * d[1] - y) <= tol:
-            return True
-        if (y1 > y) != (y2 > y) and x < x1 + (y - y1) * (x2 - x1) / (y2 - y1):
-            inside = not inside
-    return inside
+    x1, y1 = polygon[:, 0], polygon[:, 1]
+    x2, y2 = np.roll(x1, -1), np.roll(y1, -1)
+    dx, dy = x2 - x1, y2 - y1
+    t = np.clip(((x - x1) * dx + (y - y1) * dy) / np.maximum(dx * dx + dy * dy, 1e-300), 0, 1)
+    if (np.hypot(x1 + t * dx - x, y1 + t * dy - y) <= tol).any():
+        return True
+    spans = (y1 > y) != (y2 > y)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        crossed = spans & (x < x1 + (y - y1) * dx / np.where(spans, dy, 1.0))
+    return bool(np.count_nonzero(crossed) % 2)
 
 
 def closed_defects(frame) -> list[str]:
@@ -184,8 +183,8 @@ def judge(frame, solids, uses, sheets: bool = True, exact=None,
             problems.append("not outward")
         problems += regularity.regularity_defects(frame, sheets=sheets)
     else:
-        problems += [f"polygon {i} of {p.path}: {', '.join(d)}"
-                     for i, p in enumerate(frame.polygons) if (d := regularity.polygon_defects(p))]
+        problems += [f"polygon {i} of {frame.polygons[i].path}: {', '.join(d)}"
+                     for i, d in regularity.frame_polygon_defects(frame)]
     by_path: dict[str, list[Use]] = {}
     for use in uses:
         by_path.setdefault(use.path, []).append(use)
