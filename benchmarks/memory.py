@@ -40,7 +40,7 @@ def encode(frame, name, target=None):
     counts.append(frame.polygon_count)
     return b"", {}
 output.encode = encode  # what castor.jobs calls when it encodes a frame (before)
-output.encode_pieces = lambda frame, name, target=None: (iter([encode(frame, name)[0]]), {})
+output.encode_pieces = lambda frame, name, target=None, **info: (iter([encode(frame, name)[0]]), {})
 output.Output.start = lambda self: None
 output.Output.put = lambda self, *args: None
 output.Output.finish = lambda self, had_errors: True

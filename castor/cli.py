@@ -15,10 +15,8 @@ import threading
 
 from castor import __version__
 from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
-from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_TOLERANCE, DEFAULT_PORT, DEFAULT_SAMPLES, DEFAULT_SCALE,
-                            DEFAULT_SIZE, DEFAULT_SUN, DEFAULT_VIEW, negative_values, parse_count,
-                            parse_point, parse_scale, parse_section, parse_size, parse_sun,
-                            parse_sheet, parse_view, OPTION_OUTPUTS, VIEW_NAMES)
+from castor.options import (DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE,
+                            OUTPUT_OPTIONS, negative_values, option_value, parse_count)
 
 
 class _NotGiven(list):
@@ -79,10 +77,40 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _arguments(argv):
-    from castor.formats import FORMATS
+    """The parser and the parsed options, checked: a usage error exits (status 2)."""
+    p = _parser()
+    args = _parse(p, argv)
+    _check_values(p, args)
+    _check_macros(p, args)
+    _choose_format(p, args)
+    _check_destinations(p, args)
+    return p, args
 
+
+def _parser() -> _Parser:
+    """castor's options: the general ones, then the output options as declared
+    (castor.options.OUTPUT_OPTIONS), each in its --help section."""
     p = _Parser(prog="castor", description="Interpret Castor CSG scenes and write their polygons.",
                 epilog="Exit status: 0 success, 1 errors in the input, 2 usage error.")
+    _general_options(p)
+    groups: dict[str, argparse._ArgumentGroup] = {}
+    for option in OUTPUT_OPTIONS:
+        group = groups.get(option.group) or groups.setdefault(
+            option.group, p.add_argument_group(option.group))
+        if option.metavar is None:
+            group.add_argument(option.flag, action="store_true", help=option.help)
+        else:
+            group.add_argument(option.flag, dest=option.dest, metavar=option.metavar,
+                               default=[] if option.repeat else option.default,
+                               action="append" if option.repeat else "store", help=option.help)
+    p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
+    p.add_argument("--version", action="version", version=f"castor {__version__}")
+    return p
+
+
+def _general_options(p: _Parser) -> None:
+    from castor.formats import FORMATS
+
     p.add_argument("files", nargs="*", metavar="FILE", help="scene files, read in order as one "
                    "input (none or - for standard input)")
     p.add_argument("-o", "--output", metavar="PATH", help="write to PATH (format from its "
@@ -124,49 +152,25 @@ def _arguments(argv):
                    help=f"--serve: the port (default {DEFAULT_PORT}, or the next free one)")
     p.add_argument("--bind", default="127.0.0.1", metavar="ADDRESS",
                    help="--serve: the address to listen on (default loopback only)")
-    pictures = p.add_argument_group("pictures and drawings")
-    pictures.add_argument("--size", default="%dx%d" % DEFAULT_SIZE, metavar="WxH",
-                          help="picture size in pixels (default %(default)s)")
-    pictures.add_argument("--view", default="%g,%g" % DEFAULT_VIEW, metavar="AZ,EL|NAME",
-                          help="camera direction in degrees, or "
-                               f"{', '.join(VIEW_NAMES)} (orthographic)")
-    pictures.add_argument("--eye", metavar="X,Y,Z", help="camera position (with --look)")
-    pictures.add_argument("--look", metavar="X,Y,Z", help="the point the camera looks at")
-    pictures.add_argument("--sun", default=None, metavar="AZ,EL|none",
-                          help="direction of the sun (default: the camera's azimuth + %g, "
-                               "%g high), or none" % DEFAULT_SUN)
-    pictures.add_argument("--samples", default=str(DEFAULT_SAMPLES), metavar="N",
-                          help="rays per pixel for anti-aliasing (default %(default)s)")
-    pictures.add_argument("--edges", action="store_true", help="outline silhouettes and creases")
-    pictures.add_argument("--section", metavar="AXIS=VALUE",
-                          help="a drawing cut by the plane z=H (a plan), x=V or y=V")
-    pictures.add_argument("--scale", default=f"1:{DEFAULT_SCALE}", metavar="1:N",
-                          help="printed scale of a drawing (default %(default)s), or the scale "
-                               "of a 3MF model (default 1:1)")
-    pictures.add_argument("--sheet", metavar="SIZE", help="lay a drawing on A4 ... A0 paper "
-                          "(landscape; A3-portrait for upright), with border and title block")
-    # one title for every document that has one: a drawing's, an IFC project's
-    pictures.add_argument("--title", metavar="TEXT", help="the title of a drawing or an IFC "
-                          "project (default: the '>' object's name, or the file's)")
-    bim = p.add_argument_group("building models (IFC)")
-    bim.add_argument("--ifc-class", dest="ifc_classes", action="append", default=[],
-                     metavar="NAME=CLASS", help="IFC class of the object NAME, such as "
-                     "maison=IfcWall (repeatable; default IfcBuildingElementProxy)")
-    p.add_argument("-q", "--quiet", action="store_true", help="no warnings")
-    p.add_argument("--version", action="version", version=f"castor {__version__}")
-    # the options that act on some outputs only (OPTION_OUTPUTS): which were given
-    dests = {option: p._option_string_actions[option].dest for option in OPTION_OUTPUTS
-             if option in p._option_string_actions}
-    unset = {dest: _NotGiven() for dest in dests.values()}  # told apart from any value
-    args = p.parse_args(negative_values(argv, ("--view", "--eye", "--look", "--sun",
-                                               "--section")),
+
+
+def _parse(p: _Parser, argv) -> argparse.Namespace:
+    """The options parsed; ``args.given``: the output options the command line gave."""
+    unset = {option.dest: _NotGiven() for option in OUTPUT_OPTIONS}  # told apart from any value
+    args = p.parse_args(negative_values(argv, tuple(o.flag for o in OUTPUT_OPTIONS if o.signed)),
                         namespace=argparse.Namespace(**unset))
-    args.given = [option for option, dest in dests.items()
-                  if getattr(args, dest) is not unset[dest] or unset[dest]]
-    for option, dest in dests.items():
-        value = getattr(args, dest)
-        if value is unset[dest]:  # an appending option adds to it: a plain list then
-            setattr(args, dest, list(value) if value else p._option_string_actions[option].default)
+    args.given = [option.flag for option in OUTPUT_OPTIONS
+                  if getattr(args, option.dest) is not unset[option.dest] or unset[option.dest]]
+    for option in OUTPUT_OPTIONS:
+        value = getattr(args, option.dest)
+        if value is unset[option.dest]:  # an appending option adds to it: a plain list then
+            default = p._option_string_actions[option.flag].default
+            setattr(args, option.dest, list(value) if value else default)
+    return args
+
+
+def _check_values(p: _Parser, args) -> None:
+    """Each option's value parsed and checked (a usage error names it)."""
     if args.tolerance is not None and not (args.tolerance > 0 and args.tolerance < float("inf")):
         p.error(f"--tolerance must be a positive number, not {args.tolerance}")
     if args.max_polygons < 1:
@@ -174,15 +178,8 @@ def _arguments(argv):
     try:
         args.jobs = parse_count(args.jobs, "--jobs", 0, 256)
         args.port = parse_count(args.port, "--port", 0, 65535)
-        args.samples = parse_count(args.samples, "--samples", 1, 256)
-        args.size = parse_size(args.size)
-        args.view = parse_view(args.view)
-        args.sun = DEFAULT_SUN if args.sun is None else parse_sun(args.sun)
-        args.scale = parse_scale(args.scale)
-        args.section = parse_section(args.section) if args.section is not None else None
-        args.sheet = parse_sheet(args.sheet) if args.sheet is not None else None
-        args.eye = parse_point(args.eye, "--eye") if args.eye is not None else None
-        args.look = parse_point(args.look, "--look") if args.look is not None else None
+        for option in OUTPUT_OPTIONS:
+            setattr(args, option.dest, option_value(option, getattr(args, option.dest)))
     except ValueError as exc:
         p.error(str(exc))
     if (args.eye is None) != (args.look is None):
@@ -191,6 +188,9 @@ def _arguments(argv):
         p.error("--eye and --look must be different points")
     if args.summary is not None and args.check:
         p.error("--summary needs the frames made; leave out --check")
+
+
+def _check_macros(p: _Parser, args) -> None:
     for definition in args.defines:
         name, _, value = definition.partition("=")
         if not re.fullmatch(r"[A-Za-z_]\w*(\([\w\s,]*\))?", name.strip()):
@@ -201,31 +201,35 @@ def _arguments(argv):
     for name in args.undefines:
         if not re.fullmatch(r"[A-Za-z_]\w*", name.strip()):
             p.error(f"-U takes a macro NAME (letters, digits and _), not {name!r}")
-    from castor.formats import format_for_suffix
-    from castor.formats.output import destination_problem, is_device, suffix_message
+
+
+def _choose_format(p: _Parser, args) -> None:
+    """-f, else the format -o's ending names (the stream by default): one that
+    can be written here."""
+    from castor.formats import FORMATS, format_for_suffix
+    from castor.formats.output import is_device, suffix_message
 
     if args.format is None:
-        args.format = format_for_suffix(args.output) if args.output else "cps"
+        args.format = format_for_suffix(args.output) if args.output else DEFAULT_FORMAT
         if args.format is None and is_device(args.output):
-            args.format = "cps"  # -o /dev/null, a named pipe: the stream, as to standard output
+            args.format = DEFAULT_FORMAT  # -o /dev/null, a pipe: the stream, as standard output's
         if args.format is None:
             p.error(suffix_message(args.output))
-    if args.format == "ifc" or args.ifc_classes:  # IFC's options, and its optional package
-        from castor.formats.ifc import INSTALL, installed, parse_ifc_classes
+    unavailable = FORMATS[args.format].unavailable  # its library is not installed
+    problem = unavailable() if unavailable is not None else None
+    if problem is not None:
+        p.error(problem)
 
-        try:
-            args.ifc_classes = tuple(parse_ifc_classes(args.ifc_classes).items())
-        except ValueError as exc:
-            p.error(str(exc))
-        if args.format == "ifc" and not installed():
-            p.error(f"writing IFC needs ifcopenshell, which is not installed; {INSTALL}")
+
+def _check_destinations(p: _Parser, args) -> None:
+    from castor.formats.output import destination_problem
+
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
         problem = destination_problem(path, option) if path is not None else None
         if problem is not None:
             p.error(problem)
         if path is not None and any(_same_file(path, scene) for scene in args.files):
             p.error(f"{option} {path}: is a scene castor reads; give the output another name")
-    return p, args
 
 
 def _same_file(output: str, scene: str) -> bool:
@@ -275,7 +279,7 @@ PIPE_CLOSED = 128 + 13
 
 def settings_of(args, overrides: dict[str, float]):
     """The settings of each stage, from the parsed options (castor.settings)."""
-    from castor.options import acts_on
+    from castor.formats import FORMATS
     from castor.settings import (BimSettings, DrawingSettings, EvaluationSettings, FrameSettings,
                                  MeshSettings, OutputSettings, PictureSettings, ReadSettings,
                                  RunSettings, Source)
@@ -284,18 +288,19 @@ def settings_of(args, overrides: dict[str, float]):
     reading = ReadSettings(tuple(args.defines), tuple(args.undefines), tuple(args.include_dirs),
                            args.no_cpp)
     evaluation = EvaluationSettings(overrides=overrides, tolerance=args.tolerance)
+    own = FORMATS[args.format].options  # the format's own options, for its writer
+    options = tuple((option.dest, getattr(args, option.dest)) for option in OUTPUT_OPTIONS
+                    if option.flag in own and option.flag in args.given)
     frame = FrameSettings(
         output=OutputSettings(format=args.format, target=args.output, stats=args.stats,
-                              summary=args.summary is not None, title=args.title),
+                              summary=args.summary is not None, title=args.title,
+                              options=options),
         mesh=MeshSettings(max_polygons=args.max_polygons),
         picture=PictureSettings(size=args.size, view=args.view, eye=args.eye, look=args.look,
                                 sun=args.sun, samples=args.samples, edges=args.edges),
         drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale,
                                 sheet=args.sheet),
-        bim=BimSettings(classes=args.ifc_classes))
-    if "--scale" in args.given and acts_on("--scale", args.format, "mesh"):
-        # a model's scale (3MF): 1 scene unit = 1000/N mm (OUTPUT.md)
-        frame = frame.replace(output=frame.output.replace(model_scale=1 / args.scale))
+        bim=BimSettings(classes=args.ifc_class))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)
     return source, reading, evaluation, frame, how
@@ -313,7 +318,7 @@ def main(argv=None) -> int:
 
         return language_server(args)
     if args.parameter_file is not None or args.parameter_set is not None:
-        from castor.lsp.customizer import SetError, readable, set_overrides
+        from castor.analysis.customizer import SetError, readable, set_overrides
 
         if args.parameter_file is None:
             parser.error(f"-P {args.parameter_set} names a set of a parameter file; give the "
@@ -327,22 +332,15 @@ def main(argv=None) -> int:
             sys.stderr.write(f"castor: error: {exc}\n")
             return USAGE_ERROR
     if args.params:
-        from castor.lsp.customizer import params_command
+        from castor.analysis.customizer import params_command
 
         return params_command(source, reading, evaluation, quiet=args.quiet)
     if not args.serve:
         _warn_without_effect(args, reporter)
-    result: list = []
 
     def work():
-        try:
-            result.append(run(source, reporter, reading=reading, evaluation=evaluation,
-                              settings=frame, how=how))
-        except UsageError as exc:
-            sys.stderr.write(f"castor: {exc}\n")
-            result.append(USAGE_ERROR)
-        except BaseException as exc:  # handed to the main thread below
-            result.append(exc)
+        return run(source, reporter, reading=reading, evaluation=evaluation, settings=frame,
+                   how=how)
 
     # A scene graph is many long-lived objects and few cycles: collect rarely.
     gc.set_threshold(100_000, 50, 100)
@@ -351,7 +349,24 @@ def main(argv=None) -> int:
     if args.serve:
         return _serve(args, source, reading, evaluation)
     threading.stack_size(STACK_BYTES)
-    thread = threading.Thread(target=work, name="castor", daemon=True)
+    return _status(_on_thread(work))
+
+
+def _on_thread(work) -> object:
+    """What ``work`` (the run) gives, run on a thread of its own while this one
+    waits for Ctrl-C or SIGTERM, which end every process at once."""
+    result: list = []
+
+    def target():
+        try:
+            result.append(work())
+        except UsageError as exc:
+            sys.stderr.write(f"castor: {exc}\n")
+            result.append(USAGE_ERROR)
+        except BaseException as exc:  # handed to the main thread below
+            result.append(exc)
+
+    thread = threading.Thread(target=target, name="castor", daemon=True)
     stopped_by = _stop_on_signals()
     thread.start()
     try:
@@ -359,7 +374,12 @@ def main(argv=None) -> int:
             thread.join(0.2)
     except KeyboardInterrupt:
         _interrupted(128 + stopped_by[0])
-    outcome = result[0] if result else 1
+    return result[0] if result else 1
+
+
+def _status(outcome) -> int:
+    """The exit status of a run that gave ``outcome`` (its status, or what it
+    raised), and a one-line message for what it raised."""
     if isinstance(outcome, BrokenPipeError):
         _quiet_stdout()
         return PIPE_CLOSED
@@ -403,10 +423,9 @@ def main(argv=None) -> int:
 
 def _warn_without_effect(args, reporter) -> None:
     """Each option given that has no effect on the chosen output, once (CLI.md)."""
-    from castor.formats import FORMATS
-    from castor.options import without_effect
+    from castor.formats import FORMATS, without_effect
 
-    for message in without_effect(args.given, args.format, FORMATS[args.format].kind):
+    for message in without_effect(args.given, FORMATS[args.format]):
         reporter.warning(message)
 
 

@@ -20,6 +20,7 @@ class CameraSun(NamedTuple):
     elevation: float
 
 
+DEFAULT_FORMAT = "cps"  # the polygon stream: standard output's, and a device's (-o /dev/null)
 DEFAULT_TOLERANCE = 0.01
 DEFAULT_MAX_POLYGONS = 20_000_000
 DEFAULT_SIZE = (800, 600)
@@ -191,41 +192,89 @@ def negative_values(argv: list[str], options: tuple[str, ...]) -> list[str]:
     return out
 
 
-# The options that act on some outputs only, and the outputs each acts on: kinds
-# of output (castor.formats KINDS) or formats by name. The one table that says
-# which option matters for which output: one given for an output not listed
-# here is warned about (CLI.md), and only the outputs listed here are given it.
-OPTION_OUTPUTS: dict[str, tuple[str, ...]] = {
-    "--size": ("picture",),
-    "--view": ("picture", "drawing"),
-    "--eye": ("picture",),
-    "--look": ("picture",),
-    "--sun": ("picture",),
-    "--samples": ("picture",),
-    "--edges": ("picture",),
-    "--section": ("drawing",),
-    "--scale": ("drawing", "3mf"),
-    "--sheet": ("drawing",),
-    "--title": ("drawing", "bim"),
-    "--ifc-class": ("bim",),
-}
+def parse_samples(text: str) -> int:
+    return parse_count(text, "--samples", 1, 256)
 
 
-def acts_on(option: str, format_name: str, kind: str) -> bool:
-    """Whether ``option`` (of OPTION_OUTPUTS) has an effect on this output."""
-    outputs = OPTION_OUTPUTS.get(option)
-    return outputs is None or kind in outputs or format_name in outputs
+def parse_eye(text: str) -> tuple[float, float, float]:
+    return parse_point(text, "--eye")
 
 
-def without_effect(given: list[str], format_name: str, kind: str) -> list[str]:
-    """A warning for each option of ``given`` that has no effect on the output."""
-    return [f"{option} has no effect on {format_name} output (it acts on "
-            f"{' and '.join(_outputs(OPTION_OUTPUTS[option]))}); it is ignored"
-            for option in given if not acts_on(option, format_name, kind)]
+def parse_look(text: str) -> tuple[float, float, float]:
+    return parse_point(text, "--look")
 
 
-def _outputs(names: tuple[str, ...]) -> list[str]:
-    plural = {"picture": "pictures", "drawing": "drawings", "mesh": "mesh files",
-              "stream": "the polygon stream", "bim": "building models"}
-    return [plural.get(name, name) for name in names]
+class OutputOption(NamedTuple):
+    """An option that acts on some outputs only: its declaration for the command
+    line. Which outputs it acts on, the kinds and formats say (castor.formats:
+    a kind's ``options``, a format's own ``options``); one given for another
+    output is warned about (CLI.md)."""
 
+    flag: str  # "--size"
+    metavar: str | None  # None: a switch, given or not
+    help: str  # for --help (argparse's %(default)s for the default)
+    group: str  # the --help section it is listed in
+    default: str | None = None  # the text taken when it is not given (then parsed)
+    parse: object = None  # text -> value (ValueError: a usage error); "module:function": imported when given
+    absent: object = None  # the value when it is neither given nor has a default text
+    repeat: bool = False  # given several times, its values a list
+    signed: bool = False  # its value may start with '-' (--view -30,20)
+
+    @property
+    def dest(self) -> str:
+        """Its name without dashes: the attribute of the parsed options, and the
+        key of a format's own option in castor.formats.WriteInfo.options."""
+        return self.flag[2:].replace("-", "_")
+
+
+PICTURES_AND_DRAWINGS = "pictures and drawings"
+BUILDING_MODELS = "building models (IFC)"
+
+# Every option that acts on some outputs only, in --help's order: declared here only.
+OUTPUT_OPTIONS = (
+    OutputOption("--size", "WxH", "picture size in pixels (default %(default)s)",
+                 PICTURES_AND_DRAWINGS, "%dx%d" % DEFAULT_SIZE, parse_size),
+    OutputOption("--view", "AZ,EL|NAME", "camera direction in degrees, or "
+                 f"{', '.join(VIEW_NAMES)} (orthographic)", PICTURES_AND_DRAWINGS,
+                 "%g,%g" % DEFAULT_VIEW, parse_view, signed=True),
+    OutputOption("--eye", "X,Y,Z", "camera position (with --look)", PICTURES_AND_DRAWINGS,
+                 parse=parse_eye, signed=True),
+    OutputOption("--look", "X,Y,Z", "the point the camera looks at", PICTURES_AND_DRAWINGS,
+                 parse=parse_look, signed=True),
+    OutputOption("--sun", "AZ,EL|none", "direction of the sun (default: the camera's azimuth + "
+                 "%g, %g high), or none" % DEFAULT_SUN, PICTURES_AND_DRAWINGS, parse=parse_sun,
+                 absent=DEFAULT_SUN, signed=True),
+    OutputOption("--samples", "N", "rays per pixel for anti-aliasing (default %(default)s)",
+                 PICTURES_AND_DRAWINGS, str(DEFAULT_SAMPLES), parse_samples),
+    OutputOption("--edges", None, "outline silhouettes and creases", PICTURES_AND_DRAWINGS),
+    OutputOption("--section", "AXIS=VALUE", "a drawing cut by the plane z=H (a plan), x=V or y=V",
+                 PICTURES_AND_DRAWINGS, parse=parse_section, signed=True),
+    OutputOption("--scale", "1:N", "printed scale of a drawing (default %(default)s), or the "
+                 "scale of a 3MF model (default 1:1)", PICTURES_AND_DRAWINGS,
+                 f"1:{DEFAULT_SCALE}", parse_scale),
+    OutputOption("--sheet", "SIZE", "lay a drawing on A4 ... A0 paper (landscape; A3-portrait "
+                 "for upright), with border and title block", PICTURES_AND_DRAWINGS,
+                 parse=parse_sheet),
+    # one title for every document that has one: a drawing's, an IFC project's
+    OutputOption("--title", "TEXT", "the title of a drawing or an IFC project (default: the "
+                 "'>' object's name, or the file's)", PICTURES_AND_DRAWINGS),
+    OutputOption("--ifc-class", "NAME=CLASS", "IFC class of the object NAME, such as "
+                 "maison=IfcWall (repeatable; default IfcBuildingElementProxy)", BUILDING_MODELS,
+                 parse="castor.formats.ifc:parse_classes_option", absent=(), repeat=True),
+)
+
+
+def option_value(option: OutputOption, value):
+    """An output option's value from its text (its list of texts, for a repeated
+    one): parsed, or its ``absent`` value where it was not given."""
+    if value is None or (option.repeat and not value):
+        return option.absent
+    if option.parse is None:
+        return value
+    parse = option.parse
+    if isinstance(parse, str):  # a format's own parser: its module imported now
+        import importlib
+
+        module, _, name = parse.partition(":")
+        parse = getattr(importlib.import_module(module), name)
+    return parse(value)

@@ -45,7 +45,8 @@ class Sequencer:
         self.refused = False
         self.failure: Exception | None = None
         self.summaries: list[dict] = []
-        self.pictures: list = []
+        self.gathered: list = []  # (number, location, part) of a file made from every frame
+        self.held: FrameFailure | None = None  # frames that failed alike: said once, when done
         self.frames: list = []  # mesh frames, when the output settings keep them
         reporter.stream = self  # the interpreter's messages queue behind pending frames
 
@@ -55,6 +56,8 @@ class Sequencer:
             if self.pending and not self.handling:
                 self.pending.append(text)
             else:
+                if not self.handling:
+                    self._release()
                 self.stderr.write(text)
 
     def flush(self) -> None:
@@ -114,6 +117,7 @@ class Sequencer:
                 head = self.pending[0]
                 if isinstance(head, str):
                     self.pending.popleft()
+                    self._release()
                     self.stderr.write(head)
                     continue
                 if not head.done():
@@ -135,11 +139,40 @@ class Sequencer:
                     continue
                 self.ready.wait(0.5)
                 self.drain()
+            self._release()
         self.reporter.stream = self.stderr
         if self.failure is not None:
             raise self.failure
 
+    def _hold(self, result: Result) -> bool:
+        """A frame that failed as the frames before it did is said with them, once
+        (CLI.md): True when ``result`` is such a failure, now held."""
+        if len(result.errors) != 1 or not isinstance(result.errors[0], FrameFailure) \
+                or result.warnings or result.data is not None:
+            return False
+        failure = result.errors[0]
+        if self.held is not None and not self.held.alike(failure):
+            self._release()
+        self.held = failure if self.held is None else self.held.joined(failure)
+        return True
+
+    def _release(self) -> None:
+        """Say the failure held, if any."""
+        held, self.held = self.held, None
+        if held is None:
+            return
+        handling, self.handling = self.handling, True
+        try:
+            self.reporter.error(held)
+        except TooManyErrors:
+            self.stopped = True
+        finally:
+            self.handling = handling
+
     def _handle(self, result: Result) -> None:
+        if self._hold(result):
+            return
+        self._release()
         self.handling = True
         try:
             for message, location in result.warnings:
@@ -158,10 +191,10 @@ class Sequencer:
                         f"raise the tolerance or lower --max-polygons", result.location))
             else:
                 _discard(result.data)
-                if self.output is not None and result.picture is None and not result.errors:
+                if self.output is not None and result.gathered is None and not result.errors:
                     self.reporter.error(self.output.unmade(result.number, result.location))
-            if result.picture is not None:
-                self.pictures.append(result.picture)
+            if result.gathered is not None:
+                self.gathered.append((result.number, result.location, result.gathered))
             if result.mesh is not None:
                 self.frames.append(result.mesh)
             if result.summary is not None:
@@ -177,7 +210,6 @@ class Sequencer:
             self.stopped = True
         finally:
             self.handling = False
-
 
     def discard_pending(self) -> None:
         """Remove the spooled files of frames made but never written (a run
@@ -213,9 +245,50 @@ def _outcome(future) -> Result:
         raise
     except Exception as exc:  # a worker that died, a cluster that went away
         result = Result(scene.number, scene.location)
-        result.errors.append(LimitError(f"frame {scene.number} could not be made: "
-                                        f"{type(exc).__name__}: {exc}", scene.location))
+        result.errors.append(FrameFailure((scene.number,), failure_reason(exc), scene.location))
         return result
+
+
+class FrameFailure(LimitError):
+    """Frames that could not be made (their process failed), alike: one message
+    names them all (CLI.md)."""
+
+    def __init__(self, numbers: tuple[int, ...], reason: str, location):
+        self.numbers, self.reason = numbers, reason
+        super().__init__(f"{_frames(numbers)} could not be made: {reason}", location)
+
+    def alike(self, other: "FrameFailure") -> bool:
+        return (self.reason, self.location) == (other.reason, other.location)
+
+    def joined(self, other: "FrameFailure") -> "FrameFailure":
+        return FrameFailure(self.numbers + other.numbers, self.reason, self.location)
+
+
+def _frames(numbers: tuple[int, ...]) -> str:
+    """'frame 3', 'frames 1 and 2', 'frames 1 to 9', 'frames 1, 4 and 7', '12 frames from 1 to 30'."""
+    if len(numbers) == 1:
+        return f"frame {numbers[0]}"
+    if len(numbers) > 2 and list(numbers) == list(range(numbers[0], numbers[-1] + 1)):
+        return f"frames {numbers[0]} to {numbers[-1]}"
+    if len(numbers) > 6:
+        return f"{len(numbers)} frames from {numbers[0]} to {numbers[-1]}"
+    return "frames " + ", ".join(map(str, numbers[:-1])) + f" and {numbers[-1]}"
+
+
+def failure_reason(exc: BaseException) -> str:
+    """Why a frame's process failed, in the user's words: never Python's (its
+    name and text with CASTOR_DEBUG=1)."""
+    name = type(exc).__name__
+    if name == "BrokenProcessPool":
+        reason = "its process ended before it was done (stopped, or out of memory)"
+    elif isinstance(exc, (OSError, TimeoutError)) or name in ("CancelledError", "CommClosedError"):
+        reason = "the process or cluster that was making it stopped answering"
+    else:
+        reason = ("an internal error in the process that made it (please report it with "
+                  "the scene; CASTOR_DEBUG=1 shows it)")
+    if os.environ.get("CASTOR_DEBUG"):
+        reason += f" [{name}: {exc}]"
+    return reason
 
 
 def executor_for(jobs: int, scheduler: str | None):
@@ -333,24 +406,11 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
     from castor.formats.output import Output
 
     evaluation = evaluation or EvaluationSettings()
-    for name in source.files:
-        if name != "-" and (not os.access(name, os.R_OK) or os.path.isdir(name)):
-            reason = "no such file" if not os.path.exists(name) else \
-                "it is a directory" if os.path.isdir(name) else "permission denied"
-            raise UsageError(f"error: cannot read '{name}': {reason}")
-    out = settings.output
-    chosen = FORMATS[out.format]
-    output = None  # --check writes nothing; an animation is written once, at the end
-    if not how.check and not (chosen.kind == "picture" and not chosen.one_frame):
-        output = Output(out.target, out.format)
+    _check_readable(source)
+    chosen = FORMATS[settings.output.format]
+    output = None if how.check else Output(settings.output.target, chosen.name)  # --check: none
     executor, workers = (None, 1) if how.check else executor_for(how.jobs, how.scheduler)
-    if executor is None or (how.scheduler is None and not isinstance(executor, _process_pools())):
-        # made as they are written: one piece in memory
-        settings = settings.replace(output=out.replace(pieces=True))
-    elif how.scheduler is None:
-        spool = _spool_directory(out.target)
-        _spools.append(spool)
-        settings = settings.replace(output=out.replace(spool=spool, spool_owner=os.getpid()))
+    settings = _carried(settings, executor, how)
     sequencer = Sequencer(reporter, output, settings, executor, window=2 * max(1, workers or 1))
     if output is not None:
         output.start()
@@ -361,33 +421,61 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
             sequencer.finish()
         except TooManyErrors:
             pass
-        _warn_unused_overrides(evaluation.overrides, interpreter, reporter)
-        if chosen.kind == "bim":
-            _warn_unknown_ifc_classes(settings.bim.classes, interpreter, reporter)
+        _warn_after_run(chosen, settings, evaluation, interpreter, reporter)
         if interpreter.frames_attempted == 0 and not how.check and not reporter.errors:
             reporter.warning("the scene has no '>' command, so nothing was written; "
                              "'> OBJECT;' writes an object's polygons")
+        _write_gathered(chosen, settings, sequencer, executor, output)
     except BaseException:
         if output is not None:
             output.abandon()  # a single stream file half made stays out of place
         raise
     finally:
-        if executor is not None:
-            executor.shutdown(wait=True)  # workers end before castor does: none outlives it
-            client = getattr(executor, "castor_client", None)
-            if client is not None:
-                client.close()
+        _end(executor)
         sequencer.discard_pending()
     try:
-        _finish_collected(out, how, settings, sequencer)
+        _write_summary(how, sequencer)
         if output is not None and not output.finish(reporter.errors > 0,
                                                     interpreter.frames_attempted):
-            reporter.note(f"castor: {out.target} not written: there were errors and no frame")
+            reporter.note(f"castor: {settings.output.target} not written: there were errors "
+                          f"and no frame")
     except BaseException:
         if output is not None:
             output.abandon()
         raise
     return 1 if reporter.errors else 0
+
+
+def _check_readable(source: Source) -> None:
+    """A scene file that cannot be read is a usage error, before any work."""
+    for name in source.files:
+        if name != "-" and (not os.access(name, os.R_OK) or os.path.isdir(name)):
+            reason = "no such file" if not os.path.exists(name) else \
+                "it is a directory" if os.path.isdir(name) else "permission denied"
+            raise UsageError(f"error: cannot read '{name}': {reason}")
+
+
+def _carried(settings: FrameSettings, executor, how: RunSettings) -> FrameSettings:
+    """The settings, with how a frame's bytes travel to the writer: made a piece at
+    a time as they are written (in this process), or spooled beside the output by
+    a worker process when large."""
+    out = settings.output
+    if executor is None or (how.scheduler is None and not isinstance(executor, _process_pools())):
+        return settings.replace(output=out.replace(pieces=True))  # one piece in memory
+    if how.scheduler is None:
+        spool = _spool_directory(out.target)
+        _spools.append(spool)
+        return settings.replace(output=out.replace(spool=spool, spool_owner=os.getpid()))
+    return settings
+
+
+def _end(executor) -> None:
+    """The workers end before castor does: none outlives it."""
+    if executor is not None:
+        executor.shutdown(wait=True)
+        client = getattr(executor, "castor_client", None)
+        if client is not None:
+            client.close()
 
 
 def _process_pools() -> type | tuple:
@@ -423,35 +511,43 @@ def _warn_unused_overrides(overrides, interpreter, reporter) -> None:
                              f"'{name}'{suggestion(name, names - set(overrides))}")
 
 
-def _warn_unknown_ifc_classes(classes, interpreter, reporter) -> None:
-    """An --ifc-class NAME=CLASS whose NAME is no object of the scene gives no element
-    its class: most likely a typo."""
-    from castor.language.parse import suggestion
-
+def _warn_after_run(chosen, settings: FrameSettings, evaluation: EvaluationSettings,
+                    interpreter, reporter) -> None:
+    """What only the whole scene tells: a --set of no parameter, the output's own
+    warnings (an --ifc-class of no object)."""
+    _warn_unused_overrides(evaluation.overrides, interpreter, reporter)
     objects = set(interpreter.tables.objects) | interpreter.tables.broken
-    for name, cls in classes:
-        if name not in objects:
-            reporter.warning(f"--ifc-class {name}: the scene has no object '{name}', so nothing "
-                             f"is made an {cls}{suggestion(name, objects)}")
+    for message in chosen.kind.after_run(settings, objects):
+        reporter.warning(message)
 
 
-def _finish_collected(out, how: RunSettings, settings: FrameSettings,
-                      sequencer: Sequencer) -> None:
-    """What is written once for the whole run: an animation, the take-off."""
-    from castor.formats import FORMATS
-    from castor.formats.output import write_atomically
+def _write_gathered(chosen, settings: FrameSettings, sequencer: Sequencer, executor,
+                    output) -> None:
+    """A file made from every frame at once (an animation), through the output as
+    any file: its kind makes it from the frames' parts, in the run's processes."""
+    if not sequencer.gathered or output is None:
+        return
+    number, location, _ = sequencer.gathered[0]
+    parts = [part for _, _, part in sequencer.gathered]
+    try:
+        product = chosen.kind.gather(parts, settings, map if executor is None else executor.map)
+    except (BrokenPipeError, MemoryError):
+        raise
+    except Exception as exc:  # a worker that died, a cluster that went away
+        sequencer.reporter.error(FrameFailure(tuple(n for n, _, _ in sequencer.gathered),
+                                              failure_reason(exc), location))
+        return
+    from castor.formats.output import encode_pieces
 
-    chosen = FORMATS[out.format]
-    if sequencer.pictures and not chosen.one_frame:
-        from castor.pictures import animation
+    data, companions = encode_pieces(product, chosen.name, settings.output.target, number=number,
+                                     options=dict(settings.output.options))
+    output.put(number, data, companions, location)
 
-        data = chosen.write(animation(sequencer.pictures, settings.picture))
-        if out.target is None:
-            sys.stdout.buffer.write(data)
-            sys.stdout.buffer.flush()
-        else:
-            write_atomically(out.target, data)
+
+def _write_summary(how: RunSettings, sequencer: Sequencer) -> None:
+    """The take-off, written once for the whole run."""
     if how.summary is not None and not how.check:
+        from castor.formats.output import write_atomically
         from castor.quantities import Summary
 
         summary = Summary()

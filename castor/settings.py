@@ -14,8 +14,8 @@ copy with some fields changed, as ``dataclasses.replace`` did.
 
 from __future__ import annotations
 
-from castor.options import (DEFAULT_MAX_POLYGONS, DEFAULT_SAMPLES, DEFAULT_SCALE, DEFAULT_SIZE,
-                            DEFAULT_SUN)
+from castor.options import (DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_SAMPLES, DEFAULT_SCALE,
+                            DEFAULT_SIZE, DEFAULT_SUN)
 from castor.records import Record
 
 
@@ -115,20 +115,23 @@ class BimSettings(Record):
 class OutputSettings(Record):
     """What a frame is written as, what is said about it, and how its bytes travel."""
 
-    __slots__ = ("format", "target", "stats", "summary", "title", "keep_mesh", "model_scale",
+    __slots__ = ("format", "target", "stats", "summary", "title", "keep_mesh", "options",
                  "pieces", "spool", "spool_owner")
 
-    def __init__(self, format: str | None = "cps", target: str | None = None, stats: bool = False,
-                 summary: bool = False, title: str | None = None, keep_mesh: bool = False,
-                 model_scale: float = 1.0, pieces: bool = False, spool: str | None = None,
-                 spool_owner: int = 0):
+    def __init__(self, format: str | None = DEFAULT_FORMAT, target: str | None = None,
+                 stats: bool = False, summary: bool = False, title: str | None = None,
+                 keep_mesh: bool = False,
+                 options: tuple[tuple[str, object], ...] = (), pieces: bool = False,
+                 spool: str | None = None, spool_owner: int = 0):
         self.format = format  # castor.formats; None: the mesh frame only, in this process
         self.target = target  # -o PATH (a pattern is filled in per frame)
         self.stats = stats  # one line of figures per frame
         self.summary = summary  # a quantity take-off record per frame
         self.title = title  # --title: a drawing's, an IFC project's (None: its default)
         self.keep_mesh = keep_mesh  # hand the mesh frame back (the live preview wants it)
-        self.model_scale = model_scale  # --scale 1:N of a model (3MF): its polygons times 1/N
+        # the format's own options given, as (name, value) pairs: what its writer
+        # finds in WriteInfo.options (castor.options.OUTPUT_OPTIONS; 3MF's scale)
+        self.options = options
         # how a frame's bytes are handed on: made a piece at a time as they are
         # written (``pieces``, in the process that writes them), written by a worker
         # into a file in ``spool`` when the frame is large, or else as bytes

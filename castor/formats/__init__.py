@@ -1,81 +1,45 @@
-"""Every file castor writes or reads: one registry of formats, merged from their modules.
+"""Every file castor writes or reads: one table of formats, one writer signature.
 
-As trimesh's ``exchange/``: each format is one module of this package that
-declares its ``FORMATS``, a tuple of ``Format`` records naming the functions
-that write it and, where castor reads it back, the one that reads it.
+As OpenSCAD's ``src/io/export.cc``: one table (``_DECLARED`` below) names
+every format, its file endings, its kind and a line of description; every
+format's module ``castor/formats/NAME.py`` has one writer with one signature,
 
-The records are read from the modules' source without running them, as
-setuptools reads a ``version = attr: ...`` (a record is plain data: literals,
-and the names of its module's functions), and a format's module is imported
-when one of its functions is first called. So the command line knows every
-format's name, endings and description (``-f``, ``--help``, ``-o x.glb``)
-without importing numpy or any writer: ``castor --check`` and the stream of a
-cube import only what they use. A record written otherwise (a computed field)
-still works: its module is then imported to read it, as before, and
-tests/formats/test_registry.py says which one slows start-up. A module whose
-own dependencies are missing is left out in that case; a format read from the
-source whose module then fails to import says so when it is used.
+    write(product, info: WriteInfo) -> iterable of bytes (the file, a piece at a time)
 
-Adding a format is one module here: ``castor/formats/NAME.py`` with its
-functions and ``FORMATS = (Format(...),)`` at its end. Nothing else lists it:
-the command line's ``-f`` choices and messages, the writers' dispatch
-(castor.jobs), the output (castor.formats.output) and castor-view's readers
-all read the registry.
+over its kind's product, and where castor reads the format back, ``read(path)``.
+The kinds (castor.formats.kinds) make the products from a frame's evaluated
+tree and its settings: the polygon stream and mesh files take a mesh frame
+(castor.mesh.frame.Frame), pictures an (H, W, 3) uint8 image (an animation the
+list of its frames' images), drawings a sheet (castor.drawings.sheet.Sheet),
+building models a ``BuildingModel``. A format's own options (3MF's
+``--scale``) reach its writer in ``info.options``, by the option's name
+without dashes; the option is declared once, in castor.options.OUTPUT_OPTIONS,
+and named in the format's record (``options=``). A kind's options (a
+picture's ``--size``) are its own settings (castor.settings).
+
+The table is plain records, read without importing any writer: the command
+line knows every format's name, endings, kind and description (``-f``,
+``--help``, ``-o x.glb``) without numpy, and a format's module is imported
+when its writer is first called (``OnUse``).
+
+Adding a format: its module here, with ``write`` (and ``read``); its record
+in ``_DECLARED``; an option of its own in castor.options.OUTPUT_OPTIONS. The
+command line's ``-f`` choices and messages, the frames' making (castor.jobs),
+the output (castor.formats.output) and castor-view's readers read the table.
+Adding an output kind: a ``Kind`` in castor.formats.kinds and its formats.
 """
 
 from __future__ import annotations
 
-import ast
 import importlib
-import os
 from typing import Callable, NamedTuple
 
-# What a format is made from, and so what its ``write`` is given:
-KINDS = {
-    "stream": "the polygon stream: write(frame, path) -> bytes, frame after frame in one file",
-    "mesh": "a frame's polygons: write(frame, path) -> bytes (castor.mesh.frame.Frame)",
-    "picture": "a ray-traced picture: write(image) -> bytes, the (H, W, 3) uint8 array; "
-               "a format of every frame is given the list of them",
-    "drawing": "a plan, section or elevation laid on its sheet: write(sheet) -> bytes "
-               "(castor.drawings.sheet.Sheet; its drawing, castor.drawings.Drawing)",
-    "bim": "a building model: write(scene, frame, settings) -> bytes, the evaluated CSG "
-           "tree (castor.csg.tree.FrameTree), its mesh frame and the FrameSettings",
-}
-
-
-class Format(NamedTuple):
-    """One format: how castor names, writes and (perhaps) reads it. (A NamedTuple:
-    castor --help and --version list the formats without importing dataclasses.)"""
-
-    name: str  # what -f takes
-    suffixes: tuple[str, ...]  # file name endings; the first is the one castor writes
-    kind: str  # one of KINDS
-    description: str  # one line, for --help and the documentation
-    write: Callable  # the whole file at once (its argument by kind: see KINDS)
-    # the same bytes a piece at a time, (frame, path) -> Iterator[bytes], where the
-    # module can: a frame's bytes need not be held whole
-    write_pieces: Callable | None = None
-    # path -> iterator of castor.formats.cps.StreamFrame (z up, scene units):
-    # what castor-view draws; None where castor does not read the format
-    read: Callable | None = None
-    companions: Callable | None = None  # (frame, path) -> {path: bytes}: files beside it (.mtl)
-    binary: bool = True
-    triangles_only: bool = False  # the format holds triangles: polygon merging is skipped
-    one_frame: bool = True  # a file holds one frame (False: the stream, an animation)
-    header: bytes = b""  # what a file of the stream begins with, once
-    up: str = "z"  # the file's up axis ("y": glTF, OBJ); its reader turns it back to z
-    reads_also: tuple[str, ...] = ()  # more endings its reader takes (.gltf), never written
-    listed: int = 1000  # place in lists of formats (-f choices, messages): lowest first
-
-    @property
-    def suffix(self) -> str:
-        """The ending of the files castor writes."""
-        return self.suffixes[0]
+from castor.formats.kinds import BIM, DRAWING, KINDS, MESH, PICTURE, STREAM, Kind
 
 
 class OnUse:
     """A function of a format's module, named by its record and imported when first
-    called: what a record read from the source holds in place of the function."""
+    called (the module imports numpy, a writer's library: not at start-up)."""
 
     __slots__ = ("module", "name", "_function")
 
@@ -110,107 +74,106 @@ class OnUse:
         self._function = None
 
 
-_FIELDS = Format._fields
-_FUNCTIONS = {"write", "write_pieces", "read", "companions"}  # the fields that name functions
-_MARK = "\nFORMATS = "  # where a module's records begin
+class WriteInfo(NamedTuple):
+    """What a writer is told besides its product: where the file goes, and the
+    format's own options (OpenSCAD's ExportInfo)."""
+
+    path: str | None = None  # the file's path (a pattern filled in); None: standard output
+    options: dict | None = None  # the format's own options by name ({"scale": 50.0} for 3MF)
+
+    def option(self, name: str, default=None):
+        """The value of the format's option ``name``, or ``default`` when not given."""
+        return (self.options or {}).get(name, default)
 
 
-def declared(module: str, source: str) -> list[Format] | None:
-    """The records at the end of a format module's ``source``, read without running
-    it; None where one is not plain data (then the module is imported to read them)."""
-    start = source.rfind(_MARK)
-    if start < 0:
-        return None
-    try:
-        statement = ast.parse(source[start + 1:]).body
-    except SyntaxError:
-        return None
-    if len(statement) != 1 or not isinstance(statement[0], ast.Assign):
-        return None
-    value = statement[0].value
-    if not isinstance(value, (ast.Tuple, ast.List)):
-        return None
-    records = []
-    for call in value.elts:
-        if not (isinstance(call, ast.Call) and isinstance(call.func, ast.Name)
-                and call.func.id == "Format" and len(call.args) <= len(_FIELDS)):
-            return None
-        named = list(zip(_FIELDS, call.args)) + [(k.arg, k.value) for k in call.keywords]
-        given = {}
-        for field, node in named:
-            if field in _FUNCTIONS and isinstance(node, ast.Name):
-                given[field] = OnUse(module, node.id)
-                continue
-            try:
-                given[field] = ast.literal_eval(node)
-            except (ValueError, TypeError, SyntaxError, MemoryError, RecursionError):
-                return None
-        try:
-            records.append(Format(**given))
-        except TypeError:  # an unknown or missing field: Python says which on import
-            return None
-    return records
+class Format(NamedTuple):
+    """One format: how castor names, writes and (perhaps) reads it. (A NamedTuple:
+    castor --help and --version list the formats without importing dataclasses.)"""
+
+    name: str  # what -f takes
+    suffixes: tuple[str, ...]  # file name endings; the first is the one castor writes
+    kind: Kind  # what its writer is given (castor.formats.kinds)
+    description: str  # one line, for --help and the documentation
+    write: Callable  # (product, WriteInfo) -> iterable of bytes: the file, a piece at a time
+    read: Callable | None = None  # path -> iterator of castor.formats.cps.StreamFrame (z up)
+    companions: Callable | None = None  # (product, WriteInfo) -> {path: bytes}: files beside it
+    options: tuple[str, ...] = ()  # options of its own (castor.options.OUTPUT_OPTIONS)
+    unavailable: Callable | None = None  # () -> why it cannot be written here (None: it can)
+    binary: bool = True
+    triangles_only: bool = False  # the format holds triangles: polygon merging is skipped
+    one_frame: bool = True  # a file holds one frame (False: the stream, an animation)
+    header: bytes = b""  # what a file of the stream begins with, once
+    up: str = "z"  # the file's up axis ("y": glTF, OBJ); its reader turns it back to z
+    reads_also: tuple[str, ...] = ()  # more endings its reader takes (.gltf), never written
+
+    @property
+    def suffix(self) -> str:
+        """The ending of the files castor writes."""
+        return self.suffixes[0]
+
+    @property
+    def gathers(self) -> bool:
+        """Its file is made from every frame at once (an animation: one camera for all)."""
+        return not self.one_frame and not self.kind.streamed
 
 
-def source_modules(path) -> list[tuple[str, str]]:
-    """(directory, name) of each module of a package whose ``__path__`` is ``path``,
-    by name: its ``NAME.py`` files (pkgutil's listing, without importing pkgutil)."""
-    found = {}
-    for directory in path:
-        try:
-            entries = os.listdir(directory)
-        except OSError:
-            continue
-        for entry in entries:
-            name, dot, suffix = entry.partition(".")
-            if suffix == "py" and name.isidentifier():
-                found.setdefault(name, directory)
-    return sorted((directory, name) for name, directory in found.items())
+def _declare(module: str, name: str, suffixes: tuple[str, ...], kind: Kind, description: str,
+             *, writer: str = "write", reads: bool = False, companions: bool = False,
+             unavailable: str | None = None, **fields) -> Format:
+    """The record of a format whose module ``castor.formats.MODULE`` has its
+    ``writer`` (and ``read``, ``companions``, the function ``unavailable`` names,
+    where given)."""
+    path = f"{__name__}.{module}"
+    return Format(name, suffixes, kind, description, OnUse(path, writer),
+                  read=OnUse(path, "read") if reads else None,
+                  companions=OnUse(path, "companions") if companions else None,
+                  unavailable=OnUse(path, unavailable) if unavailable else None, **fields)
 
+
+# The table of formats, in the order they are listed (-f choices, messages).
+_DECLARED = (
+    _declare("cps", "cps", (".cps",), STREAM, "the Castor polygon stream", reads=True,
+             binary=False, one_frame=False, header=b"castor-polygons 1\n"),
+    _declare("off", "off", (".off",), MESH, "Geomview OFF with a colour per face", reads=True,
+             binary=False),
+    _declare("obj", "obj", (".obj",), MESH, "Wavefront OBJ with a material per colour",
+             reads=True, companions=True, binary=False, up="y"),
+    _declare("stl", "stl", (".stl",), MESH, "binary STL, geometry only", reads=True,
+             triangles_only=True),
+    _declare("stl", "stl-ascii", (".stl",), MESH, "ASCII STL, geometry only",
+             writer="write_ascii", reads=True, binary=False, triangles_only=True),
+    _declare("ply", "ply", (".ply",), MESH, "binary PLY with vertex colours", reads=True,
+             triangles_only=True),
+    _declare("glb", "glb", (".glb",), MESH, "binary glTF 2.0, one node per object", reads=True,
+             triangles_only=True, up="y", reads_also=(".gltf",)),
+    _declare("threemf", "3mf", (".3mf",), MESH, "3D Manufacturing Format, coloured, in millimetres",
+             reads=True, triangles_only=True, options=("--scale",)),
+    _declare("ifc", "ifc", (".ifc",), BIM, "IFC4 for BIM programs, one element per object",
+             unavailable="unavailable", binary=False),
+    _declare("png", "png", (".png",), PICTURE, "a ray-traced picture of the exact solids"),
+    _declare("gif", "gif", (".gif",), PICTURE, "every frame ray traced, as an animation",
+             one_frame=False),
+    _declare("svg", "svg", (".svg",), DRAWING, "a plan, section or elevation as a vector drawing",
+             binary=False),
+    _declare("dxf", "dxf", (".dxf",), DRAWING, "a plan, section or elevation for CAD, in metres",
+             binary=False),
+    _declare("pdf", "pdf", (".pdf",), DRAWING,
+             "a plan, section or elevation on its sheet, for printing"),
+)
 
 _registry: dict[str, Format] | None = None
-_SKIPPED = {"output"}  # modules of this package that declare no format
-
-
-def _imported(module: str) -> list[Format]:
-    """The records of a module that cannot be read without running it."""
-    try:
-        return list(getattr(importlib.import_module(module), "FORMATS", ()))
-    except ImportError as exc:
-        if (exc.name or "").split(".")[0] == "castor":
-            raise  # castor's own module is broken: say so, never hide a format
-        return []  # its own dependency is missing: not part of this castor
 
 
 def registry() -> dict[str, Format]:
-    """Every format, by name, in the order they are listed; built once, from the
-    modules' records (read from their source; a module imported only where its
-    records are not plain data)."""
+    """Every format, by name, in the order they are listed."""
     global _registry
     if _registry is None:
-        found: list[Format] = []
-        for directory, name in source_modules(__path__):
-            if name.startswith("_") or name in _SKIPPED:
-                continue
-            module = f"{__name__}.{name}"
-            records = None
-            path = os.path.join(directory, f"{name}.py")
-            try:
-                with open(path, encoding="utf-8") as handle:
-                    records = declared(module, handle.read())
-            except (OSError, UnicodeDecodeError):
-                pass  # no source here (a package of compiled files only): imported instead
-            found.extend(_imported(module) if records is None else records)
-        for record in found:
-            if record.kind not in KINDS:
-                raise ValueError(f"format {record.name}: unknown kind {record.kind!r}")
-        found.sort(key=lambda f: (f.listed, f.name))
-        _registry = {f.name: f for f in found}
+        _registry = {f.name: f for f in _DECLARED}
     return _registry
 
 
 def __getattr__(name: str):
-    if name == "FORMATS":  # the registry, made on first use
+    if name == "FORMATS":  # the registry
         return registry()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
@@ -233,6 +196,26 @@ def reader_for(path: str) -> Format | None:
     return None
 
 
-def of_kind(*kinds: str) -> list[Format]:
-    """The formats of these kinds, in the order they are listed."""
-    return [f for f in registry().values() if f.kind in kinds]
+def of_kind(*kinds: Kind | str) -> list[Format]:
+    """The formats of these kinds (or kinds' names), in the order they are listed."""
+    return [f for f in registry().values() if f.kind in kinds or f.kind.name in kinds]
+
+
+def acts_on(option: str, chosen: Format) -> bool:
+    """Whether the output option ``option`` (castor.options.OUTPUT_OPTIONS) has an
+    effect on the format ``chosen``: its kind's option, or the format's own."""
+    return option in chosen.kind.options or option in chosen.options
+
+
+def without_effect(given: list[str], chosen: Format) -> list[str]:
+    """A warning for each output option of ``given`` that has no effect on the
+    format ``chosen``, naming the outputs it acts on (CLI.md)."""
+    return [f"{option} has no effect on {chosen.name} output (it acts on "
+            f"{' and '.join(outputs_of(option))}); it is ignored"
+            for option in given if not acts_on(option, chosen)]
+
+
+def outputs_of(option: str) -> list[str]:
+    """What ``option`` acts on, in words: the kinds that take it, then the formats."""
+    return ([kind.plural for kind in KINDS if option in kind.options]
+            + [f.name for f in registry().values() if option in f.options])

@@ -12,7 +12,7 @@ from typing import Iterator
 
 import numpy as np
 
-from castor.formats import Format
+from castor.formats import WriteInfo
 from castor.mesh.frame import Frame
 
 HEADER = "castor-polygons 1\n"
@@ -190,6 +190,8 @@ def read(path: str) -> Iterator[StreamFrame]:
 
 
 # header: HEADER as bytes, written out (the registry reads records without running this module)
-FORMATS = (Format("cps", (".cps",), "stream", "the Castor polygon stream", export,
-                  write_pieces=export_chunks, read=read, binary=False, one_frame=False,
-                  header=b"castor-polygons 1\n", listed=0),)
+
+
+def write(frame: Frame, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the frame a piece at a time."""
+    return export_chunks(frame, info.path)

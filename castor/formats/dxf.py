@@ -16,10 +16,11 @@ from __future__ import annotations
 
 import io
 import re
+from typing import Iterator
 
 import numpy as np
 
-from castor.formats import Format
+from castor.formats import WriteInfo
 
 
 def _layer_names(names: list[str], taken: set[str]) -> list[str]:
@@ -152,5 +153,6 @@ def export_drawing(sheet) -> bytes:
     return stream.getvalue().encode("utf-8")
 
 
-FORMATS = (Format("dxf", (".dxf",), "drawing", "a plan, section or elevation for CAD, in metres",
-                  export_drawing, binary=False, listed=100),)
+def write(sheet, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the sheet as one piece."""
+    return iter([export_drawing(sheet)])

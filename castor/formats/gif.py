@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import io
+from typing import Iterator
 
-from castor.formats import Format
+from castor.formats import WriteInfo
+
 
 FRAME_TIME = 100  # milliseconds per frame
 
@@ -34,5 +36,6 @@ def export_animation(images: list) -> bytes:
     return buffer.getvalue()
 
 
-FORMATS = (Format("gif", (".gif",), "picture", "every frame ray traced, as an animation",
-                  export_animation, one_frame=False, listed=80),)
+def write(images: list, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): every frame's picture, one animation."""
+    return iter([export_animation(images)])

@@ -15,8 +15,8 @@ from typing import Iterator
 
 import numpy as np
 
+from castor.formats import WriteInfo
 from castor.mesh.frame import Frame, FrameObject
-from castor.formats import Format
 from castor.formats._mesh import object_names, object_pieces, triangle_counts, triangles, y_up
 from castor.formats._mesh import materials as frame_materials
 from castor.formats._trimesh import read_with_trimesh
@@ -128,6 +128,6 @@ def read(path: str):
     return read_with_trimesh(path, up="y")
 
 
-FORMATS = (Format("glb", (".glb",), "mesh", "binary glTF 2.0, one node per object", export,
-                  write_pieces=export_chunks, read=read, triangles_only=True, up="y",
-                  reads_also=(".gltf",), listed=50),)
+def write(frame: Frame, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the frame a piece at a time."""
+    return export_chunks(frame, info.path)

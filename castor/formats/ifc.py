@@ -32,13 +32,14 @@ from __future__ import annotations
 
 import os
 import uuid
+from typing import Iterator
 
 import numpy as np
 
 from castor.csg import tree
-from castor.formats import Format
+from castor.formats import WriteInfo
+from castor.formats.kinds import BuildingModel
 from castor.mesh.frame import Frame
-from castor.settings import FrameSettings
 
 INSTALL = "pip install 'castor[ifc]'"
 DEFAULT_CLASS = "IfcBuildingElementProxy"
@@ -100,6 +101,19 @@ def installed() -> bool:
         return False
 
 
+def unavailable() -> str | None:
+    """Why IFC cannot be written here (ifcopenshell missing), as a usage error
+    says it; None when it can."""
+    if installed():
+        return None
+    return f"writing IFC needs ifcopenshell, which is not installed; {INSTALL}"
+
+
+def parse_classes_option(items: list[str]) -> tuple[tuple[str, str], ...]:
+    """``--ifc-class`` options as (object name, IFC class) pairs (BimSettings.classes)."""
+    return tuple(parse_ifc_classes(items).items())
+
+
 def element_class(text: str) -> str:
     """The IFC class ``text`` names (``IfcWall``, ``ifcwall`` or ``wall``);
     ``ValueError`` with the message a usage error shows when it names none."""
@@ -139,12 +153,6 @@ def default_title(frame: Frame) -> str:
     return stem if stem and stem != "<stdin>" else "castor"
 
 
-def write(scene: tree.FrameTree, frame: Frame, settings: FrameSettings) -> bytes:
-    """The registry's writer (a format of kind "bim"): the frame as an IFC4
-    file, titled by --title, of the classes --ifc-class gives."""
-    return export(scene, frame, settings.output.title, dict(settings.bim.classes))
-
-
 def export(scene: tree.FrameTree, frame: Frame, title: str | None = None,
            classes: dict[str, str] | None = None) -> bytes:
     """The frame as an IFC4 file (STEP physical file text): ``scene`` is its
@@ -156,17 +164,27 @@ def export(scene: tree.FrameTree, frame: Frame, title: str | None = None,
 
 def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
           classes: dict[str, str] | None = None):
-    """The frame as an ``ifcopenshell.file``."""
+    """The frame as an ``ifcopenshell.file``: the header, the project and its
+    spatial structure, the parameters, then one element per object (in this
+    order: the entities' numbers follow it)."""
     import ifcopenshell
-    import ifcopenshell.guid
-
-    from castor import __version__
-    from castor.formats._mesh import materials, object_names
-    from castor.quantities import object_figures
 
     title = title or default_title(frame)  # an empty --title is no title
-    classes = classes or {}
     f = ifcopenshell.file(schema="IFC4")
+    _header(f, title)
+    built = _Builder(f, title)
+    project, storey, storey_place, body = _structure(built, frame)
+    _parameters(built, scene, project)
+    elements = _elements(built, scene, frame, classes or {}, body, storey_place)
+    if elements:
+        built.create("IfcRelContainedInSpatialStructure", built.guid("contains", "storey"), None,
+                     None, None, elements, storey)
+    return f
+
+
+def _header(f, title: str) -> None:
+    from castor import __version__
+
     header = f.header
     header.file_description.description = ("ViewDefinition [ReferenceView_V1.2]",)
     header.file_name.name = f"{title}.ifc"
@@ -174,13 +192,31 @@ def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
     header.file_name.preprocessor_version = f"castor {__version__}"
     header.file_name.originating_system = f"castor {__version__}"
 
-    def guid(*key: str) -> str:
-        return ifcopenshell.guid.compress(uuid.uuid5(_GUID_SPACE, "\0".join((title,) + key)).hex)
 
-    create = f.create_entity
-    origin = create("IfcCartesianPoint", (0.0, 0.0, 0.0))
-    axes = create("IfcAxis2Placement3D", origin, None, None)
-    context = create("IfcGeometricRepresentationContext", None, "Model", 3, 1e-5, axes,
+class _Builder:
+    """The file being made, its entities' global ids (from the title and a key)
+    and the placement every entity shares."""
+
+    def __init__(self, f, title: str):
+        self.f, self.title, self.create = f, title, f.create_entity
+        origin = self.create("IfcCartesianPoint", (0.0, 0.0, 0.0))
+        self.axes = self.create("IfcAxis2Placement3D", origin, None, None)
+
+    def guid(self, *key: str) -> str:
+        import ifcopenshell.guid
+
+        return ifcopenshell.guid.compress(
+            uuid.uuid5(_GUID_SPACE, "\0".join((self.title,) + key)).hex)
+
+    def placement(self, relative_to=None):
+        return self.create("IfcLocalPlacement", relative_to, self.axes)
+
+
+def _structure(built: _Builder, frame: Frame):
+    """The project (its units and context), its site, building and one storey:
+    (project, storey, the storey's placement, the body's representation context)."""
+    create, guid = built.create, built.guid
+    context = create("IfcGeometricRepresentationContext", None, "Model", 3, 1e-5, built.axes,
                      create("IfcDirection", (0.0, 1.0)))  # north is +y
     body = create("IfcGeometricRepresentationSubContext", "Body", "Model", None, None, None,
                   None, context, None, "MODEL_VIEW", None)
@@ -189,16 +225,12 @@ def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
         create("IfcSIUnit", None, "AREAUNIT", None, "SQUARE_METRE"),
         create("IfcSIUnit", None, "VOLUMEUNIT", None, "CUBIC_METRE"),
         create("IfcSIUnit", None, "PLANEANGLEUNIT", None, "RADIAN")])
-    project = create("IfcProject", guid("project"), None, title,
+    project = create("IfcProject", guid("project"), None, built.title,
                      f"castor frame {frame.number}, {frame.where}", None, None, None,
                      [context], units)
-
-    def placement(relative_to=None):
-        return create("IfcLocalPlacement", relative_to, axes)
-
-    site_place = placement()
-    building_place = placement(site_place)
-    storey_place = placement(building_place)
+    site_place = built.placement()
+    building_place = built.placement(site_place)
+    storey_place = built.placement(building_place)
     site = create("IfcSite", guid("site"), None, "Site", None, None, site_place, None, None,
                   "ELEMENT")
     building = create("IfcBuilding", guid("building"), None, "Building", None, None,
@@ -208,16 +240,31 @@ def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
     for whole, part in ((project, site), (site, building), (building, storey)):
         create("IfcRelAggregates", guid("aggregates", whole.Name or "", part.Name),
                None, None, None, whole, [part])
+    return project, storey, storey_place, body
 
+
+def _parameters(built: _Builder, scene: tree.FrameTree, project) -> None:
+    """The frame's parameters: the project's property set Castor_Parameters."""
+    create = built.create
     parameters = [create("IfcPropertySingleValue", name, None,
                          create("IfcReal", float(value)), None)
                   for name, value in scene.parameters]
     if parameters:
-        pset = create("IfcPropertySet", guid("Castor_Parameters"), None, "Castor_Parameters",
+        pset = create("IfcPropertySet", built.guid("Castor_Parameters"), None,
+                      "Castor_Parameters",
                       "the parameter values in force at the frame's '>' command", parameters)
-        create("IfcRelDefinesByProperties", guid("defines", "Castor_Parameters"), None, None,
-               None, [project], pset)
+        create("IfcRelDefinesByProperties", built.guid("defines", "Castor_Parameters"), None,
+               None, None, [project], pset)
 
+
+def _elements(built: _Builder, scene: tree.FrameTree, frame: Frame, classes: dict[str, str],
+              body, storey_place) -> list:
+    """One element per object with polygons: its body in its colours, its class,
+    its quantities (those of --summary)."""
+    from castor.formats._mesh import materials, object_names
+    from castor.quantities import object_figures
+
+    create, guid = built.create, built.guid
     table, material_of = materials(frame)
     styles: dict[int, object] = {}  # frame material -> IfcSurfaceStyle
 
@@ -235,12 +282,12 @@ def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
                                            material_of):
         if obj.polygon_count == 0:
             continue  # nothing to show: an element without a body helps no one
-        items = _face_sets(f, obj, material, style)
+        items = _face_sets(built.f, obj, material, style)
         shape = create("IfcProductDefinitionShape", None, None, [
             create("IfcShapeRepresentation", body, "Body", "Tessellation", items)])
         cls = classes.get(obj.name) or classes.get(name) or DEFAULT_CLASS
         element = create(cls, guid("element", name), None, name, source.where or frame.where,
-                         None, placement(storey_place), shape, None)
+                         None, built.placement(storey_place), shape, None)
         elements.append(element)
         figures = object_figures(obj, name)
         quantities = create("IfcElementQuantity", guid("quantities", name), None,
@@ -252,10 +299,7 @@ def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
                                        figures.area, None)])
         create("IfcRelDefinesByProperties", guid("defines", "Castor_Quantities", name), None,
                None, None, [element], quantities)
-    if elements:
-        create("IfcRelContainedInSpatialStructure", guid("contains", "storey"), None, None,
-               None, elements, storey)
-    return f
+    return elements
 
 
 def _face_sets(f, obj, material: np.ndarray, style) -> list:
@@ -342,5 +386,7 @@ def _face_maker(f):
     return make
 
 
-FORMATS = (Format("ifc", (".ifc",), "bim", "IFC4 for BIM programs, one element per object",
-                  write, binary=False, listed=65),)
+def write(building: BuildingModel, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the building model as an IFC4 file,
+    titled by --title, of the classes --ifc-class gives."""
+    return iter([export(building.tree, building.frame, building.title, building.classes)])

@@ -13,8 +13,8 @@ from typing import Iterator
 
 import numpy as np
 
+from castor.formats import WriteInfo
 from castor.mesh.frame import Frame
-from castor.formats import Format
 from castor.formats._mesh import CHUNK, materials, object_names, y_up
 from castor.formats.cps import number_strings
 from castor.formats._trimesh import read_with_trimesh
@@ -63,8 +63,9 @@ def _mtl_name(path: str) -> str:
     return os.path.splitext(os.path.basename(path))[0] + ".mtl"
 
 
-def companions(frame: Frame, path: str) -> dict[str, bytes]:
-    """The .mtl file that goes beside ``path``."""
+def companions(frame: Frame, info: WriteInfo) -> dict[str, bytes]:
+    """The .mtl file that goes beside the file (``info.path``)."""
+    path = info.path
     table, _ = materials(frame)
     lines = []
     for material in table:
@@ -79,6 +80,6 @@ def read(path: str):
     return read_with_trimesh(path, up="y")
 
 
-FORMATS = (Format("obj", (".obj",), "mesh", "Wavefront OBJ with a material per colour", export,
-                  write_pieces=export_chunks, read=read, companions=companions, binary=False,
-                  up="y", listed=20),)
+def write(frame: Frame, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the frame a piece at a time."""
+    return export_chunks(frame, info.path)

@@ -16,10 +16,10 @@ from typing import Iterator
 
 import numpy as np
 
+from castor.formats import WriteInfo
 from castor.mesh.frame import Frame
 from castor.formats._mesh import (CHUNK, byte_colours, pieces, split_large, straight_corners,
                                   triangle_counts, triangles, vertex_bases)
-from castor.formats import Format
 from castor.formats.cps import StreamError, StreamFrame, number_strings
 
 
@@ -140,5 +140,6 @@ def read(path: str) -> Iterator[StreamFrame]:
     yield StreamFrame(1, path, points, offsets, colours)
 
 
-FORMATS = (Format("off", (".off",), "mesh", "Geomview OFF with a colour per face", export,
-                  write_pieces=export_chunks, read=read, binary=False, listed=10),)
+def write(frame: Frame, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the frame a piece at a time."""
+    return export_chunks(frame, info.path)

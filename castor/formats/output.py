@@ -14,13 +14,10 @@ import itertools
 import os
 import re
 import sys
-from typing import TYPE_CHECKING, Iterable, Iterator, NamedTuple, Union
+from typing import Iterable, Iterator, NamedTuple, Union
 
 from castor.diagnostics import CastorError, Location
-from castor.formats import registry
-
-if TYPE_CHECKING:  # numpy with it: not at start-up (castor --check checks -o with this module)
-    from castor.mesh.frame import Frame
+from castor.formats import WriteInfo, registry
 
 _PATTERN = re.compile(r"%0?\d*d")
 _PERCENT = re.compile(r"%%|%0?\d*d|%")
@@ -258,41 +255,37 @@ def _reason(exc: OSError) -> str:
     return text[0].lower() + text[1:] if text else "failed"
 
 
-def encode(frame: Frame, name: str, target: str | None = None) -> tuple[bytes, dict[str, bytes]]:
-    """The frame in format ``name``, and the files that go beside it (by path).
-    ``target`` is -o's path (a pattern is filled in with the frame's number)."""
-    pieces, companions = encode_pieces(frame, name, target)
+def encode(product, name: str, target: str | None = None, *, number: int | None = None,
+           options: dict | None = None) -> tuple[bytes, dict[str, bytes]]:
+    """The product in format ``name``, and the files that go beside it (by path).
+    ``target`` is -o's path (a pattern is filled in with the frame's ``number``,
+    by default the product's own); ``options``: the format's own (WriteInfo)."""
+    pieces, companions = encode_pieces(product, name, target, number=number, options=options)
     return b"".join(pieces), companions
 
 
-def encode_pieces(frame: Frame, name: str,
-                  target: str | None = None) -> tuple[Iterator[bytes], dict[str, bytes]]:
-    """As ``encode``, the frame's bytes made a piece at a time as they are read
-    (formats that cannot, as one piece): the writer's memory is a piece's."""
+def encode_pieces(product, name: str, target: str | None = None, *, number: int | None = None,
+                  options: dict | None = None) -> tuple[Iterator[bytes], dict[str, bytes]]:
+    """As ``encode``, the bytes made a piece at a time as they are read (by the
+    format's writer; a format made whole is one piece): the writer's memory is a
+    piece's."""
+    chosen = registry()[name]
     patterned = target is not None and has_pattern(target)
     if patterned:
-        target = frame_path(target, frame.number)
-    data = render_pieces(frame, name, target)
-    chosen = registry()[name]
+        target = frame_path(target, getattr(product, "number", 1) if number is None else number)
+    info = WriteInfo(target, options)
+    written = chosen.write(product, info)  # its pieces (bytes, or nothing, taken as such)
+    data = iter([written]) if isinstance(written, (bytes, bytearray)) else iter(written or ())
     if chosen.header and patterned:  # a file of its own: it begins with the header
         data = itertools.chain([chosen.header], data)
     companions = chosen.companions
-    return data, (companions(frame, target) if companions is not None and target else {})
+    return data, (companions(product, info) if companions is not None and target else {})
 
 
-def render(frame: Frame, name: str, path: str | None = None) -> bytes:
-    """The bytes of ``frame`` in format ``name`` (``path``: where it is going, for
+def render(product, name: str, path: str | None = None) -> bytes:
+    """The bytes of ``product`` in format ``name`` (``path``: where it is going, for
     formats that name a companion file)."""
-    return registry()[name].write(frame, path)
-
-
-def render_pieces(frame: Frame, name: str, path: str | None = None) -> Iterator[bytes]:
-    """As ``render``, a piece at a time where the format's module writes so
-    (its ``write_pieces``; 3MF is made whole)."""
-    chunked = registry()[name].write_pieces
-    if chunked is None:
-        return iter([render(frame, name, path)])
-    return chunked(frame, path)
+    return b"".join(registry()[name].write(product, WriteInfo(path)))
 
 
 def _with_bytes(data: Data) -> Data | None:
@@ -334,7 +327,7 @@ class Output:
         self.frames = 0
         self.stream: AtomicFile | None = None  # the stream, for a single -o file
         chosen = registry()[format_name]
-        self.streamed = chosen.kind == "stream"  # frame after frame into one file
+        self.streamed = chosen.kind.streamed  # frame after frame into one file
         self.header = chosen.header
         self.one_frame = chosen.one_frame
         self.suffix = chosen.suffix

@@ -13,10 +13,12 @@ same bytes.
 from __future__ import annotations
 
 import io
+from typing import Iterator
 
 import numpy as np
 
-from castor.formats import Format
+from castor.formats import WriteInfo
+
 
 MM = 72 / 25.4  # PDF points per millimetre
 
@@ -86,6 +88,6 @@ def export_drawing(sheet) -> bytes:
     return out.getvalue()
 
 
-FORMATS = (Format("pdf", (".pdf",), "drawing",
-                  "a plan, section or elevation on its sheet, for printing", export_drawing,
-                  listed=110),)
+def write(sheet, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the sheet as one piece."""
+    return iter([export_drawing(sheet)])

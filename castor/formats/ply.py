@@ -13,8 +13,8 @@ from typing import Iterator
 
 import numpy as np
 
+from castor.formats import WriteInfo
 from castor.mesh.frame import Frame
-from castor.formats import Format
 from castor.formats._mesh import (CHUNK, Piece, byte_colours, pieces, triangles,
                                   vertex_bases)
 from castor.formats._trimesh import read_with_trimesh
@@ -82,5 +82,6 @@ def read(path: str):
     return read_with_trimesh(path)
 
 
-FORMATS = (Format("ply", (".ply",), "mesh", "binary PLY with vertex colours", export,
-                  write_pieces=export_chunks, read=read, triangles_only=True, listed=40),)
+def write(frame: Frame, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the frame a piece at a time."""
+    return export_chunks(frame, info.path)

@@ -11,8 +11,8 @@ from typing import Iterator
 
 import numpy as np
 
+from castor.formats import WriteInfo
 from castor.mesh.frame import Frame
-from castor.formats import Format
 from castor.formats._mesh import Piece, pieces, triangle_counts, triangles
 from castor.formats._trimesh import read_with_trimesh
 
@@ -70,10 +70,11 @@ def read(path: str):
     return read_with_trimesh(path)
 
 
-FORMATS = (
-    Format("stl", (".stl",), "mesh", "binary STL, geometry only", export,
-           write_pieces=export_chunks, read=read, triangles_only=True, listed=30),
-    Format("stl-ascii", (".stl",), "mesh", "ASCII STL, geometry only", export_ascii,
-           write_pieces=export_ascii_chunks, read=read, binary=False, triangles_only=True,
-           listed=31),
-)
+def write(frame: Frame, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer for binary STL (castor.formats): a piece at a time."""
+    return export_chunks(frame, info.path)
+
+
+def write_ascii(frame: Frame, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer for ASCII STL (castor.formats): a piece at a time."""
+    return export_ascii_chunks(frame, info.path)

@@ -11,10 +11,12 @@ layer labelled with its name. Text is text, escaped, in Helvetica.
 from __future__ import annotations
 
 import re
+from typing import Iterator
 
 import numpy as np
 
-from castor.formats import Format
+from castor.formats import WriteInfo
+
 
 FONT = "Helvetica, Arial, sans-serif"
 
@@ -101,5 +103,6 @@ def export_drawing(sheet) -> bytes:
     return ("\n".join(out) + "\n").encode()
 
 
-FORMATS = (Format("svg", (".svg",), "drawing", "a plan, section or elevation as a vector drawing",
-                  export_drawing, binary=False, listed=90),)
+def write(sheet, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the sheet as one piece."""
+    return iter([export_drawing(sheet)])

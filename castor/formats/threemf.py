@@ -16,8 +16,8 @@ from typing import Iterator
 
 import numpy as np
 
+from castor.formats import WriteInfo
 from castor.mesh.frame import Frame
-from castor.formats import Format
 from castor.formats._mesh import CHUNK, materials, object_names, object_pieces, triangles
 from castor.formats.cps import number_strings
 
@@ -184,5 +184,16 @@ def _colour(text: str) -> tuple[float, float, float]:
         return (0.8, 0.8, 0.8)
 
 
-FORMATS = (Format("3mf", (".3mf",), "mesh", "3D Manufacturing Format, coloured, in millimetres",
-                  export, read=read, triangles_only=True, listed=60),)
+def write(frame: Frame, info: WriteInfo) -> Iterator[bytes]:
+    """The registry's writer (castor.formats): the package, made whole, of the
+    frame at its scale (``--scale 1:N``: 1 scene unit = 1000/N mm)."""
+    scale = info.option("scale")
+    return iter([export(frame if scale is None else scaled(frame, 1 / scale), info.path)])
+
+
+def scaled(frame: Frame, factor: float) -> Frame:
+    """The frame's polygons times ``factor``: a model at its scale."""
+    from dataclasses import replace
+
+    return replace(frame, objects=[replace(obj, vertices=obj.vertices * factor)
+                                   for obj in frame.objects])

@@ -1,7 +1,6 @@
-"""The editing loop's tools: the language server (``castor --lsp``) and the scene's
-parameters for customizers (``castor --params``, ``-p``/``-P``).
-
-``evaluate`` is the one adapter to castor's pipeline; ``knowledge`` answers an
-editor's questions from one analysis; ``server`` speaks the protocol (pygls);
-``customizer`` reads and writes the parameter sets.
+"""The language server's protocol (``castor --lsp``): ``protocol.CastorServer``
+answers each request of the Language Server Protocol with a method of its own,
+from castor.analysis (the scene's analysis, what is defined where, the worker
+that analyses the newest text); ``server.main`` starts it on standard input
+and output.
 """

@@ -20,26 +20,66 @@ from castor.pictures.trace import Projection, Scene, compile_frame
 TILE = 64  # pixels on a side of a tile of rays
 CHUNK = 16384  # rays traced at once
 
-__all__ = ["animation", "picture", "render_scene", "sample_offsets"]
+__all__ = ["draw", "draw_tree", "framing", "picture", "probe", "render_scene", "sample_offsets"]
 
 
 def picture(frame, spec) -> np.ndarray:
     """The frame drawn with the picture settings ``spec`` (castor.settings.PictureSettings)."""
-    scene = compile_frame(frame)
+    return draw(compile_frame(frame), spec)
+
+
+def draw(scene: Scene, spec) -> np.ndarray:
+    """A compiled frame (castor.pictures.trace.compile_frame) drawn with the
+    picture settings ``spec``, its camera framing it."""
     low, high = scene.box
     camera = make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)
     return render_scene(scene, camera, spec.sun, spec.samples, spec.edges)
 
 
-def animation(scenes: list, spec) -> list:
-    """The pictures of an animation's compiled frames (castor.pictures.trace.Scene),
-    all from one camera that frames every frame, so that it does not jump."""
-    boxes = [scene.box for scene in scenes if scene.root is not None] or [(np.zeros(3),) * 2]
+def framing(boxes: list, spec) -> tuple[Camera, float]:
+    """The camera that frames every box (an animation's frames: it does not jump),
+    and the height of the ground, at the foot of the lowest."""
+    boxes = boxes or [(np.zeros(3),) * 2]
     low = np.min([b[0] for b in boxes], axis=0)
     high = np.max([b[1] for b in boxes], axis=0)
-    camera = make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)
-    return [render_scene(scene, camera, spec.sun, spec.samples, spec.edges,
-                         ground=float(low[2])) for scene in scenes]
+    return make_camera(low, high, spec.size, spec.view, spec.eye, spec.look), float(low[2])
+
+
+def draw_tree(frame, camera: Camera, spec, ground: float) -> np.ndarray:
+    """A frame's evaluated tree drawn from ``camera`` (an animation's frame, in
+    whatever process draws it: the picture comes back as an array)."""
+    return render_scene(compile_frame(frame), camera, spec.sun, spec.samples, spec.edges,
+                        ground=ground)
+
+
+PROBES = 32  # rays on a side of the grid that looks for something in a frame
+
+
+def probe(scene: Scene) -> bool | None:
+    """Whether a compiled frame draws nothing: True when it has no solid or a flat
+    box, False as soon as one of the rays along each axis through a grid over its
+    box meets a solid (almost every frame, at once); None when they all miss
+    (only its polygons can tell then)."""
+    if scene.root is None:
+        return True
+    low, high = (np.asarray(corner, float) for corner in scene.box)
+    if not np.all(high > low):
+        return True
+    steps = (np.arange(PROBES) + 0.5) / PROBES
+    for axis in range(3):
+        u, v = (a for a in range(3) if a != axis)
+        grid_u, grid_v = np.meshgrid(low[u] + steps * (high[u] - low[u]),
+                                     low[v] + steps * (high[v] - low[v]))
+        origins = np.empty((grid_u.size, 3))
+        origins[:, u], origins[:, v] = grid_u.ravel(), grid_v.ravel()
+        origins[:, axis] = low[axis] - 1.0
+        directions = np.zeros_like(origins)
+        directions[:, axis] = 1.0
+        t = scene.spans(origins, directions)[0]
+        with np.errstate(invalid="ignore"):
+            if np.any(t[:, 1::2] - t[:, 0::2] > 0):
+                return False
+    return None
 
 
 def sample_offsets(samples: int) -> np.ndarray:

@@ -53,8 +53,8 @@ class Panel:
         return tuple(stamp)
 
     def parameters(self):
-        """The scene's parameters (castor.lsp.evaluate), listed again when a file changes."""
-        from castor.lsp.evaluate import analyse, parameters
+        """The scene's parameters (castor.analysis.scene), listed again when a file changes."""
+        from castor.analysis.scene import analyse, parameters
         from castor.settings import Source
 
         stamp = self._stamp()
@@ -71,12 +71,15 @@ class Panel:
             self._listed = (self._stamp(), found)
         return found
 
+    def offered(self) -> list:
+        """The parameters the panel offers: as OpenSCAD's customizer, neither a
+        hidden one nor a value worked out from others (``HT = H + 1``)."""
+        return [p for p in self.parameters() if not p.hidden and not (
+            p.annotation.control == "number" and not _literal(p.expression))]
+
     def as_json(self) -> dict:
         offered = []
-        for parameter in self.parameters():
-            if parameter.hidden or (parameter.annotation.control == "number"
-                                    and not _literal(parameter.expression)):
-                continue  # as OpenSCAD's customizer: a value worked out is not offered
+        for parameter in self.offered():
             entry = parameter.as_json()
             entry["default"] = entry["value"]
             if parameter.name in self.base:
@@ -101,7 +104,7 @@ class Panel:
             with self.lock:
                 self.values = {}
         elif "set" in request:
-            from castor.lsp.customizer import SetError, load_set
+            from castor.analysis.customizer import SetError, load_set
 
             name = request["set"]
             if not isinstance(name, str) or not _SET_NAME.fullmatch(name):
@@ -117,13 +120,15 @@ class Panel:
             with self.lock:
                 self.values = dict(values)
         elif "save" in request:
-            from castor.lsp.customizer import save_set
+            from castor.analysis.customizer import save_set
 
             name = request["save"]
             if not isinstance(name, str) or not _SET_NAME.fullmatch(name):
                 raise PanelError("a set's name is 1 to 64 letters, digits, spaces, '.', '-'")
-            current = {**{p.name: p.value for p in self.parameters()
-                          if not p.hidden and p.value is not None}, **self.base, **self.values}
+            # what the panel offers and the user (or --set) changed: a value worked
+            # out from others is not saved, so that it follows them when the set is used
+            changed = {**self.base, **self.values}
+            current = {p.name: changed[p.name] for p in self.offered() if p.name in changed}
             try:
                 save_set(self.sets_path(), name, current)
             except OSError as exc:

@@ -71,8 +71,8 @@ def evaluate(watched: Watched, cancelled: Callable[[], bool] = lambda: False) ->
     the shared subtrees of one save for the next; raises Overtaken as soon as
     ``cancelled()`` says so (between statements and between frames). Each face
     knows where its primitive is written (FILE:LINE:COL, through macros)."""
-    from castor.lsp.evaluate import primitive_places
-    from castor.lsp.reuse import ReusingInterpreter
+    from castor.analysis.scene import primitive_places
+    from castor.analysis.reuse import ReusingInterpreter
 
     shown: list[DrawnFrame] = []
     reporter = CollectingReporter(watched.quiet)

@@ -100,6 +100,9 @@ class Preview:
         self._frames_ids = 0
         self._watcher = Watcher(job.files)
         self._watcher_lock = threading.Lock()
+        from castor.analysis.worker import Stopper
+
+        self._stopper = Stopper()  # stops a stale evaluation at once, mid-statement too
         from castor.serve.parameters import Panel
 
         self.panel = Panel(job.files, job.evaluation, job.reading)
@@ -115,6 +118,11 @@ class Preview:
                                                                        tolerance=tolerance))
             self._wanted += 1
             self.state.notify_all()
+        self._stop_stale()
+
+    def _stop_stale(self) -> None:
+        """Stop the evaluation under way if a newer one is wanted."""
+        self._stopper.stop(lambda generation: generation != self._wanted or self.stop.is_set())
 
     def state_key(self) -> tuple[int, bool]:
         return self.snapshot.version, self.evaluating
@@ -132,10 +140,12 @@ class Preview:
             with self.state:
                 self._wanted += 1
                 self.state.notify_all()
+            self._stop_stale()
 
     def evaluate_scene(self) -> None:
         """Evaluate whenever asked, until stopped; an evaluation overtaken by a
-        newer save stops at its next statement or frame and is thrown away."""
+        newer save or value stops at once (castor.analysis.worker.Stopper), inside
+        a statement too, and is thrown away."""
         done = 0
         while True:
             with self.state:
@@ -148,9 +158,15 @@ class Preview:
                     self.evaluating = True
                     self.state.notify_all()
             started_ns = time.time_ns()
+            stale = lambda: self._wanted != generation or self.stop.is_set()  # noqa: E731
             try:
-                result = evaluate(self.job, lambda: self._wanted != generation
-                                  or self.stop.is_set())
+                self._stopper.begin(generation)
+                try:
+                    if stale():  # asked for again before begin(): not stopped
+                        raise Overtaken()
+                    result = evaluate(self.job, stale)
+                finally:
+                    self._stopper.end()
             except Overtaken:
                 continue
             except Exception as exc:  # castor's bug: said on the page, the server lives on
@@ -184,6 +200,7 @@ class Preview:
         self.stop.set()
         with self.state:
             self.state.notify_all()
+        self._stop_stale()
 
 
 class _Handler(BaseHTTPRequestHandler):

@@ -35,7 +35,7 @@ def _arguments(argv):
     from castor.options import VIEW_NAMES, parse_view
     from castor.view.scene import readable_suffixes
 
-    mesh_suffixes = " ".join(readable_suffixes(("mesh",)))
+    mesh_suffixes = " ".join(readable_suffixes(streams=False))
     p = _Parser(prog="castor-view", description="Draw castor's polygon stream or a mesh file.",
                 epilog="Example: castor house.cas | castor-view --view 30,20 -o house.png")
     p.add_argument("file", nargs="?", default="-", metavar="FILE",
@@ -106,13 +106,13 @@ def _pictures(args):
         sys.stderr.write(f"castor-view: error: cannot read '{args.file}': {reason}\n")
         sys.exit(USAGE_ERROR)
     chosen = reader_for(args.file)
-    if chosen is not None and chosen.kind != "stream":
+    if chosen is not None and not chosen.kind.streamed:
         yield from chosen.read(args.file)
         return
     if chosen is None and format_for_suffix(args.file) is not None:
         # castor writes it (a picture, a drawing), but it is no polygons to draw
         sys.stderr.write(f"castor-view: error: '{args.file}': castor-view reads a polygon "
-                         f"stream or a mesh file ({' '.join(readable_suffixes(('mesh',)))}), not "
+                         f"stream or a mesh file ({' '.join(readable_suffixes(streams=False))}), not "
                          f"{args.file.rsplit('.', 1)[-1]} files\n")
         sys.exit(USAGE_ERROR)
     try:

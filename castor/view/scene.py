@@ -14,13 +14,14 @@ Picture = StreamFrame
 read_stream = load
 
 
-def readable_suffixes(kinds: tuple[str, ...] = ("stream", "mesh")) -> list[str]:
-    """The endings of the files castor-view reads (of formats of these kinds)."""
+def readable_suffixes(streams: bool = True) -> list[str]:
+    """The endings of the files of polygons castor-view reads (the stream's too,
+    with ``streams``)."""
     from castor.formats import registry
 
     suffixes: list[str] = []
     for f in registry().values():
-        if f.read is not None and f.kind in kinds:
+        if f.read is not None and f.kind.polygons and (streams or not f.kind.streamed):
             suffixes.extend(s for s in f.suffixes + f.reads_also if s not in suffixes)
     return suffixes
 

@@ -22,9 +22,7 @@ from castor import cli, formats
 name, nothing = sys.argv[1], (None if sys.argv[2] == "none" else b"")
 record = formats.registry()[name]
 write = lambda *args, **kwargs: nothing
-pieces = (lambda *args, **kwargs: iter([] if nothing is None else [b""])) \\
-    if record.write_pieces is not None else None
-formats.registry()[name] = record._replace(write=write, write_pieces=pieces)
+formats.registry()[name] = record._replace(write=write)
 sys.exit(cli.main(sys.argv[3:]))
 """
 

@@ -179,7 +179,7 @@ def test_p_and_P_go_together(scene: Path):
 
 
 def test_saved_set_is_read_back(tmp_path: Path):
-    from castor.lsp.customizer import load_set, save_set
+    from castor.analysis.customizer import load_set, save_set
 
     path = tmp_path / "house.json"
     save_set(str(path), "one", {"H": 3.2, "N": 4.0})

@@ -362,7 +362,7 @@ BROKEN = {
 @pytest.mark.parametrize("name", sorted(BROKEN))
 def test_the_analysis_says_what_castor_check_says(tmp_path: Path, monkeypatch, name: str):
     """Every diagnostic of castor --check, at the same place, with the same words."""
-    from castor.lsp.evaluate import analyse
+    from castor.analysis.scene import analyse
     from castor.settings import Source
 
     monkeypatch.chdir(tmp_path)

@@ -1,7 +1,7 @@
 """What the editing loop remembers between two evaluations, and that it never
 gives another result than a fresh run: the preprocessor's pass
 (castor.language.preprocess: remembered, or patched for an edit of plain
-lines) and the parsed statements (castor.lsp.reuse)."""
+lines) and the parsed statements (castor.analysis.reuse)."""
 
 from __future__ import annotations
 
@@ -14,8 +14,8 @@ import pytest
 
 from castor.diagnostics import CollectingReporter
 from castor.language import preprocess as pp
-from castor.lsp import reuse
-from castor.lsp.evaluate import analyse
+from castor.analysis import reuse
+from castor.analysis.scene import analyse
 from castor.settings import EvaluationSettings, Source
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -200,7 +200,7 @@ def test_a_changed_definition_is_parsed_again_with_what_uses_it(scene: Path):
     assert second.objects["b"].child.child is second.objects["a"]
     assert second.objects["c"] is first.objects["c"]  # unchanged, reused
     # the figures follow the new definition
-    from castor.lsp.evaluate import object_figures
+    from castor.analysis.scene import object_figures
 
     assert object_figures(second, "b")["objects"][0]["volume"] == pytest.approx(8.0)
     assert object_figures(first, "b")["objects"][0]["volume"] == pytest.approx(1.0)

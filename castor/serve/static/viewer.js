@@ -653,8 +653,15 @@
     value.textContent = String(p.value);
     let input;
     const changed = (draft) => {
+      // an emptied box (or a number the browser cannot hold, 1e999, which it
+      // empties) is no value: nothing is sent until the box holds a number
+      if (input.value.trim() === "" || (input.validity && input.validity.badInput)) {
+        row.classList.add("invalid");
+        return;
+      }
       const v = Number(input.value);
       if (!Number.isFinite(v)) return;
+      row.classList.remove("invalid");
       value.textContent = String(v);
       row.classList.add("changed");
       send({ values: { [p.name]: v }, draft });

@@ -5,5 +5,5 @@ call ale#linter#Define('castor', {
 \   'executable': {buffer -> get(g:, 'castor_lsp_command', ['castor'])[0]},
 \   'command': {buffer -> join(map(copy(get(g:, 'castor_lsp_command', ['castor', '--lsp'])),
 \                                  'ale#Escape(v:val)'))},
-\   'project_root': {buffer -> fnamemodify(bufname(buffer), ':p:h')},
+\   'project_root': {buffer -> castor#root(buffer)},
 \})

@@ -1,23 +1,29 @@
-"""What the language server knows of a scene, from one ``Analysis``: plain functions.
+"""What is known of a scene, from one ``Analysis``: plain functions an editor's
+requests are answered with (the word at a place, its definition, references,
+renaming, hover text, completions, the outline).
 
 Positions here are castor's: a file name as locations give it, a 1-based line
 and a 1-based column (characters). The protocol's 0-based positions are
-converted in ``server.py`` only. The word under the cursor is found by a small
+converted in castor.lsp.protocol only. The word under the cursor is found by a small
 tokenizer of the line (names, and the ``!``, ``@``, ``$`` of the vocabulary);
 what it means comes from the pipeline's definitions, never from a second parse.
 """
 
 from __future__ import annotations
 
+import os
 import re
 from dataclasses import dataclass
 
+from castor.analysis.scene import Analysis, macro_definitions, object_figures, parameters
 from castor.diagnostics import Location
 from castor.language.vocabulary import BOOLEANS, PRIMITIVES, TRANSFORMS
-from castor.lsp.evaluate import Analysis, macro_definitions, object_figures, parameters
 
 _WORD = re.compile(r"[!@$]?[A-Za-z_]\w*")
-_COMMENT_OR_WORD = re.compile(r"//[^\n]*|/\*.*?\*/|\"(?:[^\"\\\n]|\\.)*\"|[A-Za-z_]\w*", re.S)
+# a name as written (not the name of the vocabulary after '!', '@', '$', not a
+# number's exponent), or a comment or a string, skipped
+_COMMENT_OR_WORD = re.compile(
+    r"//[^\n]*|/\*.*?\*/|\"(?:[^\"\\\n]|\\.)*\"|(?<![!@$\w.])[A-Za-z_]\w*", re.S)
 
 
 @dataclass(frozen=True)
@@ -91,6 +97,10 @@ def definition(analysis: Analysis, file: str, line: int, column: int) -> list[Lo
     if found is not None:
         return [found]
     kind = "parameter" if word.name[0].isupper() else "object"
+    if kind == "parameter":
+        repeated = repetition(analysis.source_text(file) or "", line, column, word.name)
+        if repeated is not None:
+            return [Location(file, *repeated[0])]
     point = _point(analysis, file, line, column)
     places = [(k, d.location) for k, d in enumerate(analysis.definitions)
               if d.kind == kind and d.name == word.name]
@@ -100,45 +110,124 @@ def definition(analysis: Analysis, file: str, line: int, column: int) -> list[Lo
     return [earlier[-1] if earlier else places[0][1]]
 
 
+def repetition(text: str, line: int, column: int, name: str):
+    """Where the repetition ``[NAME = A, B, S]`` of the statement at the cursor
+    binds ``name``, as ((line, column), the bracket as written), or None."""
+    starts = _line_starts(text)
+    if not 0 < line <= len(starts):
+        return None
+    offset = starts[line - 1] + column - 1
+    begin = text.rfind(";", 0, offset) + 1
+    end = text.find(";", offset)
+    statement = text[begin:end if end >= 0 else len(text)]
+    match = re.search(r"\[\s*(" + re.escape(name) + r")\s*=[^\]]*\]", statement)
+    if match is None:
+        return None
+    at = begin + match.start(1)
+    number = _line_of(starts, at)
+    return (number, at - starts[number - 1] + 1), " ".join(match.group().split())
+
+
 def references(analysis: Analysis, file: str, line: int, column: int,
                declaration: bool = True) -> list[tuple[Location, int]]:
     """Every use of the name under the cursor in the scene's files (comments
-    skipped), as (location, end column)."""
+    and strings skipped), as (location, end column)."""
     word = word_at(analysis.source_text(file) or "", line, column)
     if word is None or word.text[0] in "!@$":
         return []
     defined = {(loc.file, loc.line, loc.column) for loc in
                definitions_of(analysis, word.name, "parameter")
                + definitions_of(analysis, word.name, "object")}
-    out = []
+    return [(location, end) for location, end, _ in _occurrences(analysis, word.name)
+            if declaration or (location.file, location.line, location.column) not in defined]
+
+
+def _occurrences(analysis: Analysis, word: str):
+    """(location, end column, whether a '(' follows) of each ``word`` written
+    in the scene's files, outside comments and strings."""
     for name in _files(analysis):
         text = analysis.source_text(name)
         if text is None:
             continue
         starts = _line_starts(text)
         for match in _COMMENT_OR_WORD.finditer(text):
-            if match.group() != word.name:
+            if match.group() != word:
                 continue
             number = _line_of(starts, match.start())
             location = Location(name, number, match.start() - starts[number - 1] + 1)
-            if not declaration and (location.file, location.line, location.column) in defined:
-                continue
-            out.append((location, location.column + len(word.name)))
-    return out
+            called = text[match.end():match.end() + 200].lstrip().startswith("(")
+            yield location, location.column + len(word), called
 
 
 def _files(analysis: Analysis) -> list[str]:
-    from castor.lsp.evaluate import _shown
+    """The scene's files as locations name them, each once."""
+    from castor.analysis.scene import shown_name
 
-    out = [analysis.file]
-    for name in analysis.included:
-        shown = _shown(name)
-        if shown not in out:
-            out.append(shown)
-    for name in analysis.texts:
-        if name not in out:
+    out, seen = [], set()
+    for name in [analysis.file] + [shown_name(f) for f in analysis.included] + list(analysis.texts):
+        real = name if name.startswith("<") else os.path.realpath(name)
+        if real not in seen:
+            seen.add(real)
             out.append(name)
     return out
+
+
+class RenameError(ValueError):
+    """A rename that cannot be made, and why (the editor shows it)."""
+
+
+_NEW_NAME = {"parameter": (re.compile(r"[A-Z][A-Za-z0-9_]*"),
+                           "a parameter's name is an uppercase letter, then letters, digits, _"),
+             "object": (re.compile(r"[a-z][A-Za-z0-9_]*"),
+                        "an object's name is a lowercase letter, then letters, digits, _"),
+             "macro": (re.compile(r"[A-Za-z_]\w*"), "a macro's name is letters, digits, _")}
+
+
+def _kind(analysis: Analysis, name: str) -> tuple[str, Location] | None:
+    """What ``name`` names in the scene ("macro", "parameter", "object") and where."""
+    found = macros(analysis).get(name)
+    if found is not None:
+        return "macro", found
+    for kind in ("parameter", "object"):
+        places = definitions_of(analysis, name, kind)
+        if places:
+            return kind, places[0]
+    return None
+
+
+def renamable(analysis: Analysis, file: str, line: int, column: int) -> Word:
+    """The name under the cursor, if it is an object, a parameter or a macro of the
+    scene written outside a comment or a string; else RenameError."""
+    text = analysis.source_text(file) or ""
+    word = word_at(text, line, column)
+    if word is not None and word.text[0] not in "!@$":
+        starts = _line_starts(text)
+        offset = starts[line - 1] + word.start - 1 if line <= len(starts) else -1
+        inside = [m for m in _COMMENT_OR_WORD.finditer(text) if m.start() <= offset < m.end()]
+        if inside and inside[0].group() == word.name and _kind(analysis, word.name):
+            return word
+    if word is None or word.text[0] in "!@$":
+        raise RenameError("only an object, a parameter or a macro can be renamed")
+    raise RenameError(f"'{word.name}' here is not an object, a parameter or a macro of the scene")
+
+
+def rename(analysis: Analysis, file: str, line: int, column: int,
+           new: str) -> list[tuple[Location, int]]:
+    """The places where the name under the cursor is written (each to be
+    replaced by ``new``) in the scene's files, never in comments or strings."""
+    word = renamable(analysis, file, line, column)
+    kind, _ = _kind(analysis, word.name)
+    pattern, rule = _NEW_NAME[kind]
+    if not pattern.fullmatch(new):
+        raise RenameError(f"cannot rename {kind} {word.name} to '{new}': {rule}")
+    if new == word.name:
+        return []
+    taken = _kind(analysis, new)
+    if taken is not None:
+        where = taken[1]
+        raise RenameError(f"'{new}' already names a {taken[0]} ({where.file}:{where.line})")
+    return [(location, end) for location, end, called in _occurrences(analysis, word.name)
+            if not (kind == "object" and called)]  # sqrt(...) is a function, never an object
 
 
 def _line_starts(text: str) -> list[int]:
@@ -163,7 +252,7 @@ def vocabulary_text(word: str) -> str | None:
                  "R, G, B: the colour, each 0..1"]
         lines += [f"{a.name}: {a.meaning}" for a in p.arguments]
         if p.pairs:
-            x, y = p.arguments_of_pairs
+            x, y = p.pair_names
             lines.append(f"then the vertices as pairs {x}, {y} (at least three)")
         return "\n".join(lines)
     if sigil == "@" and name in TRANSFORMS:
@@ -201,6 +290,9 @@ def hover(analysis: Analysis, file: str, line: int, column: int,
         body = _short(source[found.line - 1].strip()) if 0 < found.line <= len(source) else ""
         return f"macro {name}, {found.file}:{found.line}\n{body}", word
     if name[0].isupper():
+        repeated = repetition(analysis.source_text(file) or "", line, column, name)
+        if repeated is not None:
+            return f"{name}: the variable of the repetition {repeated[1]}", word
         return _parameter_hover(analysis, file, line, column, name), word
     return _object_hover(analysis, name, figures), word
 

@@ -1,4 +1,4 @@
-"""The one adapter between the editor's tools and castor's pipeline.
+"""The one adapter between the editing tools and castor's pipeline: a scene's analysis.
 
 ``analyse`` runs a scene (an editor's unsaved buffer, or files) through
 castor.pipeline.evaluate as ``castor --check`` does (preprocess, reader,
@@ -8,7 +8,8 @@ written (out of macro expansions), each parameter and object definition in
 the order they ran (with the parameter's value there), the files ``#include``
 opened, and the symbol tables at the end. ``castor --params``, ``-p``/``-P``,
 the live preview's parameters panel and the language server read the
-pipeline through this module only.
+pipeline through this module only (``analyse_buffers`` for an editor's unsaved
+texts).
 """
 
 from __future__ import annotations
@@ -23,8 +24,9 @@ from castor.diagnostics import (CastorError, CollectingReporter, Diagnostic, Loc
 from castor.pipeline import Overtaken, evaluate
 from castor.settings import EvaluationSettings, ReadSettings, Source
 
-__all__ = ["Analysis", "Definition", "Diagnostic", "Overtaken", "analyse", "macro_definitions",
-           "object_figures", "parameters", "primitive_places", "written_at"]
+__all__ = ["Analysis", "Definition", "Diagnostic", "Overtaken", "analyse", "analyse_buffers",
+           "macro_definitions", "object_figures", "parameters", "primitive_places", "shown_name",
+           "written_at"]
 
 
 @dataclass(frozen=True)
@@ -109,12 +111,12 @@ def analyse(source: Source, reading: ReadSettings = ReadSettings(),
     import time
 
     from castor.language.scene import Facetize, ObjectDef, ParamDef
-    from castor.lsp.reuse import ReusingInterpreter
+    from castor.analysis.reuse import ReusingInterpreter
 
     started = time.perf_counter()
     reporter = _Collector(quiet)
     files = source.files if source.text is None else (source.name,)
-    shown = _shown(files[0]) if files else "<stdin>"
+    shown = shown_name(files[0]) if files else "<stdin>"
     analysis = Analysis(shown, texts={shown: source.text} if source.text is not None else {})
 
     class Recording(ReusingInterpreter):
@@ -149,7 +151,24 @@ def analyse(source: Source, reading: ReadSettings = ReadSettings(),
     return analysis
 
 
-def _shown(name: str) -> str:
+def analyse_buffers(text: str, name: str | None, buffers: dict[str, str],
+                    cancelled: Callable[[], bool] = lambda: False) -> Analysis:
+    """Analyse an editor's buffer ``text`` (the file ``name``), reading the other
+    open buffers (``buffers``, path -> text) instead of those files wherever
+    ``#include`` opens them (castor.language.preprocess.unsaved)."""
+    from castor.language.preprocess import unsaved
+
+    with unsaved(buffers):
+        analysis = analyse(Source(text=text, name=name), cancelled=cancelled)
+    by_path = {os.path.realpath(path): text for path, text in buffers.items()}
+    for path in analysis.included:  # ranges and hovers read the buffers too
+        if os.path.realpath(path) in by_path:
+            analysis.texts[path] = analysis.texts[shown_name(path)] = \
+                by_path[os.path.realpath(path)]
+    return analysis
+
+
+def shown_name(name: str) -> str:
     """A file name as locations give it (relative to the current directory when inside)."""
     here = os.path.abspath("") + os.sep
     return name[len(here):] if name.startswith(here) else name
@@ -199,7 +218,7 @@ _DEFINE = re.compile(r"^[ \t]*#[ \t]*define[ \t]+([A-Za-z_]\w*)")
 def macro_definitions(analysis: Analysis) -> list[tuple[str, Location]]:
     """Every ``#define`` of the main file and the files it includes."""
     out = []
-    for file in [analysis.file] + [_shown(f) for f in analysis.included]:
+    for file in [analysis.file] + [shown_name(f) for f in analysis.included]:
         text = analysis.source_text(file)
         if text is None:
             continue

@@ -32,10 +32,10 @@ def readable(source):
 
 
 def scene_analysis(source, reading, evaluation, quiet: bool = False):
-    """The check of the scene files of the command line (castor.lsp.evaluate);
+    """The check of the scene files of the command line (castor.analysis.scene);
     SetError when a file cannot be read."""
     from castor.diagnostics import UsageError
-    from castor.lsp.evaluate import analyse
+    from castor.analysis.scene import analyse
 
     try:
         return analyse(source, reading, evaluation, quiet=quiet)
@@ -48,7 +48,7 @@ def params_command(source, reading, evaluation, quiet: bool = False, stdout=None
     """``castor --params``: the parameters as JSON on standard output; warnings and
     errors on standard error as castor prints them. Exit status as castor's."""
     from castor.diagnostics import Reporter
-    from castor.lsp.evaluate import parameters
+    from castor.analysis.scene import parameters
 
     stdout = stdout or sys.stdout
     reporter = Reporter(stream=stderr or sys.stderr, quiet=quiet)
