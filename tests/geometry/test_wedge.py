@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from castor.options import View
+from castor.settings import View
 from tests.support.checks import check_closed, check_convex_planar
 from tests.support.cli import frames_of, run
 from tests.support.drawings import Drawn, draw_svg

@@ -10,8 +10,8 @@ import sys
 import numpy as np
 import pytest
 
-from castor.language.vocabulary import PRIMITIVES
-from castor.options import View
+from castor.primitives import PRIMITIVES
+from castor.settings import View
 from castor.pictures.camera import make_camera
 from castor.pictures.spans import SPANS
 from castor.pictures.trace import compile_frame
