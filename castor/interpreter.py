@@ -207,7 +207,7 @@ class Interpreter:
         where = statement.location
         if not self._may_be_annotated(where):
             return
-        from castor.language.classes import object_classes
+        from castor.language.annotations import object_classes
 
         lines = self.reporter.source_lines
         for _, _, classification, problem in object_classes(

@@ -192,7 +192,7 @@ def object_classes(analysis: Analysis):
     each annotated definition, its name, where it is, its class (None when the
     annotation cannot be understood) and the warning about it, if any: what a
     hover, an outline and the warnings as you type read."""
-    from castor.language.classes import object_classes as classes_of
+    from castor.language.annotations import object_classes as classes_of
 
     lines: dict[str, list[str] | None] = {}
 
