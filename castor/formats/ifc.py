@@ -153,16 +153,16 @@ def default_title(frame: Frame) -> str:
     return stem if stem and stem != "<stdin>" else "castor"
 
 
-def export(scene: tree.FrameTree, frame: Frame, title: str | None = None,
+def export(frame_tree: tree.FrameTree, frame: Frame, title: str | None = None,
            classes: dict[str, str] | None = None) -> bytes:
-    """The frame as an IFC4 file (STEP physical file text): ``scene`` is its
+    """The frame as an IFC4 file (STEP physical file text): ``frame_tree`` is its
     evaluated CSG tree (the parameters, each object's source), ``frame`` its
     polygons. ``classes`` maps an object's name to its IFC class
     (``element_class``'s spelling)."""
-    return model(scene, frame, title, classes).to_string().encode("utf-8")
+    return model(frame_tree, frame, title, classes).to_string().encode("utf-8")
 
 
-def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
+def model(frame_tree: tree.FrameTree, frame: Frame, title: str | None = None,
           classes: dict[str, str] | None = None):
     """The frame as an ``ifcopenshell.file``: the header, the project and its
     spatial structure, the parameters, then one element per object (in this
@@ -174,8 +174,8 @@ def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
     _header(f, title)
     built = _Builder(f, title)
     project, storey, storey_place, body = _structure(built, frame)
-    _parameters(built, scene, project)
-    elements = _elements(built, scene, frame, classes or {}, body, storey_place)
+    _parameters(built, frame_tree, project)
+    elements = _elements(built, frame_tree, frame, classes or {}, body, storey_place)
     if elements:
         built.create("IfcRelContainedInSpatialStructure", built.guid("contains", "storey"), None,
                      None, None, elements, storey)
@@ -243,12 +243,12 @@ def _structure(built: _Builder, frame: Frame):
     return project, storey, storey_place, body
 
 
-def _parameters(built: _Builder, scene: tree.FrameTree, project) -> None:
+def _parameters(built: _Builder, frame_tree: tree.FrameTree, project) -> None:
     """The frame's parameters: the project's property set Castor_Parameters."""
     create = built.create
     parameters = [create("IfcPropertySingleValue", name, None,
                          create("IfcReal", float(value)), None)
-                  for name, value in scene.parameters]
+                  for name, value in frame_tree.parameters]
     if parameters:
         pset = create("IfcPropertySet", built.guid("Castor_Parameters"), None,
                       "Castor_Parameters",
@@ -257,7 +257,7 @@ def _parameters(built: _Builder, scene: tree.FrameTree, project) -> None:
                None, None, [project], pset)
 
 
-def _elements(built: _Builder, scene: tree.FrameTree, frame: Frame, classes: dict[str, str],
+def _elements(built: _Builder, frame_tree: tree.FrameTree, frame: Frame, classes: dict[str, str],
               body, storey_place) -> list:
     """One element per object with polygons: its body in its colours, its class,
     its quantities (those of --summary)."""
@@ -278,14 +278,14 @@ def _elements(built: _Builder, scene: tree.FrameTree, frame: Frame, classes: dic
         return styles[m]
 
     elements = []
-    for obj, source, name, material in zip(frame.objects, scene.objects, object_names(frame),
+    for obj, source, name, material in zip(frame.objects, frame_tree.objects, object_names(frame),
                                            material_of):
         if obj.polygon_count == 0:
             continue  # nothing to show: an element without a body helps no one
         items = _face_sets(built.f, obj, material, style)
         shape = create("IfcProductDefinitionShape", None, None, [
             create("IfcShapeRepresentation", body, "Body", "Tessellation", items)])
-        cls = classes.get(obj.name) or classes.get(name) or _annotated(scene, source) \
+        cls = classes.get(obj.name) or classes.get(name) or _annotated(frame_tree, source) \
             or DEFAULT_CLASS
         element = create(cls, guid("element", name), None, name, source.where or frame.where,
                          None, built.placement(storey_place), shape, None)
@@ -303,13 +303,13 @@ def _elements(built: _Builder, scene: tree.FrameTree, frame: Frame, classes: dic
     return elements
 
 
-def _annotated(scene: tree.FrameTree, source: tree.Object) -> str | None:
+def _annotated(frame_tree: tree.FrameTree, source: tree.Object) -> str | None:
     """The class an annotation gives the '>' object itself (LANGUAGE.md §11);
     --ifc-class overrides it. (The elements inside it are the BIM handover's.)"""
     root = source.root
-    if scene.classes is None or not isinstance(root, tree.Use):
+    if frame_tree.classes is None or not isinstance(root, tree.Use):
         return None
-    mark = scene.classes.of(root.shared.location)
+    mark = frame_tree.classes.of(root.shared.location)
     return None if mark is None or mark.ifc_class not in ELEMENT_CLASSES else mark.ifc_class
 
 

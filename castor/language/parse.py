@@ -11,18 +11,21 @@ together; lark's exceptions are translated into messages in the user's words.
 from __future__ import annotations
 
 import math
-import os
 import threading
 from functools import lru_cache
 from typing import Iterator
 
-from castor.diagnostics import CastorError, EvaluationError, LimitError, SceneError
+from castor.booleans import BOOLEANS
+from castor.diagnostics import (ArgumentCountError, CastorError, EvaluationError, LimitError,
+                                SceneError, UndefinedObject)
 from castor.language.expressions import FUNCTIONS, arity_message, evaluate
 from castor.language.lalr import Failed, Token
 from castor.language.reader import Chunk
-from castor.language.vocabulary import PRIMITIVES, TRANSFORMS
-from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, Facetize, NamedNode, Number, ObjectDef, Param,
-                    ParamDef, PrimitiveNode, Repeat, Step, Tables, TransformedNode, Unary)
+from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, FrameCommand, NamedNode,
+                                   Number, ObjectDef, Param, ParamDef, PrimitiveNode, Repeat,
+                                   Step, Tables, TransformedNode, Unary, UndefinedReference)
+from castor.primitives import PRIMITIVES
+from castor.transformations import TRANSFORMS
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
 MAX_DEPTH = 100_000
@@ -30,9 +33,11 @@ MAX_DEPTH = 100_000
 
 @lru_cache(maxsize=1)
 def grammar_text() -> str:
-    """The grammar, castor.lark, shipped beside this module."""
-    with open(os.path.join(os.path.dirname(os.path.realpath(__file__)), "castor.lark"),
-              encoding="utf-8") as handle:
+    """The grammar: shipped beside this module in an installed package, else the
+    checkout's grammar/castor.lark (castor.language.tables.grammar_path)."""
+    from castor.language.tables import grammar_path
+
+    with open(grammar_path(), encoding="utf-8") as handle:
         return handle.read()
 
 
@@ -111,7 +116,7 @@ class Builder:
         mark, rest = children[0], children[1:]
         repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
         objects = rest[1:] if repeat else rest
-        return self._statement(Facetize(tuple(objects), repeat, self._at(mark)))
+        return self._statement(FrameCommand(tuple(objects), repeat, self._at(mark)))
 
     def program(self, children):
         return None
@@ -142,9 +147,9 @@ class Builder:
             counts, form = TRANSFORMS[kind].counts, TRANSFORMS[kind].form
             if len(args) not in counts:
                 wanted = " or ".join(str(c) for c in counts)
-                self.faults.append(SceneError(
+                self.faults.append(ArgumentCountError(
                     f"'{token}' takes {wanted} argument{'s' if counts[-1] > 1 else ''} ({form}), "
-                    f"but {_given(len(args))}", location))
+                    f"but {_given(len(args))}", location, _names(args)))
         return Step(kind, args, location)
 
     def primitive(self, children):
@@ -164,13 +169,15 @@ class Builder:
             n = len(args)
             if n < low or (high is not None and n > high):
                 wanted = str(low) if low == high else f"at least {low}"
-                self.faults.append(SceneError(
-                    f"'{token}' takes {wanted} arguments ({form}), but {_given(n)}", location))
+                self.faults.append(ArgumentCountError(
+                    f"'{token}' takes {wanted} arguments ({form}), but {_given(n)}", location,
+                    _names(args)))
             elif high is None and (n - 3) % 2:
-                self.faults.append(SceneError(
+                self.faults.append(ArgumentCountError(
                     f"'{token}' takes the colour then pairs of coordinates ({form}), "
-                    f"but {n - 3} coordinates were given, an odd number", location))
-        params = EMPTY.union(*(a.params for a in args))
+                    f"but {n - 3} coordinates were given, an odd number", location,
+                    _names(args)))
+        params = _names(args)
         depth = max((a.depth for a in args), default=0) + 1
         return PrimitiveNode(kind, args, location, params, depth)
 
@@ -180,10 +187,10 @@ class Builder:
         repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
         operands = rest[1:] if repeat else rest
         op = token[1:]
-        if op not in ("U", "I", "D"):
-            self.faults.append(SceneError(
-                f"unknown boolean operator '{token}' (known: $U union, $I intersection, $D difference)",
-                location))
+        if op not in BOOLEANS:
+            known = ", ".join(f"${name} {meaning}" for name, meaning in BOOLEANS.items())
+            self.faults.append(SceneError(f"unknown boolean operator '{token}' (known: {known})",
+                                          location))
         elif op == "D" and repeat is not None:
             self.faults.append(SceneError(
                 "'$D' cannot repeat; subtract a repeated union instead: $D(a, $U[I = ...](b))", location))
@@ -208,12 +215,13 @@ class Builder:
         node = self.tables.objects.get(name)
         if node is None:
             if name in self.tables.broken:
-                self.faults.append(SceneError(
-                    f"object '{name}' is not defined (its definition had errors)", location))
+                self.faults.append(UndefinedObject(
+                    f"object '{name}' is not defined (its definition had errors)", location, name))
             else:
                 hint = _suggest(name, self.tables.objects)
-                self.faults.append(SceneError(f"object '{name}' is not defined{hint}", location))
-            return PrimitiveNode("cu", (), location)  # placeholder; the statement is dropped
+                self.faults.append(UndefinedObject(f"object '{name}' is not defined{hint}",
+                                                   location, name))
+            return UndefinedReference(name, location)  # the statement is dropped
         return node
 
     def repeat(self, children):
@@ -356,7 +364,7 @@ class Parser:
         """Every parameter name the statements parsed so far assign or use."""
         return set(self.param_sets)
 
-    def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | Facetize | CastorError"]:
+    def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | FrameCommand | CastorError"]:
         """Parse one chunk. A missing ';' is reported, the statement is taken as if it
         were there, and parsing resumes with the next line."""
         parser = self._ready()
@@ -384,9 +392,12 @@ class Parser:
                 error, head, rest = syntax_error(exc, chunk, self.builder.tables)
                 yield error
                 defined = DEFINED.match(chunk.text)
-                if head is None and defined is not None:
-                    # its uses say why it is missing, as after any faulty definition
-                    self.builder.tables.broken.add(defined.group(1))
+                if head is None:
+                    name = defined.group(1) if defined is not None else None
+                    if name is not None and name[0].islower():
+                        # its uses say why it is missing, as after any faulty definition
+                        self.builder.tables.broken.add(name)
+                    yield SkippedDefinition(name)
                 if head is not None and id(chunk) not in patched:
                     patched.add(id(head))
                     rest = [head] + rest
@@ -400,7 +411,7 @@ class Parser:
             yield from faults
             if isinstance(statement, ObjectDef):
                 self.builder.tables.broken.add(statement.name)
-                yield SkippedDefinition(statement.name)
+            yield SkippedDefinition(getattr(statement, "name", None))
         else:
             yield statement
 
@@ -476,8 +487,15 @@ def _combined(chunks: list[Chunk]) -> Chunk:
     return Chunk("".join(c.text for c in chunks), tuple(origins), chunks[0].first_column)
 
 
+def _names(args) -> frozenset:
+    """The parameter names some argument reads."""
+    return EMPTY.union(*(a.params for a in args))
+
+
 class SkippedDefinition:
-    """Tells the interpreter that the definition of ``name`` was dropped."""
+    """Tells the interpreter, after the errors of a statement, that it was
+    dropped: the definition of ``name`` (an object's or a parameter's), or
+    (None) a '>' command or a statement too broken to name."""
 
     def __init__(self, name: str):
         self.name = name

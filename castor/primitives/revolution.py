@@ -10,14 +10,14 @@ import math
 
 from castor.diagnostics import Location
 from castor.primitives import rays
-from castor.primitives.base import FLAT, Mesh, Primitive
+from castor.primitives.base import FLAT, Mesh, PrimitiveKind
 from castor.primitives.facets import circle_segments, joined, plane_stretch, quantize, signed_volume
 
 INF = math.inf
 
 
 def check(shape: tuple, location: Location, path: object) -> None:
-    from castor.language.outline import profile
+    from castor.primitives.simple_polygon import profile
 
     profile(shape, location, path)
 
@@ -26,7 +26,7 @@ def revolution(values: tuple, segments: int) -> Mesh:
     """The simple profile (r1, z1, ...) turned a full circle about the z axis."""
     import numpy as np
 
-    from castor.language.outline import profile, signed_area
+    from castor.primitives.simple_polygon import profile, signed_area
 
     outline = profile(values, None, "")
     if signed_area(outline) < 0:
@@ -104,33 +104,35 @@ def spans(shape, o, d):
     qa = dx * dx + dy * dy
     qb = 2 * (ox * dx + oy * dy)
     qc = ox * ox + oy * oy
-    for index, ((r1, z1), (r2, z2)) in enumerate(zip(a, b)):
-        if r1 == 0 and r2 == 0:
-            continue
-        if z1 == z2:  # a disc or a ring in z = z1
-            with np.errstate(divide="ignore", invalid="ignore"):
+    # a ray parallel to a disc meets its plane nowhere (t infinite, then 0 * inf),
+    # one that misses a cone has no roots: masked below, never a warning
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for index, ((r1, z1), (r2, z2)) in enumerate(zip(a, b)):
+            if r1 == 0 and r2 == 0:
+                continue
+            if z1 == z2:  # a disc or a ring in z = z1
                 t = (z1 - oz) / dz
-            px, py = ox + t * dx, oy + t * dy
-            rho = np.sqrt(px * px + py * py)
-            lo, hi = min(r1, r2), max(r1, r2)
-            # the segment includes its first point, not its last
-            ok = (dz != 0) & (rho > lo) & (rho <= hi) if r1 > r2 else \
-                (dz != 0) & (rho >= lo) & (rho < hi)
-            crossings.append(np.where(ok, t, INF))
-            faces.append(index)
-            continue
-        # r = r1 + m (z - z1), m = (r2 - r1) / (z2 - z1): rho^2 = (c + m t dz)^2
-        m = (r2 - r1) / (z2 - z1)
-        c = r1 + m * (oz - z1)
-        g = m * dz
-        t1, t2 = rays.roots(qa - g * g, qb - 2 * c * g, qc - c * c)
-        for t in (t1, t2):
-            z = oz + t * dz
-            u = (z - z1) / (z2 - z1)
-            r = c + g * t
-            ok = np.isfinite(t) & (u >= 0) & (u < 1) & (r >= 0)
-            crossings.append(np.where(ok, t, INF))
-            faces.append(index)
+                px, py = ox + t * dx, oy + t * dy
+                rho = np.sqrt(px * px + py * py)
+                lo, hi = min(r1, r2), max(r1, r2)
+                # the segment includes its first point, not its last
+                ok = (dz != 0) & (rho > lo) & (rho <= hi) if r1 > r2 else \
+                    (dz != 0) & (rho >= lo) & (rho < hi)
+                crossings.append(np.where(ok, t, INF))
+                faces.append(index)
+                continue
+            # r = r1 + m (z - z1), m = (r2 - r1) / (z2 - z1): rho^2 = (c + m t dz)^2
+            m = (r2 - r1) / (z2 - z1)
+            c = r1 + m * (oz - z1)
+            g = m * dz
+            t1, t2 = rays.roots(qa - g * g, qb - 2 * c * g, qc - c * c)
+            for t in (t1, t2):
+                z = oz + t * dz
+                u = (z - z1) / (z2 - z1)
+                r = c + g * t
+                ok = np.isfinite(t) & (u >= 0) & (u < 1) & (r >= 0)
+                crossings.append(np.where(ok, t, INF))
+                faces.append(index)
     if not crossings:
         return rays.empty_like(len(o), 0)
     crossings = np.column_stack(crossings)
@@ -153,7 +155,7 @@ def normal(shape, p, face):
 
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=95, name="rv", title="revolution", solid="a simple profile (r, z), r >= 0, turned about z",
     arguments=(), pair_names=("r", "z"), curved=True, check=check, box=box,
     mesh=lambda shape, facets: revolution(shape, facets[0]),
