@@ -33,18 +33,19 @@ from castor.primitives import PRIMITIVES
 from castor.primitives.facets import largest_stretch, linear_part, product, quantize
 
 
-def sized_to_screen(frame: tree.FrameTree, picture, pixel_error: float,
+def sized_to_screen(frame_tree: tree.FrameTree, picture, pixel_error: float,
                     camera=None) -> tree.FrameTree:
-    """``frame`` with the tolerances the camera of the picture settings
+    """``frame_tree`` with the tolerances the camera of the picture settings
     ``picture`` (castor.settings.PictureSettings: size, view, eye, look) needs
     for a chord error of at most ``pixel_error`` pixels; or those of
     ``camera`` (castor.pictures.camera.Camera) where given: the live
     preview's, as its page looks."""
-    screen = Screen(camera if camera is not None else frame_camera(frame, picture), pixel_error)
-    objects = tuple(_sized(obj, screen) for obj in frame.objects)
-    if all(new is old for new, old in zip(objects, frame.objects)):
-        return frame
-    return frame.replace(objects=objects)
+    screen = Screen(camera if camera is not None else frame_camera(frame_tree, picture),
+                    pixel_error)
+    objects = tuple(_sized(obj, screen) for obj in frame_tree.objects)
+    if all(new is old for new, old in zip(objects, frame_tree.objects)):
+        return frame_tree
+    return frame_tree.replace(objects=objects)
 
 
 def _sized(obj: tree.Object, screen: "Screen") -> tree.Object:
@@ -52,7 +53,7 @@ def _sized(obj: tree.Object, screen: "Screen") -> tree.Object:
     return obj if root is obj.root else obj.replace(root=root)
 
 
-def frame_camera(frame: tree.FrameTree, picture):
+def frame_camera(frame_tree: tree.FrameTree, picture):
     """The camera of the picture options (castor.pictures.camera.make_camera),
     framing the box of the frame's solids where it frames anything."""
     from castor.pictures.camera import make_camera
@@ -60,15 +61,15 @@ def frame_camera(frame: tree.FrameTree, picture):
     if picture.eye is not None and picture.look is not None:
         low = high = (0.0, 0.0, 0.0)
     else:
-        low, high = frame_box(frame)
+        low, high = frame_box(frame_tree)
     return make_camera(low, high, picture.size, picture.view, picture.eye, picture.look)
 
 
-def frame_box(frame: tree.FrameTree) -> tuple[tuple, tuple]:
+def frame_box(frame_tree: tree.FrameTree) -> tuple[tuple, tuple]:
     """The box of the frame's solids, as the ray tracer bounds them: a union's
     operands' boxes, an intersection's common part, a difference's first operand."""
     known: dict[str, object] = {}
-    boxes = [_box(obj.root, tree.IDENTITY, known) for obj in frame.objects
+    boxes = [_box(obj.root, tree.IDENTITY, known) for obj in frame_tree.objects
              if obj.root is not None]
     return _union([b for b in boxes if b is not None]) or ((0.0,) * 3, (0.0,) * 3)
 
