@@ -303,3 +303,45 @@ def _bounded(world: float | None, above: float, finest: float, size: float,
     else:
         tolerance = min(quantize(world / above / unit) * unit, coarsest)
     return max(tolerance, finest)
+
+
+def kept_where_close(previous: tree.FrameTree | None, needed: tree.FrameTree,
+                     factor: float = 2.0) -> tree.FrameTree:
+    """The live preview's rule once its camera stops (CLI.md, "Live preview"):
+    ``needed`` (the frame sized to the new view) with each object as
+    ``previous`` had it (the same frame sized to the view before) wherever
+    every tolerance it needs is within ``factor`` of the one it has, so that
+    only objects whose facets would change much are faceted again (the
+    facetizer's caches keep the others)."""
+    if previous is None or len(previous.objects) != len(needed.objects):
+        return needed
+    objects = tuple(old if (old.name == new.name and _close(old.root, new.root, factor, {}))
+                    else new for old, new in zip(previous.objects, needed.objects))
+    if all(new is kept for new, kept in zip(needed.objects, objects)):
+        return needed
+    return needed.replace(objects=objects)
+
+
+def _close(old, new, factor: float, seen: dict) -> bool:
+    """Whether two sizings of one subtree differ in no tolerance by more than ``factor``."""
+    if old is new:
+        return True
+    kind = type(old)
+    if kind is not type(new):
+        return False
+    if kind is tree.Primitive:
+        return (old.kind == new.kind and old.shape == new.shape
+                and new.tolerance / factor <= old.tolerance <= new.tolerance * factor)
+    if kind is tree.Boolean:
+        return (old.op == new.op and len(old.operands) == len(new.operands)
+                and all(_close(a, b, factor, seen) for a, b in zip(old.operands, new.operands)))
+    if kind is tree.Smooth:
+        return (new.tolerance / factor <= old.tolerance <= new.tolerance * factor
+                and _close(old.operand, new.operand, factor, seen))
+    if kind is tree.Use:
+        pair = (old.shared.key, new.shared.key)
+        if pair not in seen:
+            seen[pair] = (old.shared.child is not None and new.shared.child is not None
+                          and _close(old.shared.child, new.shared.child, factor, seen))
+        return old.matrix == new.matrix and seen[pair]
+    return False

@@ -282,3 +282,31 @@ def test_the_camera_options_act_on_the_stream_with_the_pixel_error():
 def test_the_pixel_error_is_no_option_of_pictures():
     done = _castor("--pixel-error", "0.5", "--view", "-60,25", "-o", os.devnull, "-f", "png")
     assert "--pixel-error has no effect on png output" in done.stderr
+
+
+def test_after_an_orbit_only_what_needs_twice_finer_or_coarser_changes():
+    """The preview's rule (kept_where_close): an object keeps its facets unless a
+    tolerance it needs changed by more than a factor of two."""
+    from castor.csg.screen import kept_where_close
+    from castor.csg.tree import leaves
+
+    text = ("TOLERANCE = 1e-5;\ncol = @h(0.3, 0.3, 4) !cy(1, 1, 1);\n"
+            "> @t(0, 10, -1) col, @t(0, 40, -1) col;\n")
+    [tree], _ = evaluated_frames(text, "orbit.cas")
+
+    def seen_from(y):
+        picture = PictureSettings(size=SIZE, eye=(0.0, y, 0.0), look=(0.0, y + 1, 0.0))
+        return sized_to_screen(tree, picture, ERROR)
+
+    def tolerances(frame_tree):
+        return [next(leaves(obj.root))[0].tolerance for obj in frame_tree.objects]
+
+    before = seen_from(0.0)
+    slightly = seen_from(1.0)  # a step closer: less than twice finer for both
+    assert tolerances(slightly) != tolerances(before)
+    assert all(a is b for a, b in zip(kept_where_close(before, slightly).objects, before.objects))
+    closer = seen_from(7.0)  # the near column 3 away instead of 10: more than twice finer
+    kept = kept_where_close(before, closer)
+    assert kept.objects[0] is closer.objects[0]
+    assert kept.objects[1] is before.objects[1]
+    assert kept_where_close(None, closer) is closer
