@@ -12,7 +12,7 @@ foot (an edge of its base), its midpoint carried up the column at 81 heights
 (the side facet is as far from the side at every height), against the circle
 at its angle, where the picture shows it.
 
-    python benchmarks/pixel_error.py [--columns N] [--error E]
+    python benchmarks/pixel_error.py [--columns N (24)] [--error E (0.5)]
 """
 
 from __future__ import annotations
@@ -93,7 +93,7 @@ def segments(frame, columns: int) -> list[int]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--columns", type=int, default=16)
+    parser.add_argument("--columns", type=int, default=24)
     parser.add_argument("--error", type=float, default=0.5)
     args = parser.parse_args()
     text = scene(args.columns)

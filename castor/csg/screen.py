@@ -7,8 +7,8 @@ covers at most t·c·scale/z pixels (``scale`` the camera's pixels per unit on
 the picture plane at distance 1, c = √(1 + a² + b²) at the picture point
 (a, b) = (x/z, y/z) it is seen at, at most that of the picture's corners). So
 a leaf whose box lies at depth z or more, seen within (a, b), may be faceted
-within E·z/(c·scale) scene units,
-and an orthographic camera allows E/scale everywhere. ``sized_to_screen`` gives
+within E·z/(c·scale) scene units, and an orthographic camera allows E/scale
+everywhere. ``sized_to_screen`` gives
 each curved primitive and each smooth solid (``@s``) that tolerance at the
 nearest point of its box, in its own units, rounded down to a power of
 2^(1/4) (castor.primitives.facets.quantize) so that alike leaves share one
@@ -173,6 +173,8 @@ class Screen:
                 or all(c[1] > half_h * c[2] for c in corners)
                 or all(c[1] < -half_h * c[2] for c in corners)):
             return None  # wholly beyond one side of the picture (or behind the eye)
+        if all(c[2] <= 0 for c in corners):
+            return None  # behind the eye
         near = min(c[2] for c in corners)
         if near <= 0:
             return 0.0

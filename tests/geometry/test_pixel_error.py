@@ -161,6 +161,17 @@ def test_an_orthographic_view_asks_the_same_everywhere():
     assert near.polygon_count < plain.polygon_count
 
 
+def test_what_the_camera_cannot_see_gets_8_segments():
+    """Behind the eye (even a box wider than the picture there), or beside the
+    picture: the coarsest; across the eye's plane: the frame's tolerance."""
+    text = ("TOLERANCE = 1e-4;\n> @t(-10, -5, 0) @h(20, 0.3, 20) @ry(90) !cy(1, 0, 0),"
+            " @t(30, 10, 0) @h(0.3) !cy(1, 0, 0), @t(0, 0, -1) @h(0.3, 0.3, 2) !sp(1, 0, 0);\n")
+    behind, beside, across = _frame(text).objects
+    plain_behind, _, plain_across = _frame(text, None).objects
+    assert _segments(behind) == _segments(beside) == 8 < _segments(plain_behind)
+    assert across.polygon_count == plain_across.polygon_count
+
+
 def test_the_frame_tolerance_is_the_finest():
     text = "TOLERANCE = 0.01;\n> @t(0, 1.5, 0) @h(0.3) !cy(1, 0, 0);\n"
     assert _frame(text).objects[0].polygon_count == _frame(text, None).objects[0].polygon_count
