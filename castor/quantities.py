@@ -326,12 +326,14 @@ class Takeoff:
     solids out are new work). What the take-off, the drawings and the IFC
     handover read of a frame's classes."""
 
-    def __init__(self, scene, facetizer):
+    def __init__(self, scene, facetizer, polygons: bool = False):
         from castor.csg.elements import Boxes, find
 
         self.boxes = Boxes()
         self.scene = scene
         self.facetizer = facetizer
+        # the solids as polygons (the BIM model's bodies), else as triangles
+        self.polygons = polygons
         self.elements, self.openings = find(scene)
         self._solids: dict = {}
         self._storeys: list[tuple[str, float]] | None = None
@@ -349,12 +351,16 @@ class Takeoff:
                                        (tree.Object(str(key), node),))
                 # triangles: the figures are the same, and no polygons are written
                 merging = self.facetizer.merge_polygons
-                self.facetizer.merge_polygons = False
+                self.facetizer.merge_polygons = self.polygons
                 try:
                     self._solids[key] = self.facetizer.frame(scene).objects[0]
                 finally:
                     self.facetizer.merge_polygons = merging
         return self._solids[key]
+
+    def known(self, element, solid: FrameObject) -> None:
+        """Take ``solid`` as the element's own (made already: a whole '>' object's)."""
+        self._solids[("element", element.number)] = solid
 
     def solid(self, element) -> FrameObject:
         """The element's own solid, as polygons."""
