@@ -68,11 +68,12 @@ def _quantities(entity) -> dict:
             for name, values in ifcopenshell.util.element.get_psets(entity).items()}
 
 
-def _issues(model):
+def _issues(model, express_rules=True):
+    """What ifcopenshell.validate finds: the schema, and the EXPRESS rules (slow)."""
     import ifcopenshell.validate
 
     logger = ifcopenshell.validate.json_logger()
-    ifcopenshell.validate.validate(model, logger, express_rules=True)
+    ifcopenshell.validate.validate(model, logger, express_rules=express_rules)
     return logger.statements
 
 
@@ -357,7 +358,7 @@ cave = @t(0, 0, -3) @h(5, 4, 2.5) !cu(1, 1, 1);  // [space "Cave"]
     assert space.Decomposes[0].RelatingObject.Name == "Rez"
     # its coordinates still the scene's: the storey's placement plus its own
     assert _quantities(space)["Qto_SpaceBaseQuantities"]["NetVolume"] == pytest.approx(50)
-    assert _issues(model) == []
+    assert _issues(model, express_rules=False) == []
 
 
 def test_two_storeys_at_one_level_are_one(tmp_path):
@@ -384,4 +385,50 @@ def test_a_class_the_reference_view_lacks_is_written_as_the_class_it_has(tmp_pat
     (wall,) = model.by_type("IfcElement")
     assert wall.is_a() == "IfcWall"
     assert err.count("warning") == 1  # said once, not once per frame
-    assert _issues(model) == []
+    assert _issues(model, express_rules=False) == []
+
+
+def _web_ifc():
+    """The directory where `npm install web-ifc` was run (CASTOR_WEB_IFC), or None."""
+    import shutil
+
+    directory = os.environ.get("CASTOR_WEB_IFC")
+    if not directory or not shutil.which("node"):
+        return None
+    return directory if (Path(directory) / "node_modules" / "web-ifc").is_dir() else None
+
+
+@pytest.mark.skipif(_web_ifc() is None, reason="web-ifc not installed (set CASTOR_WEB_IFC)")
+def test_web_ifc_finds_the_storeys_elements_openings_and_colours(tmp_path):
+    """The second reader (benchmarks/webifc_model.js) sees the pavilion as
+    ifcopenshell does."""
+    model, _ = castor(tmp_path, (ROOT / "examples" / "pavilion.cas").read_text())
+    result = subprocess.run(["node", str(ROOT / "benchmarks" / "webifc_model.js"),
+                             str(tmp_path / "s.ifc")], capture_output=True, text=True,
+                            cwd=_web_ifc(), timeout=300)
+    assert result.returncode == 0, result.stderr
+    read = json.loads(result.stdout)
+    expected = {s.Name: (s.Elevation, sorted(f"{e.is_a()} {e.Name}" for r in s.ContainsElements
+                                              for e in r.RelatedElements),
+                         sorted(f"IfcSpace {o.Name}" for r in s.IsDecomposedBy
+                                for o in r.RelatedObjects))
+                for s in model.by_type("IfcBuildingStorey")}
+    assert {s["name"]: (s["elevation"], sorted(s["elements"]), sorted(s["spaces"]))
+            for s in read["storeys"]} == expected
+    assert expected["Étage"][2] == ["IfcSpace bureau", "IfcSpace chambre"]
+    assert sorted((o["voids"], o["filled_by"]) for o in read["openings"]) == sorted(
+        (f"IfcWall {o.VoidsElements[0].RelatingBuildingElement.Name}",
+         f"{o.HasFillings[0].RelatedBuildingElement.is_a()} "
+         f"{o.HasFillings[0].RelatedBuildingElement.Name}")
+        for o in model.by_type("IfcOpeningElement"))
+    assert len(read["openings"]) == 7
+    volumes = _volumes(model)
+    for key, element in read["elements"].items():
+        cls, name, number = key.split(" ")
+        entity = model.by_id(int(number[1:]))
+        (colour,) = {tuple(c) for c in element["colours"]}  # the style's: the largest
+        style = entity.Representation.Representations[0].Items[0].StyledByItem[0].Styles[0]
+        rgb = style.Styles[0].SurfaceColour
+        assert colour == pytest.approx((rgb.Red, rgb.Green, rgb.Blue), abs=1e-6)
+        if model.by_type("IfcElement") and sum(e.Name == name for e in model.by_type(cls)) == 1:
+            assert element["volume"] == pytest.approx(volumes[name], rel=1e-5)
