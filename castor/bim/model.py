@@ -195,9 +195,12 @@ class _Maker:
         voids: list[Void] = []
         taken = [0.0] * len(parts)  # volume cut out of each element by its openings
         index = {id(p.element): k for k, p in enumerate(placed)}
+        of_object: dict[int, list] = {}
+        for p in placed:
+            of_object.setdefault(p.element.object, []).append(p)
         for block in self.takeoff.blocks():
             opening, classification = block.opening, block.opening.classification
-            hosts = self.hosts(block, placed)
+            hosts = self.hosts(block, of_object.get(opening.object, []))
             size = (block.width, block.height)
             storey = self.storey_of[block.storey] if not hosts else parts[
                 index[id(hosts[0].element)]].storey
@@ -226,16 +229,15 @@ class _Maker:
         return voids
 
     def hosts(self, block, placed: list) -> list:
-        """The elements a block was cut from: those inside the first operand of
-        the '$D' that cut it (or holding it) whose boxes meet the block's, the
-        one the take-off chose first."""
-        opening = block.opening
-        cut = opening.cut
+        """The elements a block was cut from (``placed``: those of its '>' object):
+        those inside the first operand of the '$D' that cut it (or holding it)
+        whose boxes meet the block's, the one the take-off chose first."""
+        cut = block.opening.cut
         low, high = block.figures.bbox
         found = []
         for p in placed:
             e = p.element
-            if e.object != opening.object or p.figures.bbox is None:
+            if p.figures.bbox is None:
                 continue
             inside = e.address[:len(cut) + 1] == cut + (0,) or cut[:len(e.address)] == e.address
             a, b = p.figures.bbox
