@@ -23,16 +23,20 @@ import weakref
 class Bounded:
     """A dictionary emptied whole when it would pass its bounds (see above)."""
 
-    __slots__ = ("weight", "max_entries", "max_weight", "_data")
+    __slots__ = ("weight", "max_entries", "max_weight", "_data", "hits")
 
     def __init__(self, max_entries: int | None = None, max_weight: int | None = None):
         self.max_entries = max_entries
         self.max_weight = max_weight
         self.weight = 0
         self._data: dict = {}
+        self.hits = 0  # lookups that found their entry (what was reused, counted)
 
     def get(self, key):
-        return self._data.get(key)
+        found = self._data.get(key)
+        if found is not None:
+            self.hits += 1
+        return found
 
     def __contains__(self, key) -> bool:
         return key in self._data
@@ -69,6 +73,12 @@ class Caches:
         # hash of a part's triangles and faces -> True: found free of flat
         # triangles and sheets (a copy moved by an affine map is too)
         self.clean = Bounded(max_entries=10_000)
+        # digest of a batch's vertices, triangles and faces as the engine gave
+        # them -> their regularization (castor.mesh.regularize): a boolean
+        # whose operands did not change since the last frame is not
+        # regularized again (the live preview, the language server); weighed
+        # in triangles
+        self.regular = Bounded(max_entries=10_000, max_weight=4_000_000)
         # a part's triangles and faces -> (its polygons, its vertices): copies of
         # one object merged once (merge.Merger); weighed in triangles, emptied
         # at each frame
@@ -78,6 +88,7 @@ class Caches:
         """A new facetizer starts from nothing built (what benchmarks measure)."""
         self.solids.clear()
         self.templates.clear()
+        self.regular.clear()
 
 
 PROCESS = Caches()

@@ -106,12 +106,51 @@ def regular_triangles(tri: Triangles, parts) -> Triangles:
     key = None
     if len(tri.triangles) <= 200_000:
         key = hash((tri.triangles.tobytes(), tri.face_ids.tobytes()))
-        if key in PROCESS.clean:
+        if PROCESS.clean.get(key):  # (counted: caches.Bounded.hits)
             return tri
-    cleaned = _cleaned(tri) if sheets else _unflattened(tri)
+    if sheets:
+        return _remembered(tri, key)
+    cleaned = _unflattened(tri)
     if key is not None and cleaned is tri:
         PROCESS.clean.put(key, True)
     return cleaned
+
+
+def _remembered(tri: Triangles, clean_key) -> Triangles:
+    """``_cleaned(tri)``, or the same regularization of the same triangles made
+    before (caches.PROCESS.regular: a part whose operands did not change since
+    the last frame). Every pass carries a triangle's origin to the triangles
+    made of it, and decides nothing by it: the regularization is computed
+    with each triangle's row for its origin, and remembered as the rows each
+    triangle comes from, which give the origins of the triangles of any frame."""
+    try:  # hashlib's own BLAKE2, without hashlib's 16 ms of OpenSSL set-up at start
+        from _blake2 import blake2b
+    except ImportError:
+        from hashlib import blake2b
+
+    digest = blake2b(digest_size=16)
+    for array in (tri.vertices, tri.triangles, tri.face_ids):
+        digest.update(np.ascontiguousarray(array).data)
+    key = digest.digest()
+    known = PROCESS.regular.get(key)
+    if known is not None:
+        vertices, triangles, rows, face_ids = known
+        if rows is None:
+            return tri
+        return Triangles(tri.vertices if vertices is None else vertices, triangles,
+                         tri.origin_ids[rows], face_ids)
+    rows = np.arange(len(tri.triangles), dtype=np.int64)
+    cleaned = _cleaned(Triangles(tri.vertices, tri.triangles, rows, tri.face_ids))
+    if cleaned.triangles is tri.triangles:  # nothing to do: the same object, known clean
+        if clean_key is not None:
+            PROCESS.clean.put(clean_key, True)
+        PROCESS.regular.put(key, (None, None, None, None), 1)
+        return tri
+    PROCESS.regular.put(key, (None if cleaned.vertices is tri.vertices else cleaned.vertices,
+                              cleaned.triangles, cleaned.origin_ids, cleaned.face_ids),
+                        len(cleaned.triangles))
+    return Triangles(cleaned.vertices, cleaned.triangles, tri.origin_ids[cleaned.origin_ids],
+                     cleaned.face_ids)
 
 
 def _unflattened(tri: Triangles) -> Triangles:

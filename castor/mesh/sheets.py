@@ -6,6 +6,7 @@ engine left where faces only touch), the overlap is taken out of both, with a
 
 from __future__ import annotations
 
+import heapq
 import math
 
 import numpy as np
@@ -179,41 +180,25 @@ class _Resolver:
         # so where the engine left a face twice over one place and one face
         # of the other side, one layer stays (what is left is the net cover).
         changed_triangles = set()
+        cancels = _Cancels(self, pieces, tiny)
         for _ in range(4 * len(pieces) + 16):
-            pair = self._overlapping(pieces, tiny)
+            pair = cancels.best()
             if pair is None:
                 break
-            a, b = pieces[pair[0]], pieces[pair[1]]
+            a, b = cancels.pieces[pair[0]], cancels.pieces[pair[1]]
             cut_a = self._subtract(a[0], b[0])
             cut_b = self._subtract(b[0], a[0])
             changed_triangles.update((a[1], b[1]))
-            for index in sorted(pair, reverse=True):
-                pieces.pop(index)
-            pieces += [[q, a[1], a[2]] for q in cut_a] + [[q, b[1], b[2]] for q in cut_b]
+            cancels.remove(pair)
+            for q in cut_a:
+                cancels.add([q, a[1], a[2]])
+            for q in cut_b:
+                cancels.add([q, b[1], b[2]])
+        pieces = list(cancels.pieces.values())
         for i in changed_triangles:
             kept = [(piece, facing) for piece, triangle, facing in pieces if triangle == i]
             # back to the triangle's own turn
             replaced[i] = [[v for v, _ in (piece if facing else piece[::-1])] for piece, facing in kept]
-
-    def _overlapping(self, pieces, tiny):
-        """An up piece and a down piece that overlap (their indices), the
-        closest in area first; None if there is none."""
-        flat = [[self._xy(v) for v, _ in piece] for piece, _, _ in pieces]
-        boxes = [(min(x for x, _ in q), min(y for _, y in q), max(x for x, _ in q), max(y for _, y in q))
-                 for q in flat]
-        best = None
-        for i, (_, _, facing_i) in enumerate(pieces):
-            if not facing_i:
-                continue
-            for j, (_, _, facing_j) in enumerate(pieces):
-                if facing_j or not _boxes_meet(boxes[i], boxes[j], self.eps):
-                    continue
-                common = _overlap_area(flat[i], flat[j])
-                if common > tiny:
-                    score = (abs(_area(flat[i]) - _area(flat[j])), -common)
-                    if best is None or score < best[0]:
-                        best = (score, (i, j))
-        return None if best is None else best[1]
 
     def _xy(self, v):
         q = self.point(v)
@@ -352,6 +337,83 @@ class _Resolver:
         c = len(self.vertices) + len(self.new_points)
         self.new_points.append(centre)
         return [[outline[k], outline[(k + 1) % len(outline)], c] for k in range(len(outline))]
+
+
+class _Cancels:
+    """The pieces of one plane and which up piece overlaps which down piece.
+
+    Each cancellation takes the pair that overlaps with the closest areas
+    (then the larger common area, then the earlier pieces): the pairs are
+    found once and kept in a heap, and a new piece is compared only with the
+    pieces alive, so a plane of n pieces costs about n² tests in all, not n²
+    per cancellation. Pieces are numbered in the order they are made, which
+    is their order in the list the cancellations once rebuilt each time, so
+    the same pairs are taken in the same order."""
+
+    def __init__(self, resolver, pieces, tiny):
+        self.resolver = resolver
+        self.tiny = tiny
+        self.pieces: dict[int, list] = {}  # number -> [piece, triangle, facing up], in order
+        self.flat: dict[int, list] = {}
+        self.boxes: dict[int, tuple] = {}
+        self.areas: dict[int, float] = {}
+        self.heap: list = []
+        self.count = 0
+        for piece in pieces:
+            self._describe(self.count, piece)
+            self.pieces[self.count] = piece
+            self.count += 1
+        up = [k for k, p in self.pieces.items() if p[2]]
+        down = [k for k, p in self.pieces.items() if not p[2]]
+        if up and down:
+            eps = resolver.eps
+            box = np.array([self.boxes[k] for k in range(self.count)]).reshape(-1, 4)
+            bu, bd = box[up], box[down]
+            meet = ((bu[:, None, 0] < bd[None, :, 2] - eps) & (bd[None, :, 0] < bu[:, None, 2] - eps)
+                    & (bu[:, None, 1] < bd[None, :, 3] - eps) & (bd[None, :, 1] < bu[:, None, 3] - eps))
+            for a, b in zip(*np.nonzero(meet)):
+                self._pair(up[a], down[b])
+        heapq.heapify(self.heap)
+
+    def _describe(self, k, piece):
+        flat = [self.resolver._xy(v) for v, _ in piece[0]]
+        self.flat[k] = flat
+        self.boxes[k] = (min(x for x, _ in flat), min(y for _, y in flat),
+                         max(x for x, _ in flat), max(y for _, y in flat))
+        self.areas[k] = _area(flat)
+
+    def _pair(self, i, j, push=False):
+        """Note the up piece i and the down piece j if they overlap."""
+        common = _overlap_area(self.flat[i], self.flat[j])
+        if common > self.tiny:
+            entry = (abs(self.areas[i] - self.areas[j]), -common, i, j)
+            if push:
+                heapq.heappush(self.heap, entry)
+            else:
+                self.heap.append(entry)
+
+    def best(self):
+        """The up and down pieces to cancel next (their numbers), or None."""
+        while self.heap:
+            _, _, i, j = self.heap[0]
+            if i in self.pieces and j in self.pieces:
+                return i, j
+            heapq.heappop(self.heap)
+        return None
+
+    def remove(self, pair):
+        for k in pair:
+            del self.pieces[k], self.flat[k], self.boxes[k], self.areas[k]
+
+    def add(self, piece):
+        k = self.count
+        self.count += 1
+        self._describe(k, piece)
+        eps, box = self.resolver.eps, self.boxes[k]
+        for other, (_, _, up) in self.pieces.items():
+            if up != piece[2] and _boxes_meet(box, self.boxes[other], eps):
+                self._pair(k, other, True) if piece[2] else self._pair(other, k, True)
+        self.pieces[k] = piece
 
 
 def _edge(a: int, b: int) -> tuple[int, int]:
