@@ -34,7 +34,6 @@ from castor.formats.ifc_body import Styles, face_maker, face_set, true_corner_fi
 from castor.formats.kinds import BuildingModel
 
 INSTALL = "pip install 'castor[ifc]'"
-DEFAULT_CLASS = "IfcBuildingElementProxy"
 
 # the IFC4 classes an object may take: the concrete subtypes of IfcElement that
 # are physical things (no feature or virtual element) and need nothing but a
@@ -147,12 +146,6 @@ COMMON_PSETS = ("IfcWall", "IfcSlab", "IfcDoor", "IfcWindow", "IfcRoof", "IfcSta
                 "IfcCivilElement", "IfcSpace")
 _QUANTITY = {"length": "IfcQuantityLength", "area": "IfcQuantityArea",
              "volume": "IfcQuantityVolume"}
-
-
-def default_title(frame) -> str:
-    from castor.bim.model import default_title as title
-
-    return title(frame)
 
 
 def export(scene, frame, title: str | None = None, classes: dict[str, str] | None = None,

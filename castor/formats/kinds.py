@@ -194,7 +194,8 @@ class Drawings(Kind):
 
 
 class BuildingModels(Kind):
-    """A building model: one element per object, of the class --ifc-class gives."""
+    """A building model (castor.bim): storeys, the elements of the classes the
+    annotations (or --ifc-class) give, openings filled by doors and windows, spaces."""
 
     name, plural = "bim", "building models"
     options = ("--title", "--ifc-class")
