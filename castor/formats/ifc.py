@@ -30,7 +30,8 @@ import uuid
 from typing import Iterator
 
 from castor.formats import WriteInfo
-from castor.formats.ifc_body import Styles, face_maker, face_set, true_corner_first  # noqa: F401
+from castor.formats import ifc_body
+from castor.formats.ifc_body import Styles, face_set, true_corner_first  # noqa: F401
 from castor.formats.kinds import BuildingModel
 
 INSTALL = "pip install 'castor[ifc]'"
@@ -200,12 +201,12 @@ class _Writer:
         from castor.formats._mesh import materials
         from castor.mesh.frame import Frame
 
-        self.f, self.building, self.create = f, building, f.create_entity
+        self.f, self.building, self.create = f, building, ifc_body.entity_maker(f)
         origin = self.create("IfcCartesianPoint", (0.0, 0.0, 0.0))
         self.axes = self.create("IfcAxis2Placement3D", origin, None, None)
         table, self.material_of = materials(Frame(building.number, building.where,
                                                   [p.solid for p in building.elements]))
-        self.styles = Styles(f, table)
+        self.styles = Styles(f, table, self.create)
         self.attributes: dict[str, set[str]] = {}
         self.placed: dict[int, tuple] = {}  # id of an element's entity -> (placement, level)
 

@@ -395,19 +395,21 @@ def test_each_face_starts_at_a_true_corner():
     assert turned[8:].tolist() == [8, 0, 1]
 
 
-def test_the_quick_faces_are_create_entitys(house, monkeypatch):
-    from castor.formats import ifc
+def test_the_quick_entities_are_create_entitys(tmp_path, monkeypatch):
+    """The writer's quick entities (ifc_body.entity_maker) give the bytes that
+    ifcopenshell's create_entity gives."""
+    from castor.formats import ifc, ifc_body
     from castor.mesh.facetize import Facetizer
     from castor.pipeline import evaluated_frames
 
-    (scene, _), said = evaluated_frames(SCENE, "scene.cas")
-    frame = Facetizer().frame(scene)
-    quick = ifc.export(scene, frame)
-    from castor.formats import ifc_body
-
-    monkeypatch.setattr(ifc_body, "face_maker", lambda f: lambda row: f.create_entity(
-        "IfcIndexedPolygonalFace", row))
-    assert ifc.export(scene, frame) == quick
+    pavilion = ROOT / "examples" / "pavilion.cas"
+    for text, name in ((SCENE, "scene.cas"), (pavilion.read_text(), str(pavilion))):
+        (scene, *_), said = evaluated_frames(text, name)
+        frame = Facetizer().frame(scene)
+        quick = ifc.export(scene, frame)
+        with monkeypatch.context() as patched:
+            patched.setattr(ifc_body, "entity_maker", lambda f: f.create_entity)
+            assert ifc.export(scene, frame, facetizer=Facetizer()) == quick
 
 
 def test_an_empty_frame_is_a_valid_model_without_elements():
