@@ -180,6 +180,9 @@ def test_the_body_is_castors_polygons_one_closed_face_set(house):
             == ("Body", "Tessellation")
         (face_set,) = representation.Items
         assert face_set.is_a("IfcPolygonalFaceSet") and face_set.Closed
+        edges = Counter((f.CoordIndex[k], f.CoordIndex[(k + 1) % len(f.CoordIndex)])
+                        for f in face_set.Faces for k in range(len(f.CoordIndex)))
+        assert set(edges.values()) == {1} and all((b, a) in edges for a, b in edges)
         if element.is_a("IfcOpeningElement"):
             assert not face_set.StyledByItem  # an opening is not drawn
             continue
