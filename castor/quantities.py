@@ -326,13 +326,15 @@ class Takeoff:
     solids out are new work). What the take-off, the drawings and the IFC
     handover read of a frame's classes."""
 
-    def __init__(self, frame_tree, facetizer):
+    def __init__(self, scene, facetizer, polygons: bool = False):
         from castor.csg.elements import Boxes, find
 
         self.boxes = Boxes()
         self.frame_tree = frame_tree
         self.facetizer = facetizer
-        self.elements, self.openings = find(frame_tree)
+        # the solids as polygons (the BIM model's bodies), else as triangles
+        self.polygons = polygons
+        self.elements, self.openings = find(scene)
         self._solids: dict = {}
         self._storeys: list[tuple[str, float]] | None = None
         self._placed: list[Placed] | None = None
@@ -350,12 +352,16 @@ class Takeoff:
                                             (tree.Object(str(key), node),))
                 # triangles: the figures are the same, and no polygons are written
                 merging = self.facetizer.merge_polygons
-                self.facetizer.merge_polygons = False
+                self.facetizer.merge_polygons = self.polygons
                 try:
                     self._solids[key] = self.facetizer.frame(frame_tree).objects[0]
                 finally:
                     self.facetizer.merge_polygons = merging
         return self._solids[key]
+
+    def known(self, element, solid: FrameObject) -> None:
+        """Take ``solid`` as the element's own (made already: a whole '>' object's)."""
+        self._solids[("element", element.number)] = solid
 
     def solid(self, element) -> FrameObject:
         """The element's own solid, as polygons."""
@@ -423,13 +429,19 @@ class Takeoff:
         from castor.csg.elements import opening_tree
 
         out = []
+        # an opening's host is an element of its own '>' object: looked for there
+        # only (1,024 houses, 13,000 openings: not each against every element)
+        of_object: dict[int, list[Placed]] = {}
+        for p in self.placed():
+            of_object.setdefault(p.element.object, []).append(p)
         for opening in self.openings:
             whole = self._made(("opening", opening.number), opening_tree(self.frame_tree, opening))
             for k, piece in enumerate(shells(whole)):
                 f = object_figures(piece, opening.name)
                 (_, _, z0), (_, _, z1) = f.bbox
                 width, thickness, direction = footprint(piece.vertices)
-                out.append(Block(opening, k, piece, f, _host(self.placed(), f.bbox),
+                out.append(Block(opening, k, piece, f,
+                                 _host(of_object.get(opening.object, []), f.bbox),
                                  self.storey_at(z0), width, thickness, z1 - z0, z0, z1,
                                  direction))
         return out

@@ -81,7 +81,8 @@ def test_the_wedge_in_the_live_preview(tmp_path, monkeypatch):
         _, _, scene = get(port, "/scene.json")
         [frame] = scene["frames"]
         assert frame["origins"] == [{"path": "(rampe)!we", "colour": [0.8, 0.4, 0.2],
-                                     "source": "scene.cas:1:21: !we"}]
+                                     "source": "scene.cas:1:21: !we", "element": "rampe",
+                                     "class": None}]
         assert frame["box"] == [[0, 0, 0], [2, 1, 1]]
         assert frame["triangles"] == 8
         _, _, data = get(port, frame["url"])
