@@ -28,7 +28,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 
-from castor.csg.screen import Screen  # noqa: E402
+from castor.mesh.screen import Screen  # noqa: E402
 from castor.formats.cps import load  # noqa: E402
 from castor.pictures.camera import make_camera  # noqa: E402
 

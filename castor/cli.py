@@ -427,7 +427,8 @@ def _warn_without_effect(args, reporter) -> None:
     """Each option given that has no effect on the chosen output, once (CLI.md)."""
     from castor.formats import FORMATS, without_effect
 
-    for message in without_effect(args.given, FORMATS[args.format]):
+    brings = {option.flag: option.brings for option in OUTPUT_OPTIONS}
+    for message in without_effect(args.given, FORMATS[args.format], brings):
         reporter.warning(message)
 
 

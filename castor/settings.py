@@ -155,7 +155,7 @@ class MeshSettings(Record):
     def __init__(self, max_polygons: int = DEFAULT_MAX_POLYGONS, pixel_error: float | None = None):
         self.max_polygons = max_polygons
         # --pixel-error: facets sized to the screen of the picture settings' camera
-        # (castor.csg.screen); None: the tolerance alone
+        # (castor.mesh.screen); None: the tolerance alone
         self.pixel_error = pixel_error
 
 

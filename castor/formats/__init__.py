@@ -207,15 +207,16 @@ def acts_on(option: str, chosen: Format) -> bool:
     return option in chosen.kind.options or option in chosen.options
 
 
-def without_effect(given: list[str], chosen: Format) -> list[str]:
+def without_effect(given: list[str], chosen: Format,
+                   brings: dict[str, tuple[str, ...]] | None = None) -> list[str]:
     """A warning for each output option of ``given`` that has no effect on the
     format ``chosen``, naming the outputs it acts on (CLI.md): neither its own
-    nor brought by another option given that acts on it (--pixel-error brings
-    the camera's options)."""
-    from castor.options import OUTPUT_OPTIONS
-
-    brought = {flag for option in OUTPUT_OPTIONS
-               if option.flag in given and acts_on(option.flag, chosen) for flag in option.brings}
+    nor brought by another option given that acts on it (``brings``: the
+    options each option brings, from castor.options.OUTPUT_OPTIONS; --pixel-error
+    brings the camera's options)."""
+    brings = brings or {}
+    brought = {flag for option in given
+               if acts_on(option, chosen) for flag in brings.get(option, ())}
     return [f"{option} has no effect on {chosen.name} output (it acts on "
             f"{' and '.join(outputs_of(option))}); it is ignored"
             for option in given if not acts_on(option, chosen) and option not in brought]

@@ -128,7 +128,7 @@ class Polygons(Kind):
         # counts the frame's polygons
         merge = chosen is None or not chosen.triangles_only or settings.output.summary
         if settings.mesh.pixel_error is not None:  # facets sized to the screen
-            from castor.csg.screen import sized_to_screen
+            from castor.mesh.screen import sized_to_screen
 
             tree = sized_to_screen(tree, settings.picture, settings.mesh.pixel_error)
         frame, facetizer = _polygons(tree, settings, made, merge)

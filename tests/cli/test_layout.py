@@ -14,7 +14,7 @@ STAGES = {
     "castor.language": 1, "castor.primitives": 1, "castor.transformations": 1, "castor.booleans": 1,
     "castor.csg": 2,
     "castor.mesh": 3, "castor.pictures": 3,
-    "castor.formats": 4, "castor.drawings": 4, "castor.quantities": 4,
+    "castor.formats": 4, "castor.drawings": 4, "castor.quantities": 4, "castor.bim": 4,
     "castor.jobs": 5, "castor.interpreter": 5,
     "castor.pipeline": 6, "castor.run": 6, "castor.editing": 6,
     # the command lines: castor.options parses their text into castor.settings' records

@@ -17,7 +17,7 @@ import sys
 import numpy as np
 import pytest
 
-from castor.csg.screen import frame_box, sized_to_screen
+from castor.mesh.screen import frame_box, sized_to_screen
 from castor.mesh.facetize import Facetizer
 from castor.options import parse_view
 from castor.pictures.camera import make_camera
@@ -298,7 +298,7 @@ def test_the_pixel_error_is_no_option_of_pictures():
 def test_after_an_orbit_only_what_needs_twice_finer_or_coarser_changes():
     """The preview's rule (kept_where_close): an object keeps its facets unless a
     tolerance it needs changed by more than a factor of two."""
-    from castor.csg.screen import kept_where_close
+    from castor.mesh.screen import kept_where_close
     from castor.csg.tree import leaves
 
     text = ("TOLERANCE = 1e-5;\ncol = @h(0.3, 0.3, 4) !cy(1, 1, 1);\n"
