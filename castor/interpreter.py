@@ -46,6 +46,11 @@ class Interpreter:
         self.evaluator = Evaluator()
         self.frames_attempted = 0
         self.annotated: set[str] = set()  # parameters whose annotation was looked at
+        # LANGUAGE.md §11: the classes of objects by the place of their definition,
+        # the storeys' parameters; handed to the evaluator with each frame
+        self.classified: dict[tuple[str, int, int], object] = {}
+        self.storeys: list = []
+        self.declared_changed = False
 
     def run(self, chunks: Iterable[Chunk], streaming: bool = True) -> None:
         """Execute every statement; stops early only after too many errors.
@@ -94,7 +99,16 @@ class Interpreter:
         name = statement.name
         if name not in self.annotated:
             self.annotated.add(name)
-            self.check_annotation(statement)
+            self._read_storey(statement)
+            try:
+                self._assign(statement)
+            finally:  # after the value is known: a slider's range is checked against it
+                self.check_annotation(statement)
+            return
+        self._assign(statement)
+
+    def _assign(self, statement: ParamDef) -> None:
+        name = statement.name
         if name in self.settings.overrides:
             return  # --set wins over the scene's assignments, as openscad -D does
         if name == "TOLERANCE" and self.settings.tolerance is not None:
@@ -117,9 +131,73 @@ class Interpreter:
             return
         from castor.language.annotations import malformed
 
-        warning = malformed(text, where)
+        value = None if statement.name in self.settings.overrides else \
+            self.tables.parameters.get(statement.name)
+        warning = malformed(text, where, value)
         if warning is not None:
             self.reporter.warning(warning.message, warning.location)
+
+    def _read_storey(self, statement: ParamDef) -> None:
+        """``R1 = 3.0; // [storey "Étage"]``: R1's value is a storey's floor level."""
+        where = statement.location
+        text = self.reporter.source_lines.get((where.file, where.line))
+        if text is None or "storey" not in text:
+            return
+        from castor.language.annotations import storey_of
+        from castor.language.classes import StoreyMark
+
+        name = storey_of(text, where)
+        if name is not None:
+            self.storeys.append(StoreyMark(statement.name, name or statement.name, where))
+            self.declared_changed = True
+
+    def _comment(self, location):
+        """The comment after the statement starting at ``location`` (castor.language.
+        annotations.definition_comment), or None; cheap when its line has none."""
+        lines = self.reporter.source_lines
+        text = lines.get((location.file, location.line))
+        if text is None or ("//" not in text and ";" in text[location.column - 1:]):
+            return None
+        from castor.language.annotations import definition_comment
+
+        return definition_comment(lambda file, number: lines.get((file, number)), location)
+
+    def _classify(self, statement: ObjectDef) -> None:
+        """The class the comment on an object's definition gives it (LANGUAGE.md §11);
+        what cannot be understood is a warning, and the object is unclassed."""
+        where = statement.location
+        lines = self.reporter.source_lines
+        text = lines.get((where.file, where.line))
+        if text is None or ("//" not in text and ";" in text[where.column - 1:]):
+            return
+        from castor.language.classes import object_classes
+
+        for _, _, classification, problem in object_classes(
+                [(statement.name, where)], lambda file, number: lines.get((file, number))):
+            if problem is not None:
+                self.reporter.warning(problem.message, problem.location)
+            if classification is not None:
+                self.classified[(where.file, where.line, where.column)] = classification
+                self.declared_changed = True
+
+    def _stray_annotation(self, statement: Facetize) -> None:
+        """An annotation on a '>' command says nothing of anything: a warning."""
+        found = self._comment(statement.location)
+        if found is None or not found[0].lstrip().startswith("["):
+            return
+        text, at, _ = found
+        lead = len(text) - len(text.lstrip())
+        self.reporter.warning("annotation: a '>' command is not a definition; an annotation "
+                              "says what an object or a parameter is: put it on the line of "
+                              "its definition", at._replace(column=at.column + lead))
+
+    def _declared(self):
+        if self.declared_changed:
+            from castor.language.classes import Declared
+
+            self.declared_changed = False
+            self.evaluator.declared = Declared(tuple(self.classified.items()),
+                                               tuple(self.storeys))
 
     def _define_object(self, statement: ObjectDef) -> None:
         name = statement.name
@@ -129,6 +207,7 @@ class Interpreter:
                 statement.location)
         self.tables.objects[name] = statement.node
         self.tables.broken.discard(name)
+        self._classify(statement)
 
     def _facetize(self, statement: Facetize) -> None:
         """One frame, or one for each value of ``>[T = ...]``; an error found in
@@ -136,6 +215,8 @@ class Interpreter:
         from castor.csg.evaluate import FrameErrors, repeat_values
 
         where = f"{statement.location.file}:{statement.location.line}"
+        self._stray_annotation(statement)
+        self._declared()
         if statement.repeat is None:
             values = [None]
         else:

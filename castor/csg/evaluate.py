@@ -87,6 +87,7 @@ class Evaluator:
         self.memo: dict[tuple, tuple[NamedNode, tree.Shared | None]] = {}
         self.errors: list[CastorError] = []
         self._seen_errors: set[tuple] = set()
+        self.declared = None  # the scene's classes (castor.language.classes.Declared), if any
 
     def frame(self, objects: tuple[SceneNode, ...], env: MutableMapping[str, float], number: int,
               where: str, location: Location) -> tree.FrameTree:
@@ -111,7 +112,12 @@ class Evaluator:
         if self.errors:
             raise FrameErrors(self.errors)
         parameters = tuple((k, v) for k, v in env.items() if k != "PI")
-        return tree.FrameTree(number, where, location, tuple(made), parameters)
+        scene = tree.FrameTree(number, where, location, tuple(made), parameters, self.declared)
+        if self.declared is not None and self.declared.has_spaces:
+            from castor.csg.elements import without_spaces
+
+            scene = without_spaces(scene)
+        return scene
 
     def _fail(self, error: CastorError) -> None:
         key = (error.message, error.location)
