@@ -14,7 +14,8 @@ import itertools
 import math
 from typing import Callable, Iterable
 
-from castor.diagnostics import CastorError, Reporter, TooManyErrors
+from castor.diagnostics import (ArgumentCountError, CastorError, Reporter, TooManyErrors,
+                                UndefinedObject)
 from castor.language.expressions import UndefinedParameter, evaluate
 from castor.language.parse import Parser, SkippedDefinition
 from castor.language.reader import Chunk
@@ -51,6 +52,10 @@ class Interpreter:
         self.classified: dict[tuple[str, int, int], object] = {}
         self.storeys: list = []
         self.declared_changed = False
+        self.failed: set[str] = set()  # parameters whose last definition had errors
+        # objects whose definition had only errors that others explain (and were not said)
+        self.unsaid: set[str] = set()
+        self.said = False  # whether an error of the statement being run was said
 
     def run(self, chunks: Iterable[Chunk], streaming: bool = True) -> None:
         """Execute every statement; stops early only after too many errors.
@@ -83,9 +88,17 @@ class Interpreter:
     def execute(self, item) -> None:
         try:
             if isinstance(item, CastorError):
-                self.reporter.error(item)
-            elif isinstance(item, SkippedDefinition):
-                pass
+                if not self._explained(item):
+                    self.reporter.error(item)
+                    self.said = True
+                return
+            if isinstance(item, SkippedDefinition):
+                if item.name is None:
+                    pass
+                elif item.name[0].isupper():
+                    self.failed.add(item.name)
+                elif not self.said:  # every fault of its definition was explained
+                    self.unsaid.add(item.name)
             elif isinstance(item, ParamDef):
                 self._define_parameter(item)
             elif isinstance(item, ObjectDef):
@@ -93,7 +106,9 @@ class Interpreter:
             elif isinstance(item, Facetize):
                 self._facetize(item)
         except CastorError as exc:
-            self.reporter.error(exc)
+            if not self._explained(exc):
+                self.reporter.error(exc)
+        self.said = False
 
     def _define_parameter(self, statement: ParamDef) -> None:
         name = statement.name
@@ -116,11 +131,30 @@ class Interpreter:
         try:
             self.tables.parameters[name] = evaluate(statement.expr, self.tables.parameters)
         except UndefinedParameter as exc:
-            exc.message += (f"; parameter definitions are evaluated at once, where they stand, "
-                            f"so a repetition's variable such as '>[{exc.name} = ...]' has no "
-                            f"value here: write the expression inside the object that uses "
-                            f"it, or as a macro (#define {name} (...))")
+            self.failed.add(name)
+            if not self._explained(exc):
+                exc.message += (f"; parameter definitions are evaluated at once, where they "
+                                f"stand, so a repetition's variable such as '>[{exc.name} = "
+                                f"...]' has no value here: write the expression inside the "
+                                f"object that uses it, or as a macro (#define {name} (...))")
             raise
+        except CastorError:
+            self.failed.add(name)
+            raise
+        self.failed.discard(name)
+
+    def _explained(self, error: CastorError) -> bool:
+        """Whether an error already reported explains this one: one message per
+        cause. A use of a parameter whose definition had errors says nothing
+        more (an object's says so in a message of its own); nor does an argument
+        count where an argument names a parameter that has no value after an
+        #include that could not be read (it may be one of that file's macros,
+        such as a colour's three components)."""
+        if isinstance(error, UndefinedParameter):
+            return error.name in self.failed and error.name not in self.tables.parameters
+        if isinstance(error, ArgumentCountError) and self.reporter.unread_includes:
+            return any(name not in self.tables.parameters for name in error.names)
+        return isinstance(error, UndefinedObject) and error.name in self.unsaid
 
     def check_annotation(self, statement: ParamDef) -> None:
         """A malformed annotation (the comment after a parameter's first definition,
@@ -208,6 +242,7 @@ class Interpreter:
         self.tables.objects[name] = statement.node
         self.tables.broken.discard(name)
         self._classify(statement)
+        self.unsaid.discard(name)
 
     def _facetize(self, statement: Facetize) -> None:
         """One frame, or one for each value of ``>[T = ...]``; an error found in
@@ -241,6 +276,8 @@ class Interpreter:
             if self.submit is not None:
                 self.submit(scene)
         for error, numbers in failures.values():
+            if self._explained(error):
+                continue
             if len(values) > 1:
                 error.message += f" (in {frames_text(numbers)})"
             self.reporter.error(error)
@@ -248,11 +285,9 @@ class Interpreter:
 
 def frames_text(numbers: list[int]) -> str:
     """'frame 3', 'frames 1 to 11', 'frames 1, 3, 7'."""
-    if len(numbers) == 1:
-        return f"frame {numbers[0]}"
-    if numbers == list(range(numbers[0], numbers[-1] + 1)):
-        return f"frames {numbers[0]} to {numbers[-1]}"
-    return "frames " + ", ".join(str(n) for n in numbers)
+    from castor.csg.evaluate import counted
+
+    return counted("frame", numbers)
 
 
 __all__ = ["Interpreter", "TooManyErrors", "frames_text"]

@@ -285,17 +285,24 @@ def _level_symbols(levels, box_mm, x, items):
     return [level for level, _ in shown]
 
 
-def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> Sheet:
-    """The drawing on its sheet (``paper``: castor.options.Paper, or None for a
-    sheet as large as the drawing needs). Raises DoesNotFit when the drawing
-    is larger than the paper at its scale."""
-    mm = 1000.0 / drawing.scale
+class _Frame(NamedTuple):
+    """What stands round a drawing at a scale, before it is placed on paper (paper
+    mm, the page's origin at (0, 0), y down)."""
+
+    box: np.ndarray  # the box of what is drawn (with the ground line's overhang)
+    ground: bool  # a ground line under an elevation or a vertical section
+    chains: list  # the dimension chains (castor.drawings.annotate.Chain)
+    levels: list  # the level heights of an elevation or a vertical section
+    level_x: float  # where the column of levels stands
+    content: np.ndarray  # the box of the drawing and everything round it
+
+
+def _framed(drawing, mm: float) -> _Frame:
     (x0, y0), (x1, y1) = drawing.box()
     vertical = tuple(drawing.view.up) == (0, 0, 1)  # an elevation or a vertical section
     ground = vertical
     if ground:
         y0, y1 = min(y0, 0.0), max(y1, 0.0)
-    # the box of what is drawn, on paper with the page origin at (0, 0)
     box = np.array([[x0 * mm, -y1 * mm], [x1 * mm, -y0 * mm]])
     if ground:
         box[0, 0] -= GROUND_OVERHANG
@@ -308,39 +315,107 @@ def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> 
     levels = level_heights(drawing.layers, np.array([[x0, y0], [x1, y1]])) if vertical else []
     level_x = box[1, 0] + depth["right"] + (4.0 if depth["right"] else 6.0)
     right = depth["right"] + (LEVEL_WIDTH + 6.0 if levels else 0.0)
-    # the content's box on paper: the drawing and everything round it
     content = np.array([[box[0, 0] - depth["left"], box[0, 1] - depth["top"]],
                         [box[1, 0] + right, box[1, 1] + depth["bottom"]]])
-    title_w, title_h = TITLE_BLOCK
-    bar_m, bar_step = scale_bar_length(drawing.scale)
-    bar_w = bar_m * mm + 10.0 + (20.0 if drawing.is_plan else 0.0)
-    band = title_h + 8.0  # below the content: scale bar, north arrow, title block
-    cw, ch = content[1] - content[0]
-    if paper is None:
-        width = max(cw, title_w + bar_w + 10.0) + 2 * MARGIN
-        height = ch + band + 2 * MARGIN
-        shift = np.array([MARGIN + (width - 2 * MARGIN - cw) / 2, MARGIN]) - content[0]
+    return _Frame(box, ground, chains, levels, level_x, content)
+
+
+# the scale bar and north arrow above the title block, when the two do not
+# fit side by side (an upright A4): the band is this much taller
+STACKED = 25.0
+
+
+def _bar_width(drawing, scale: float) -> float:
+    """The scale bar's width with its label, and the north arrow's beside it for a plan."""
+    bar_m, _ = scale_bar_length(scale)
+    return bar_m * 1000.0 / scale + 10.0 + (20.0 if drawing.is_plan else 0.0)
+
+
+def _band(drawing, scale: float, room: float | None) -> tuple[float, bool]:
+    """The band below the content (scale bar, north arrow, title block): its
+    height, and whether the scale bar stands above the title block, which it
+    does when the two do not fit side by side in ``room`` mm (None: no paper)."""
+    side_by_side = room is None or TITLE_BLOCK[0] + _bar_width(drawing, scale) + 10.0 <= room
+    return TITLE_BLOCK[1] + 8.0 + (0.0 if side_by_side else STACKED), not side_by_side
+
+
+class _Room(NamedTuple):
+    """A drawing at one scale on one paper: what it needs and what the paper holds."""
+
+    frame: _Frame
+    band: float
+    stacked: bool
+    area: tuple[float, float]  # the paper's room for the content, mm
+
+    @property
+    def need(self) -> tuple[float, float]:
+        return tuple(self.frame.content[1] - self.frame.content[0])
+
+    def fits(self, paper, drawing, scale: float) -> bool:
+        room = paper.width - 2 * MARGIN
+        return (self.need[0] <= self.area[0] and self.need[1] <= self.area[1]
+                and max(TITLE_BLOCK[0], _bar_width(drawing, scale)) + 10.0 <= room)
+
+
+def _room(drawing, paper, scale: float) -> _Room:
+    band, stacked = _band(drawing, scale, float(paper.width) - 2 * MARGIN)
+    area = (float(paper.width) - 2 * MARGIN - 10.0, float(paper.height) - 2 * MARGIN - 10.0 - band)
+    return _Room(_framed(drawing, 1000.0 / scale), band, stacked, area)
+
+
+def _refusal(drawing, paper, room: _Room) -> DoesNotFit:
+    """Why the drawing does not fit its paper at its scale, and the largest
+    standard scale at which it does (laid out as it would then be)."""
+    cw, ch = room.need
+    if cw <= room.area[0] and ch <= room.area[1]:
+        need = (f"its scale bar needs {_bar_width(drawing, drawing.scale):.0f} mm; "
+                f"the sheet holds {paper.width - 2 * MARGIN - 10.0:.0f} mm")
     else:
+        need = (f"{cw:.0f} x {ch:.0f} mm; the sheet holds {room.area[0]:.0f} x "
+                f"{room.area[1]:.0f} mm")
+    fits = [n for n in STANDARD_SCALES if _room(drawing, paper, n).fits(paper, drawing, n)]
+    if fits:
+        return DoesNotFit(f"the drawing does not fit on {paper.name} at 1:{drawing.scale:g} "
+                          f"({need}); the largest scale that fits is 1:{min(fits)}: "
+                          f"--scale 1:{min(fits)}, or a larger --sheet")
+    return DoesNotFit(f"the drawing does not fit on {paper.name} at 1:{drawing.scale:g} "
+                      f"({need}), nor at 1:{STANDARD_SCALES[-1]}; use a larger --sheet")
+
+
+def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> Sheet:
+    """The drawing on its sheet (``paper``: castor.options.Paper, or None for a
+    sheet as large as the drawing needs). Raises DoesNotFit when the drawing
+    is larger than the paper at its scale."""
+    mm = 1000.0 / drawing.scale
+    stacked = False
+    if paper is None:
+        frame = _framed(drawing, mm)
+        band, _ = _band(drawing, drawing.scale, None)
+        cw, ch = frame.content[1] - frame.content[0]
+        width = max(cw, TITLE_BLOCK[0] + _bar_width(drawing, drawing.scale) + 10.0) + 2 * MARGIN
+        height = ch + band + 2 * MARGIN
+        shift = np.array([MARGIN + (width - 2 * MARGIN - cw) / 2, MARGIN]) - frame.content[0]
+    else:
+        room = _room(drawing, paper, drawing.scale)
+        if not room.fits(paper, drawing, drawing.scale):
+            raise _refusal(drawing, paper, room)
+        frame, stacked = room.frame, room.stacked
+        (cw, ch), (area_w, area_h) = room.need, room.area
         width, height = float(paper.width), float(paper.height)
-        area_w = width - 2 * MARGIN - 10.0
-        area_h = height - 2 * MARGIN - 10.0 - band
-        if cw > area_w or ch > area_h or title_w + bar_w + 10 > width - 2 * MARGIN:
-            extra = np.array([cw, ch]) - np.array([x1 - x0, y1 - y0]) * mm
-            fits = [n for n in STANDARD_SCALES
-                    if (x1 - x0) * 1000 / n + extra[0] <= area_w
-                    and (y1 - y0) * 1000 / n + extra[1] <= area_h]
-            need = f"{cw:.0f} x {ch:.0f} mm; the sheet holds {area_w:.0f} x {area_h:.0f} mm"
-            if fits:
-                raise DoesNotFit(f"the drawing does not fit on {paper.name} at 1:{drawing.scale:g} "
-                                 f"({need}); the largest scale that fits is 1:{min(fits)}: "
-                                 f"--scale 1:{min(fits)}, or a larger --sheet")
-            raise DoesNotFit(f"the drawing does not fit on {paper.name} at 1:{drawing.scale:g} "
-                             f"({need}), nor at 1:{STANDARD_SCALES[-1]}; use a larger --sheet")
         top_left = np.array([MARGIN + 5.0 + (area_w - cw) / 2, MARGIN + 5.0 + (area_h - ch) / 2])
-        shift = top_left - content[0]
+        shift = top_left - frame.content[0]
     origin = (float(shift[0]), float(shift[1]))
-    box_mm = box + shift
-    level_x += shift[0]
+    box_mm = frame.box + shift
+    layers = _drawn(drawing, frame.ground, box_mm, origin, mm)
+    dimensions, levels, cad = _annotated(drawing, frame, box_mm, origin, mm,
+                                         frame.level_x + shift[0], warn)
+    band = _sheet_band(drawing, paper, width, height, stacked, mm, title, where)
+    return Sheet(width, height, title, drawing.description(), origin, mm, layers,
+                 [dimensions, levels, band], cad, drawing)
+
+
+def _drawn(drawing, ground: bool, box_mm, origin, mm: float) -> list[Group]:
+    """One group per object of the drawing (and the ground line), in paper mm."""
 
     def paper_of(points):
         points = np.asarray(points, float)
@@ -364,10 +439,16 @@ def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> 
         layers.append(Group("ground", [Lines(np.array([[[box_mm[0, 0], origin[1]],
                                                         [box_mm[1, 0], origin[1]]]]),
                                              PROFILE_PEN, "profile")]))
-    dimensions_group, levels_group, sheet_group = Group("dimensions"), Group("levels"), Group("sheet")
+    return layers
+
+
+def _annotated(drawing, frame: _Frame, box_mm, origin, mm: float, level_x: float,
+               warn) -> tuple[Group, Group, list]:
+    """The dimensions' and the levels' groups, and the dimensions as CAD keeps them."""
+    dimensions_group, levels_group = Group("dimensions"), Group("levels")
     cad: list[Dimension] = []
     left_out = {}
-    for chain in chains:
+    for chain in frame.chains:
         missing = _dimension_side(chain, box_mm, mm, origin, dimensions_group.items, cad)
         if missing:
             left_out[chain.side] = missing
@@ -375,27 +456,34 @@ def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> 
         sides = ", ".join(f"{n} on the {side}" for side, n in left_out.items())
         warn(f"{sum(left_out.values())} dimension(s) left out, too narrow for their text at "
              f"1:{drawing.scale:g} ({sides}); a larger scale shows them")
-    if levels:
-        placed = [(level, origin[1] - level.height * mm) for level in levels]
+    if frame.levels:
+        placed = [(level, origin[1] - level.height * mm) for level in frame.levels]
         _level_symbols(placed, box_mm, level_x, levels_group.items)
-    # the band: title block at the lower right, scale bar and north arrow at the left
+    return dimensions_group, levels_group, cad
+
+
+def _sheet_band(drawing, paper, width: float, height: float, stacked: bool, mm: float,
+                title: str, where: str) -> Group:
+    """The border (on paper), the title block at the lower right, the scale bar
+    and the north arrow at the left of it, or above it when ``stacked``."""
+    group = Group("sheet")
+    title_w, title_h = TITLE_BLOCK
+    tx, ty = width - MARGIN - title_w, height - MARGIN - title_h
     if paper is not None:
-        sheet_group.items.append(Shape([np.array([(MARGIN, MARGIN), (width - MARGIN, MARGIN),
-                                                  (width - MARGIN, height - MARGIN),
-                                                  (MARGIN, height - MARGIN)])], PROFILE_PEN,
-                                       None, True, "sheet"))
-        tx, ty = width - MARGIN - title_w, height - MARGIN - title_h
-        bx, by = MARGIN + 5.0, height - MARGIN - 8.0
+        group.items.append(Shape([np.array([(MARGIN, MARGIN), (width - MARGIN, MARGIN),
+                                            (width - MARGIN, height - MARGIN),
+                                            (MARGIN, height - MARGIN)])], PROFILE_PEN,
+                                 None, True, "sheet"))
+        bx, by = MARGIN + 5.0, (ty - 6.0 if stacked else height - MARGIN - 8.0)
     else:
-        tx, ty = width - MARGIN - title_w, height - MARGIN - title_h
         bx, by = MARGIN, height - MARGIN - 8.0
-    _title_block(sheet_group.items, tx, ty, title, drawing.description(),
+    _title_block(group.items, tx, ty, title, drawing.description(),
                  f"1:{drawing.scale:g}", sheet_date(), where)
-    _scale_bar(sheet_group.items, bx, by, bar_m, bar_step, mm)
+    bar_m, bar_step = scale_bar_length(drawing.scale)
+    _scale_bar(group.items, bx, by, bar_m, bar_step, mm)
     if drawing.is_plan:
-        _north_arrow(sheet_group.items, bx + bar_m * mm + 18.0, by - 9.0)
-    return Sheet(width, height, title, drawing.description(), origin, mm, layers,
-                 [dimensions_group, levels_group, sheet_group], cad, drawing)
+        _north_arrow(group.items, bx + bar_m * mm + 18.0, by - 9.0)
+    return group
 
 
 def _fitted(text: str, size: float, room: float, keep_end: bool = False) -> tuple[str, float]:

@@ -218,8 +218,10 @@ def test_missing_include_is_reported_once_with_the_search_path(tmp_path):
         "(searched: projet, lib); give the directory that holds it with -I DIR",
         ' #include "couleurs.cas"',
         "          ^"]
-    # the run goes on, as an external cpp's would: the errors after it are seen too
-    assert err.splitlines()[3].startswith("projet/maison.cas:2:21: error: ")
+    # and nothing more: '!cu(ENDUIT)' has one argument only because ENDUIT, a
+    # macro of the missing file, is not defined (issue 29, item 4: one message
+    # per cause; tests/language/test_one_message_per_cause.py)
+    assert len(err.splitlines()) == 3, err
 
 
 def test_include_is_found_beside_the_including_file(tmp_path):

@@ -259,3 +259,51 @@ def test_a_frame_before_an_unterminated_comment_is_written(args):
     assert status == 1
     assert out.count("\npoly ") == 6 and out.endswith("endframe 1 6\n"), out
     assert err.startswith("<stdin>:2:1: error: unterminated comment: '/*' has no matching '*/'")
+
+
+# --- the preprocessor's syntax and the language's brackets together ---------
+#
+# Issue 29, item 2: a macro with a trailing comma in its parameters and a
+# repetition bracket inside an expression were internal errors, found by a
+# fuzzer whose alphabet had the preprocessor's own syntax. The suite runs a few
+# hundred cases; CASTOR_FUZZ_EXAMPLES=100000 runs it long.
+
+FUZZ_EXAMPLES = int(os.environ.get("CASTOR_FUZZ_EXAMPLES", "150"))
+CPP_WORDS = ["#define", "#undef", "#if", "#ifdef", "#ifndef", "#elif", "#else", "#endif",
+             "#include", "#line", "#error", "#warning", "#pragma", "#", "##", "defined",
+             "__VA_ARGS__", "...", "\\\n", "M", "M(", "N(", "X", "Y", "LX", "LY,", '"a.cas"',
+             "<a>", "__LINE__", "__FILE__", "1", "0", "(", ")", ",", "&&", "||", "!", "?", ":",
+             "==", "<", "'", '"']
+SCENE_WORDS = ["[", "]", "(", ")", ",", ";", "=", ">", "[I = 0, 3]", "[T = 0, 1, 0.5]",
+               "$U", "$I", "$D", "$U[I = 0, 3](", ">[T = 0, 1]", "!cu(1,1,1)", "!sp(", "@t(",
+               "@rz(", "a", "b", "E", "I", "T", "X", "round(", "sqrt(16)", "cos(60)", "*",
+               "+", "-", "/", "^", "%", "1e-308", "1e308", "2", "0", "/*", "*/", "//", "\n"]
+
+
+@st.composite
+def cpp_scenes(draw):
+    """Lines of directives and statements drawn from both vocabularies, the
+    macros they define used in the statements."""
+    lines = []
+    for _ in range(draw(st.integers(1, 8))):
+        if draw(st.booleans()):
+            head = draw(st.sampled_from(["#define M(", "#define N(X, Y) ", "#define MUR(LX, LY,) ",
+                                         "#define M ", "#if ", "#ifdef ", "#endif", "#else",
+                                         "#include ", "#undef ", "#line ", "#"]))
+            words = draw(st.lists(st.sampled_from(CPP_WORDS + SCENE_WORDS), max_size=8))
+        else:
+            head = ""
+            words = draw(st.lists(st.sampled_from(SCENE_WORDS + ["M", "M(1)", "N(1, 2)",
+                                                                 "MUR(1, 2,)", "M(1, 2)"]),
+                                  max_size=14))
+        lines.append(head + " ".join(words))
+    return "\n".join(lines) + "\n"
+
+
+@settings(max_examples=FUZZ_EXAMPLES, deadline=None, suppress_health_check=list(HealthCheck))
+@given(cpp_scenes())
+@example("#define MUR(LX, LY,) @t(LX, LY, 0) !cu(1,1,1)\n> MUR(1, 2,);\n")
+@example("E = round(sqrt(16) + cos(60) * 1e-308 [I = 0, 3] 1);\n> !cu(1,1,1);\n")
+def test_preprocessor_and_brackets_never_crash(text):
+    check(text)
+    _run_file(text)
