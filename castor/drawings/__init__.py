@@ -26,11 +26,12 @@ def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
     if given, seen from ``view`` (castor.options.View) otherwise."""
     seen = view_for(section, view)
     depth = seen.plane_depth(section)
-    objects = [o for o in frame.objects if o.polygon_count]
+    sources = [k for k, o in enumerate(frame.objects) if o.polygon_count]
+    objects = [frame.objects[k] for k in sources]
     cuts = [cut_loops(o, seen, depth) if section is not None else [] for o in objects]
     lines = seen_lines(objects, seen, depth)
-    layers = [Layer(o.name or f"object{k + 1}", c, l, p)
-              for k, (o, c, (l, p)) in enumerate(zip(objects, cuts, lines))]
+    layers = [Layer(o.name or f"object{k + 1}", c, l, p, source)
+              for k, (o, c, (l, p), source) in enumerate(zip(objects, cuts, lines, sources))]
     return Drawing(layers, seen, scale, section)
 
 
@@ -45,16 +46,22 @@ def title_of(scene, title: str | None) -> str:
     return os.path.basename(scene.location.file) or "castor"
 
 
-def sheet_of(scene, frame, settings, title: str | None = None, warn=None):
+def sheet_of(scene, frame, settings, title: str | None = None, warn=None, facetizer=None):
     """The frame drawn and laid on its sheet (castor.drawings.sheet.Sheet), as
     ``settings`` (castor.settings.DrawingSettings) ask, titled ``title``
     (--title); what a drawing format writes. ``warn(message)`` hears of
     dimensions left out; a drawing larger than its paper is a CastorError at
-    the '>' command."""
+    the '>' command. With the facetizer that made ``frame`` and classes in the
+    scene, the drawing shows what its elements are (castor.drawings.classes)."""
     from castor.diagnostics import CastorError
     from castor.drawings.sheet import DoesNotFit, layout
 
     result = draw(frame, settings.section, settings.view, settings.scale)
+    if facetizer is not None and scene.classes is not None:
+        from castor.drawings.classes import classify
+        from castor.quantities import Takeoff
+
+        classify(result, Takeoff(scene, facetizer), warn)
     try:
         return layout(result, settings.sheet, title_of(scene, title), scene.where, warn)
     except DoesNotFit as exc:

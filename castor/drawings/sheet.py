@@ -13,6 +13,7 @@ them, a triangle on the level's line with its height above.
 from __future__ import annotations
 
 import datetime
+import math
 import os
 from dataclasses import dataclass, field
 from typing import NamedTuple
@@ -62,7 +63,24 @@ class Lines(NamedTuple):
 
     segments: np.ndarray
     pen: float
-    kind: str  # "profile", "seen", "annotation", "sheet"
+    kind: str  # "profile", "seen", "annotation", "sheet", "symbol", "overhead"
+    dashed: bool = False  # ISO 128's dashed line: DASH mm dashes, GAP mm gaps
+
+
+DASH, GAP = 3.0, 1.5  # mm
+
+
+class Arc(NamedTuple):
+    """A circular arc in paper mm, counter-clockwise as seen on the paper from
+    ``start`` to ``end`` degrees (0 along paper x, 90 up the paper)."""
+
+    x: float
+    y: float
+    radius: float
+    start: float
+    end: float
+    pen: float
+    kind: str = "symbol"
 
 
 class Shape(NamedTuple):
@@ -73,6 +91,8 @@ class Shape(NamedTuple):
     fill: str | None = None
     closed: bool = True
     kind: str = "annotation"  # "cut", "annotation", "sheet"
+    pattern: str | None = None  # a hatch (castor.drawings.classes.HATCHES) over the fill
+    label: str = ""  # what it is (a cut region: its element's class)
 
 
 class Text(NamedTuple):
@@ -326,9 +346,26 @@ STACKED = 25.0
 
 
 def _bar_width(drawing, scale: float) -> float:
-    """The scale bar's width with its label, and the north arrow's beside it for a plan."""
+    """The scale bar's width with its label, the north arrow's beside it for a
+    plan, and the legend of the hatches beside them."""
     bar_m, _ = scale_bar_length(scale)
-    return bar_m * 1000.0 / scale + 10.0 + (20.0 if drawing.is_plan else 0.0)
+    return bar_m * 1000.0 / scale + 10.0 + (20.0 if drawing.is_plan else 0.0) + _legend_width(drawing)
+
+
+LEGEND_ROWS, LEGEND_ROW, LEGEND_SWATCH = 4, 5.5, (8.0, 4.0)  # rows a column, mm
+
+
+def _legend(drawing) -> list:
+    return list(getattr(drawing.symbols, "legend", None) or [])
+
+
+def _legend_width(drawing) -> float:
+    """The legend's width: columns of LEGEND_ROWS swatches with their words."""
+    entries = _legend(drawing)
+    if not entries:
+        return 0.0
+    columns = [entries[k:k + LEGEND_ROWS] for k in range(0, len(entries), LEGEND_ROWS)]
+    return sum(LEGEND_SWATCH[0] + 6.0 + max(text_width(w, TEXT) for _, w in c) for c in columns)
 
 
 def _band(drawing, scale: float, room: float | None) -> tuple[float, bool]:
@@ -407,11 +444,13 @@ def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> 
     origin = (float(shift[0]), float(shift[1]))
     box_mm = frame.box + shift
     layers = _drawn(drawing, frame.ground, box_mm, origin, mm)
+    symbols = _symbols(drawing, origin, mm)
     dimensions, levels, cad = _annotated(drawing, frame, box_mm, origin, mm,
                                          frame.level_x + shift[0], warn)
     band = _sheet_band(drawing, paper, width, height, stacked, mm, title, where)
+    groups = [dimensions, levels, band] if symbols is None else [symbols, dimensions, levels, band]
     return Sheet(width, height, title, drawing.description(), origin, mm, layers,
-                 [dimensions, levels, band], cad, drawing)
+                 groups, cad, drawing)
 
 
 def _drawn(drawing, ground: bool, box_mm, origin, mm: float) -> list[Group]:
@@ -431,7 +470,13 @@ def _drawn(drawing, ground: bool, box_mm, origin, mm: float) -> list[Group]:
                 group.items.append(Lines(seen, SEEN_PEN, "seen"))
             if len(profile):
                 group.items.append(Lines(profile, PROFILE_PEN, "profile"))
-        if layer.cuts:
+        if layer.regions is not None:
+            for region in layer.regions:  # element by element, hatched by class
+                solid = region.pattern == "SOLID"
+                group.items.append(Shape([paper_of(loop) for loop in region.loops], CUT_PEN,
+                                         POCHE if solid else "white", True, "cut",
+                                         None if solid else region.pattern, region.ifc_class))
+        elif layer.cuts:
             group.items.append(Shape([paper_of(loop) for loop in layer.cuts], CUT_PEN, POCHE,
                                      True, "cut"))
         layers.append(group)
@@ -440,6 +485,70 @@ def _drawn(drawing, ground: bool, box_mm, origin, mm: float) -> list[Group]:
                                                         [box_mm[1, 0], origin[1]]]]),
                                              PROFILE_PEN, "profile")]))
     return layers
+
+
+def _symbols(drawing, origin, mm: float) -> Group | None:
+    """The classes' symbols (castor.drawings.classes) in paper mm: doors'
+    leaves and swings, windows, stairs, what is overhead (dashed), room tags
+    and a plan's floor level; None without classes."""
+    symbols = drawing.symbols
+    if symbols is None:
+        return None
+
+    def paper_of(points):
+        points = np.asarray(points, float)
+        return np.stack([points[..., 0] * mm + origin[0], origin[1] - points[..., 1] * mm], axis=-1)
+
+    group = Group("symbols")
+    by_pen: dict[tuple, list] = {}
+    for stroke in symbols.strokes:
+        points = paper_of(stroke.points)
+        if stroke.closed:
+            points = np.concatenate([points, points[:1]])
+        by_pen.setdefault((stroke.pen, stroke.dashed), []).extend(
+            np.stack([points[:-1], points[1:]], axis=1).tolist())
+    for (pen, dashed), segments in sorted(by_pen.items()):
+        group.items.append(Lines(np.array(segments, float).reshape(-1, 2, 2), pen,
+                                 "overhead" if dashed else "symbol", dashed))
+    for arc in symbols.arcs:
+        (x, y), = paper_of([arc.centre]).tolist()
+        group.items.append(Arc(x, y, arc.radius * mm, arc.start, arc.end, arc.pen))
+    for label in symbols.labels:
+        (x, y), = paper_of([label.at]).tolist()
+        step = label.size * 1.3
+        for k, line in enumerate(label.lines):
+            size = label.size if k == 0 else TEXT
+            # the line's middle at the label's point, further lines below it
+            t = math.radians(label.angle)
+            down = k * step + size * 0.35
+            group.items.append(Text(x + math.sin(t) * down, y + math.cos(t) * down, line, size,
+                                    label.angle, "middle"))
+    if symbols.storey is not None and symbols.level_at is not None:
+        (x, y), = paper_of([symbols.level_at]).tolist()
+        y += 3.0 * 1.3 + 5.5  # below the first room's tag
+        text = level_text(symbols.storey[1])
+        group.items.append(Shape([np.array([(x - 5.5, y - 2.2), (x - 2.5, y - 2.2), (x - 4.0, y)])],
+                                 THIN_PEN, None, True, "symbol"))
+        group.items.append(Lines(np.array([[(x - 7.0, y), (x - 1.0, y)]]), THIN_PEN, "symbol"))
+        group.items.append(Text(x - 0.5, y - 0.5, text, TEXT, 0.0, "start"))
+    return group
+
+
+def _legend_items(drawing, items, x: float, y: float) -> None:
+    """The hatches the sheet uses, each a swatch and its words, in columns from
+    (x, y), the lowest row's baseline."""
+    w, h = LEGEND_SWATCH
+    entries = _legend(drawing)
+    for start in range(0, len(entries), LEGEND_ROWS):
+        column = entries[start:start + LEGEND_ROWS]
+        for k, (pattern, words) in enumerate(column):
+            top = y - (len(column) - 1 - k) * LEGEND_ROW - h + 0.5
+            box = np.array([(x, top), (x + w, top), (x + w, top + h), (x, top + h)])
+            solid = pattern == "SOLID"
+            items.append(Shape([box], THIN_PEN, POCHE if solid else "white", True, "legend",
+                               None if solid else pattern, words))
+            items.append(Text(x + w + 2.0, top + h - 0.5, words, TEXT))
+        x += w + 6.0 + max(text_width(words, TEXT) for _, words in column)
 
 
 def _annotated(drawing, frame: _Frame, box_mm, origin, mm: float, level_x: float,
@@ -483,6 +592,9 @@ def _sheet_band(drawing, paper, width: float, height: float, stacked: bool, mm: 
     _scale_bar(group.items, bx, by, bar_m, bar_step, mm)
     if drawing.is_plan:
         _north_arrow(group.items, bx + bar_m * mm + 18.0, by - 9.0)
+    if _legend(drawing):
+        _legend_items(drawing, group.items,
+                      bx + bar_m * mm + 10.0 + (20.0 if drawing.is_plan else 0.0), by + 4.0)
     return group
 
 

@@ -63,16 +63,24 @@ def _sheet_items(msp, sheet, items, layer):
     """Lines, shapes and text of the sheet's paper, in model-space metres."""
     from ezdxf.enums import TextEntityAlignment
 
-    from castor.drawings.sheet import Lines, Shape
+    from castor.drawings.sheet import Arc, Lines, Shape
 
     for item in items:
         if isinstance(item, Lines):
-            weight = _weight(item.pen)
+            attributes = {"layer": layer, "lineweight": _weight(item.pen)}
+            if item.dashed:
+                attributes["linetype"] = DASHED
             for (a, b) in sheet.to_metres(item.segments).tolist():
-                msp.add_line(a, b, dxfattribs={"layer": layer, "lineweight": weight})
+                msp.add_line(a, b, dxfattribs=attributes)
+        elif isinstance(item, Arc):
+            (x, y), = sheet.to_metres(np.array([[item.x, item.y]])).tolist()
+            msp.add_arc((x, y), item.radius / sheet.mm, item.start, item.end,
+                        dxfattribs={"layer": layer, "lineweight": _weight(item.pen)})
         elif isinstance(item, Shape):
             loops = [sheet.to_metres(loop) for loop in item.loops]
-            if item.fill not in (None, "white"):
+            if item.pattern is not None:
+                _hatch(msp, sheet, loops, item.pattern, layer)
+            elif item.fill not in (None, "white"):
                 hatch = msp.add_hatch(color=7, dxfattribs={"layer": layer})
                 for loop in loops:
                     hatch.paths.add_polyline_path([tuple(p) for p in loop.tolist()], is_closed=True)
@@ -86,6 +94,31 @@ def _sheet_items(msp, sheet, items, layer):
             align = {"start": TextEntityAlignment.LEFT, "middle": TextEntityAlignment.CENTER,
                      "end": TextEntityAlignment.RIGHT}[item.anchor]
             text.set_placement((x, y), align=align)
+
+
+DASHED = "CASTOR_DASHED"
+
+
+def _linetypes(doc, mm: float) -> None:
+    """ISO 128's dashed line at the printed size: DASH mm dashes, GAP mm gaps."""
+    from castor.drawings.sheet import DASH, GAP
+
+    k = 1 / mm
+    doc.linetypes.add(DASHED, pattern=[(DASH + GAP) * k, DASH * k, -GAP * k],
+                      description="Dashed __ __ __")
+
+
+def _hatch(msp, sheet, loops, pattern: str, layer: str) -> None:
+    """A region hatched with its pattern (castor.drawings.classes.HATCHES): a
+    real HATCH of that name, scaled so that its lines are as far apart on the
+    printed sheet as in the SVG and PDF."""
+    from castor.drawings.classes import HATCHES
+
+    _, period, unit = HATCHES[pattern]
+    hatch = msp.add_hatch(color=7, dxfattribs={"layer": layer})
+    hatch.set_pattern_fill(pattern, color=7, scale=period / sheet.mm / unit)
+    for loop in loops:
+        hatch.paths.add_polyline_path([tuple(p) for p in np.asarray(loop).tolist()], is_closed=True)
 
 
 def _tidy(value: float) -> float:
@@ -108,9 +141,24 @@ def export_drawing(sheet) -> bytes:
     drawing = sheet.drawing
     annotation = {"dimensions", "levels", "sheet"}
     names = _layer_names([l.name for l in drawing.layers], annotation | {"ground"})
+    if drawing.symbols is not None:
+        _linetypes(doc, sheet.mm)
     for layer, name in zip(drawing.layers, names):
         doc.layers.add(name)
-        if layer.cuts:
+        if layer.regions is not None:
+            for region in layer.regions:
+                if region.pattern == "SOLID":
+                    hatch = msp.add_hatch(color=8, dxfattribs={"layer": name})
+                    hatch.set_solid_fill(color=8)
+                    for loop in region.loops:
+                        hatch.paths.add_polyline_path([tuple(p) for p in loop.tolist()],
+                                                      is_closed=True)
+                else:
+                    _hatch(msp, sheet, region.loops, region.pattern, name)
+                for loop in region.loops:
+                    msp.add_lwpolyline([tuple(p) for p in loop.tolist()], close=True,
+                                       dxfattribs={"layer": name, "lineweight": _weight(CUT_PEN)})
+        elif layer.cuts:
             hatch = msp.add_hatch(color=8, dxfattribs={"layer": name})
             hatch.set_solid_fill(color=8)
             for loop in layer.cuts:

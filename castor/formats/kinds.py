@@ -189,7 +189,8 @@ class Drawings(Kind):
 
         frame, facetizer = _polygons(tree, settings, made)
         sheet = sheet_of(tree, frame, settings.drawing, settings.output.title,
-                         lambda message: made.warnings.append((message, tree.location)))
+                         lambda message: made.warnings.append((message, tree.location)),
+                         facetizer)
         _figures(settings, made, frame, facetizer, tree)
         return sheet
 

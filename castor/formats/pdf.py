@@ -32,11 +32,59 @@ def _colour(canvas, name: str | None, fill: bool) -> None:
     (canvas.setFillColor if fill else canvas.setStrokeColor)(colour)
 
 
+def _outline(page, item):
+    path = page.beginPath()
+    for loop in item.loops:
+        points = np.asarray(loop).tolist()
+        path.moveTo(*points[0])
+        for point in points[1:]:
+            path.lineTo(*point)
+        path.close()
+    return path
+
+
+def _hatched(page, item) -> None:
+    """A region hatched with its pattern (castor.drawings.classes.HATCHES) at the
+    printed size: white, the pattern's lines clipped to the region, its outline."""
+    from reportlab.pdfgen.canvas import FILL_EVEN_ODD
+
+    from castor.drawings.classes import HATCHES
+    from castor.drawings.sheet import THIN_PEN
+
+    page.setFillColorRGB(1, 1, 1)
+    page.drawPath(_outline(page, item), stroke=0, fill=1, fillMode=FILL_EVEN_ODD)
+    page.setFillColorRGB(0, 0, 0)
+    points = np.concatenate([np.asarray(loop, float) for loop in item.loops])
+    low, high = points.min(axis=0), points.max(axis=0)
+    page.saveState()
+    page.clipPath(_outline(page, item), stroke=0, fill=0, fillMode=FILL_EVEN_ODD)
+    families, period, _ = HATCHES[item.pattern]
+    reach = float(np.linalg.norm(high - low)) / 2 + period
+    centre = (low + high) / 2
+    lines = page.beginPath()
+    for angle, offset in families:
+        t = np.radians(angle)
+        d = np.array([np.cos(t), -np.sin(t)])  # along the line, on paper (y down)
+        n = np.array([-d[1], d[0]])
+        first = np.floor((centre @ n - reach) / period)
+        for k in range(int(2 * reach / period) + 3):
+            c = ((first + k + offset) * period)
+            base = n * c + d * (centre @ d)
+            a, b = base - d * reach, base + d * reach
+            lines.moveTo(*a.tolist())
+            lines.lineTo(*b.tolist())
+    page.setLineWidth(THIN_PEN)
+    page.drawPath(lines, stroke=1, fill=0)
+    page.restoreState()
+    page.setLineWidth(item.pen)
+    page.drawPath(_outline(page, item), stroke=1, fill=0)
+
+
 def export_drawing(sheet) -> bytes:
     """The sheet as PDF bytes, one page of the sheet's size."""
     from reportlab.pdfgen import canvas as pdfcanvas
 
-    from castor.drawings.sheet import Lines, Shape
+    from castor.drawings.sheet import DASH, GAP, Arc, Lines, Shape
 
     out = io.BytesIO()
     page = pdfcanvas.Canvas(out, pagesize=(sheet.width * MM, sheet.height * MM), invariant=1,
@@ -56,7 +104,23 @@ def export_drawing(sheet) -> bytes:
                     path.moveTo(x0, y0)
                     path.lineTo(x1, y1)
                 page.setLineWidth(item.pen)
+                if item.dashed:
+                    page.setDash(DASH, GAP)
+                    page.setLineCap(0)
                 page.drawPath(path, stroke=1, fill=0)
+                if item.dashed:
+                    page.setDash()
+                    page.setLineCap(1)
+            elif isinstance(item, Arc):
+                # y runs down the page here: an angle on paper is its negative
+                path = page.beginPath()
+                r = item.radius
+                path.arc(item.x - r, item.y - r, item.x + r, item.y + r, -item.end,
+                         (item.end - item.start) % 360)
+                page.setLineWidth(item.pen)
+                page.drawPath(path, stroke=1, fill=0)
+            elif isinstance(item, Shape) and item.pattern is not None:
+                _hatched(page, item)
             elif isinstance(item, Shape):
                 path = page.beginPath()
                 for loop in item.loops:
