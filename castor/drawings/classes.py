@@ -128,14 +128,15 @@ def classify(drawing, takeoff, warn=None) -> None:
     ceiling = min(above) if above else math.inf
     symbols.storey = (name, level)
     centre = _centre(takeoff)
+    loops = [loop for layer in drawing.layers for loop in layer.cuts]
     for block in takeoff.blocks():
         cls = block.opening.classification.ifc_class
         if not block.sill < z < block.head:
             continue
         if cls == DOOR:
-            _door(block, centre, symbols)
+            _door(block, centre, loops, symbols)
         elif cls == WINDOW:
-            _window(block, symbols)
+            _window(block, loops, symbols)
     for opening in takeoff.openings:
         if not any(b.opening is opening for b in takeoff.blocks()):
             warn(f"{opening.classification.short} '{opening.name}' ({opening.where}) cuts "
@@ -176,27 +177,58 @@ def _centre(takeoff) -> np.ndarray:
     return (low[:2] + high[:2]) / 2
 
 
-def _frame_of(block):
-    """The block's plan middle, the unit vector along its width and across it."""
+def _frame_of(block, loops):
+    """The block's plan middle, the unit vector along its width and across it,
+    and the wall's thickness: read from the cut regions (``loops``) just beyond
+    its jambs, as the block a cutter took can be deeper than the wall where
+    another cutter (the room's inside) took the rest."""
     (x0, y0, _), (x1, y1, _) = block.figures.bbox
     middle = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
     along = np.array(block.direction, float)
     along /= np.linalg.norm(along)
-    return middle, along, np.array([-along[1], along[0]])
+    across = np.array([-along[1], along[0]])
+    for sign in (1, -1):
+        probe = middle + along * sign * (block.width / 2 + 0.02)
+        span = _span(loops, probe, across, block.thickness / 2)
+        if span is not None:
+            return middle + across * (span[0] + span[1]) / 2, along, across, span[1] - span[0]
+    return middle, along, across, block.thickness
 
 
-def _door(block, centre, symbols: Symbols) -> None:
+def _span(loops, point, direction, reach: float):
+    """The stretch (s0, s1) of the line point + s * direction inside the loops
+    that holds a point within ``reach`` of s = 0, or None."""
+    hits = []
+    for loop in loops:
+        p, q = loop, np.roll(loop, -1, axis=0)
+        e = q - p
+        # point + s d = p + t e
+        det = direction[0] * (-e[:, 1]) - direction[1] * (-e[:, 0])
+        ok = np.abs(det) > 1e-12
+        r = p - point
+        s = np.where(ok, (r[:, 0] * (-e[:, 1]) - r[:, 1] * (-e[:, 0])) / np.where(ok, det, 1), 0)
+        t = np.where(ok, (direction[0] * r[:, 1] - direction[1] * r[:, 0]) / np.where(ok, det, 1), -1)
+        hits.extend(s[ok & (t >= 0) & (t < 1)].tolist())
+    hits.sort()
+    for a, b in zip(hits[0::2], hits[1::2]):
+        if a - 1e-9 <= reach and b + 1e-9 >= -reach and b - a > 1e-6:
+            if a <= 0 <= b or abs(a) <= reach or abs(b) <= reach:
+                return a, b
+    return None
+
+
+def _door(block, centre, loops, symbols: Symbols) -> None:
     """The leaf, square to the wall at its hinge, open, and its swing: a quarter
     circle of the door's width from the leaf's end to the other jamb. ``hinge``
     is seen from the side the door opens towards; ``swing=in`` opens towards
     the building's middle."""
     settings = dict(block.opening.classification.settings)
-    middle, along, across = _frame_of(block)
+    middle, along, across, t = _frame_of(block, loops)
     inwards = across if float(np.dot(centre - middle, across)) >= 0 else -across
     towards = inwards if settings.get("swing", "in") == "in" else -inwards
     left = np.array([towards[1], -towards[0]])  # the left hand of one facing the door
     side = left if settings.get("hinge", "left") == "left" else -left
-    w, t = block.width, block.thickness
+    w = block.width
     hinge = middle + towards * t / 2 + side * w / 2
     symbols.strokes.append(Stroke(np.array([hinge, hinge + towards * w])))
     a = math.degrees(math.atan2(towards[1], towards[0]))
@@ -205,11 +237,11 @@ def _door(block, centre, symbols: Symbols) -> None:
     symbols.arcs.append(Arc((float(hinge[0]), float(hinge[1])), w, start % 360, end % 360))
 
 
-def _window(block, symbols: Symbols) -> None:
+def _window(block, loops, symbols: Symbols) -> None:
     """The frame (a band in the middle of the wall's thickness) and the glass
     (a line along its middle), between the jambs."""
-    middle, along, across = _frame_of(block)
-    w, t = block.width, block.thickness
+    middle, along, across, t = _frame_of(block, loops)
+    w = block.width
     f = min(0.07, t / 3) / 2
     ends = [middle - along * w / 2, middle + along * w / 2]
     corners = np.array([ends[0] - across * f, ends[1] - across * f,

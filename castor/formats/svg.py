@@ -114,7 +114,7 @@ def _patterns(sheet) -> list[str]:
         p = _number(period)
         lines = []
         for angle, offset in families:
-            at = _number(offset * period)
+            at = _number(((offset + 0.5) % 1.0) * period)  # whole, not halved by the tile's edge
             if (angle - first) % 180 == 0:
                 lines.append(f"M0 {at}H{p}")
             else:
@@ -143,6 +143,7 @@ def export_drawing(sheet) -> bytes:
         f'<g id="drawing" data-origin="{_number(sheet.origin[0])} {_number(sheet.origin[1])}" '
         f'data-mm-per-metre="{sheet.mm:.12g}">',
     ]
+    out[4:4] = _patterns(sheet)  # before the drawing's group
     reserved = {"drawing"} | {g.name for g in sheet.groups}
     for group, ident in zip(sheet.layers, _ids([g.name for g in sheet.layers], reserved)):
         out.append(f'<g id="{ident}" inkscape:groupmode="layer" '
