@@ -48,6 +48,7 @@ PATTERNS = {
 OTHER = ("ANSI34", "Other elements")
 UNCLASSED = (SOLID, "Unclassed")
 
+WALLS = ("IfcWall", "IfcWallStandardCase", "IfcCurtainWall")
 SEEN_PEN = 0.18  # mm: symbols are seen edges (OUTPUT.md)
 DOOR, WINDOW, STAIR = "IfcDoor", "IfcWindow", "IfcStair"
 
@@ -106,6 +107,13 @@ class Symbols:
     legend: list = field(default_factory=list)  # (pattern, words), in the order first used
     storey: tuple | None = None  # a plan's storey: (name, floor level)
     level_at: tuple | None = None  # where a plan marks its floor level (page metres)
+    walls: list = field(default_factory=list)  # the cut walls' loops: the chains follow them
+    cut_openings: list = field(default_factory=list)  # page boxes of the openings cut
+    seen_openings: list = field(default_factory=list)  # page boxes of openings seen face on
+    storeys: list = field(default_factory=list)  # the storeys' floor levels
+    # a section's or elevation's vertical chains: side -> heights of its
+    # openings' sills and heads
+    sides: dict = field(default_factory=dict)
 
 
 def classify(drawing, takeoff, warn=None) -> None:
@@ -118,6 +126,8 @@ def classify(drawing, takeoff, warn=None) -> None:
     plan = drawing.section is not None and drawing.section.axis == "z"
     if drawing.section is not None:
         _regions(drawing, takeoff, symbols, plan)
+    symbols.storeys = [level for _, level in takeoff.storeys()]
+    _openings(drawing, takeoff, symbols)
     if not plan:
         return
     z = float(drawing.section.value)
@@ -161,12 +171,60 @@ def _regions(drawing, takeoff, symbols: Symbols, plan: bool) -> None:
         if not loops:
             continue
         pattern, words = pattern_of(p.element)
+        if p.element.ifc_class in WALLS:
+            symbols.walls.extend(loops)
         by_object.setdefault(p.element.object, []).append(
             Region(p.element.name, p.element.ifc_class, pattern, loops))
         if (pattern, words) not in symbols.legend:
             symbols.legend.append((pattern, words))
     for layer in drawing.layers:
         layer.regions = by_object.get(layer.source, [])
+
+
+def _openings(drawing, takeoff, symbols: Symbols) -> None:
+    """The page boxes of the openings the drawing cuts (the chains break at
+    them) and of those it sees face on (what is seen through them is no
+    level); for a section or an elevation, the sills and heads of the
+    openings on each side, for its vertical chains."""
+    basis = drawing.view.basis()
+    towards = basis[2]
+    depth = drawing.view.plane_depth(drawing.section)
+    blocks = takeoff.blocks()
+    if not blocks:
+        return
+    seen = []
+    for block in blocks:
+        low, high = np.array(block.figures.bbox)
+        corners = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
+                            for z in (low[2], high[2])]) @ basis.T
+        box = (tuple(corners[:, :2].min(axis=0)), tuple(corners[:, :2].max(axis=0)))
+        d0, d1 = corners[:, 2].min(), corners[:, 2].max()
+        across = np.array([-block.direction[1], block.direction[0], 0.0])
+        face_on = abs(float(across @ towards)) > 0.99
+        if depth is not None and d0 < depth < d1:
+            symbols.cut_openings.append(box)
+            seen.append((block, box, True))
+        elif face_on and (depth is None or d1 <= depth + 1e-9):
+            symbols.seen_openings.append(box)
+            seen.append((block, box, False))
+    vertical = abs(basis[1][2]) > 0.99
+    if not vertical:
+        return
+    # the vertical chains: the openings cut, else (an elevation) those seen in
+    # the façade nearest the viewer
+    chosen = [(b, box) for b, box, cut in seen if cut]
+    if not chosen and drawing.section is None:
+        nearest = max(float(np.max(np.array(b.figures.bbox) @ towards)) for b, _, _ in seen) \
+            if seen else None
+        chosen = [(b, box) for b, box, _ in seen
+                  if float(np.max(np.array(b.figures.bbox) @ towards)) > nearest - 1.0]
+    if not chosen:
+        return
+    extent = drawing.box()
+    middle = (extent[0, 0] + extent[1, 0]) / 2
+    for block, box in chosen:
+        side = "left" if (box[0][0] + box[1][0]) / 2 < middle else "right"
+        symbols.sides.setdefault(side, []).extend([box[0][1], box[1][1]])
 
 
 def _centre(takeoff) -> np.ndarray:

@@ -21,7 +21,7 @@ from typing import NamedTuple
 import numpy as np
 
 from castor.drawings.annotate import (Chain, dimension_chains, length_text, level_heights,
-                                      level_text)
+                                      level_text, vertical_chain)
 
 CUT_PEN, PROFILE_PEN, SEEN_PEN, THIN_PEN = 0.5, 0.35, 0.18, 0.13  # mm
 POCHE = "#8c8c8c"
@@ -289,7 +289,7 @@ def _level_symbols(levels, box_mm, x, items):
     shown than its text's height and gap is merged into it; the ground and the
     top are shown first, then the others from the bottom up. Returns the
     levels shown."""
-    priority = {"ground": 0, "top": 1, "edge": 2}
+    priority = {"ground": 0, "storey": 1, "top": 2, "edge": 3}
     shown: list = []
     for level, y in sorted(levels, key=lambda item: (priority[item[0].kind], -item[1])):
         if all(abs(y - other) >= TEXT + 1.0 for _, other in shown):
@@ -327,17 +327,48 @@ def _framed(drawing, mm: float) -> _Frame:
     if ground:
         box[0, 0] -= GROUND_OVERHANG
         box[1, 0] += GROUND_OVERHANG
-    loops = [c for layer in drawing.layers for c in layer.cuts]
-    chains = dimension_chains(loops) if drawing.section is not None else []
+    chains = _chains(drawing, np.array([[x0, y0], [x1, y1]]), vertical)
     depth = {side: 0.0 for side in ("bottom", "top", "left", "right")}
     for chain in chains:
         depth[chain.side] = DEPTH[READS[chain.side]] if len(chain.breaks) else DEPTH[READS[chain.side]] - 9
-    levels = level_heights(drawing.layers, np.array([[x0, y0], [x1, y1]])) if vertical else []
+    symbols = drawing.symbols
+    levels = level_heights(drawing.layers, np.array([[x0, y0], [x1, y1]]),
+                           symbols.storeys if symbols else (),
+                           symbols.seen_openings + symbols.cut_openings if symbols else (),
+                           symbols is not None,
+                           [h for hs in symbols.sides.values() for h in hs] if symbols else ()
+                           ) if vertical else []
     level_x = box[1, 0] + depth["right"] + (4.0 if depth["right"] else 6.0)
     right = depth["right"] + (LEVEL_WIDTH + 6.0 if levels else 0.0)
     content = np.array([[box[0, 0] - depth["left"], box[0, 1] - depth["top"]],
                         [box[1, 0] + right, box[1, 1] + depth["bottom"]]])
     return _Frame(box, ground, chains, levels, level_x, content)
+
+
+def _chains(drawing, box: np.ndarray, vertical: bool) -> list:
+    """The dimension chains of a drawing: along the cut regions of a plan or
+    section; with classes, along the cut walls only (the others when none is
+    cut), breaking at every opening cut, and on a section or an elevation
+    vertical chains of the storeys, the openings' sills and heads and the top."""
+    symbols = drawing.symbols
+    loops = [c for layer in drawing.layers for c in layer.cuts]
+    if symbols is None:
+        return dimension_chains(loops) if drawing.section is not None else []
+    chains = []
+    if drawing.section is not None:
+        chains = dimension_chains(symbols.walls or loops, symbols.cut_openings, classed=True)
+    if vertical:
+        levels = [h for h in symbols.storeys if box[0, 1] - 1e-3 <= h <= box[1, 1] + 1e-3]
+        sides = {"left": box[0, 0], "right": box[1, 0]}
+        made = {}
+        for side, edge in sides.items():
+            chain = vertical_chain(side, edge, levels + symbols.sides.get(side, []),
+                                   float(box[1, 1]))
+            if chain is not None:
+                made[side] = chain
+        if made:  # they stand for the cut regions' own chains on those sides
+            chains = [c for c in chains if c.side not in ("left", "right")] + list(made.values())
+    return chains
 
 
 # the scale bar and north arrow above the title block, when the two do not
