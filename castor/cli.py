@@ -16,7 +16,8 @@ import threading
 from castor import __version__
 from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
 from castor.options import (DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE,
-                            OUTPUT_OPTIONS, negative_values, option_value, parse_count)
+                            OUTPUT_OPTIONS, TITLE_FIELDS, negative_values, option_value,
+                            parse_count)
 
 
 class _NotGiven(list):
@@ -299,7 +300,9 @@ def settings_of(args, overrides: dict[str, float]):
         picture=PictureSettings(size=args.size, view=args.view, eye=args.eye, look=args.look,
                                 sun=args.sun, samples=args.samples, edges=args.edges),
         drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale,
-                                sheet=args.sheet),
+                                sheet=args.sheet, fields=tuple(
+                                    (name, getattr(args, name)) for name in TITLE_FIELDS
+                                    if getattr(args, name) is not None)),
         bim=BimSettings(classes=args.ifc_class))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)

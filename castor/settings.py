@@ -90,14 +90,17 @@ class PictureSettings(Record):
 class DrawingSettings(Record):
     """Drawing a plan, section or elevation (castor.drawings)."""
 
-    __slots__ = ("section", "view", "scale", "sheet")
+    __slots__ = ("section", "view", "scale", "sheet", "fields")
 
     def __init__(self, section: object = None, view: object = None, scale: float = DEFAULT_SCALE,
-                 sheet: object = None):
+                 sheet: object = None, fields: tuple[tuple[str, str], ...] = ()):
         self.section = section  # castor.options.Section: cut by this plane
         self.view = view  # castor.options.View: seen from this side
         self.scale = scale  # 1:scale on paper
         self.sheet = sheet  # castor.options.Paper (--sheet); None: paper as large as the drawing
+        # the title block's fields given ("project", "number", "revision", "drawn",
+        # "checked", and a register's "sheet_number", "sheet_title"), as (name, text)
+        self.fields = fields
 
 
 class BimSettings(Record):

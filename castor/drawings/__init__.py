@@ -35,12 +35,15 @@ def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
     return Drawing(layers, seen, scale, section)
 
 
+def plain(text: str) -> str:
+    """A text for a sheet: control characters (which XML refuses) made spaces."""
+    return "".join(" " if unicodedata.category(c) in ("Cc", "Cs") else c for c in text).strip()
+
+
 def title_of(scene, title: str | None) -> str:
     """The sheet's title: --title, else the name of the '>' object, else the file's."""
     if title:
-        # control characters have no place on a sheet (and XML refuses most)
-        title = "".join(" " if unicodedata.category(c) in ("Cc", "Cs") else c for c in title)
-        return title.strip() or "castor"
+        return plain(title) or "castor"
     if len(scene.objects) == 1 and scene.objects[0].name:
         return scene.objects[0].name
     return os.path.basename(scene.location.file) or "castor"
@@ -57,6 +60,7 @@ def sheet_of(scene, frame, settings, title: str | None = None, warn=None, faceti
     from castor.drawings.sheet import DoesNotFit, layout
 
     result = draw(frame, settings.section, settings.view, settings.scale)
+    result.fields = {name: plain(str(text)) for name, text in settings.fields if plain(str(text))}
     if facetizer is not None and scene.classes is not None:
         from castor.drawings.classes import classify
         from castor.quantities import Takeoff

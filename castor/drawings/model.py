@@ -72,6 +72,7 @@ class Drawing:
     scale: float  # the N of 1:N
     section: object = None  # castor.options.Section, None for an elevation
     symbols: object = None  # castor.drawings.classes.Symbols, with classes only
+    fields: dict = field(default_factory=dict)  # the title block's fields (settings.fields)
 
     @property
     def is_plan(self) -> bool:

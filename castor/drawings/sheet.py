@@ -29,6 +29,12 @@ TEXT = 2.5  # mm, the height of dimension, level and sheet text
 MARGIN = 10.0  # mm round the sheet's content, and from the paper's edge to the border
 STANDARD_SCALES = (20, 50, 100, 200, 500, 1000)
 TITLE_BLOCK = (110.0, 30.0)  # mm
+PROJECT_ROWS = 13.0  # mm the project's fields add on top of the title block
+
+
+def _title_size(drawing) -> tuple[float, float]:
+    """The title block's width and height: taller with the project's fields."""
+    return TITLE_BLOCK[0], TITLE_BLOCK[1] + (PROJECT_ROWS if getattr(drawing, "fields", None) else 0.0)
 GROUND_OVERHANG = 5.0  # mm the ground line runs on beyond the drawing
 
 # where the parts of a dimension stand, in mm out from the drawing's box
@@ -404,7 +410,7 @@ def _band(drawing, scale: float, room: float | None) -> tuple[float, bool]:
     height, and whether the scale bar stands above the title block, which it
     does when the two do not fit side by side in ``room`` mm (None: no paper)."""
     side_by_side = room is None or TITLE_BLOCK[0] + _bar_width(drawing, scale) + 10.0 <= room
-    return TITLE_BLOCK[1] + 8.0 + (0.0 if side_by_side else STACKED), not side_by_side
+    return _title_size(drawing)[1] + 8.0 + (0.0 if side_by_side else STACKED), not side_by_side
 
 
 class _Room(NamedTuple):
@@ -607,7 +613,7 @@ def _sheet_band(drawing, paper, width: float, height: float, stacked: bool, mm: 
     """The border (on paper), the title block at the lower right, the scale bar
     and the north arrow at the left of it, or above it when ``stacked``."""
     group = Group("sheet")
-    title_w, title_h = TITLE_BLOCK
+    title_w, title_h = _title_size(drawing)
     tx, ty = width - MARGIN - title_w, height - MARGIN - title_h
     if paper is not None:
         group.items.append(Shape([np.array([(MARGIN, MARGIN), (width - MARGIN, MARGIN),
@@ -617,6 +623,12 @@ def _sheet_band(drawing, paper, width: float, height: float, stacked: bool, mm: 
         bx, by = MARGIN + 5.0, (ty - 6.0 if stacked else height - MARGIN - 8.0)
     else:
         bx, by = MARGIN, height - MARGIN - 8.0
+    if drawing.fields:
+        _project_rows(group.items, tx, ty, drawing.fields)
+        ty += PROJECT_ROWS
+    fields = drawing.fields
+    if fields.get("sheet_title"):
+        title = fields["sheet_title"]
     _title_block(group.items, tx, ty, title, drawing.description(),
                  f"1:{drawing.scale:g}", sheet_date(), where)
     bar_m, bar_step = scale_bar_length(drawing.scale)
@@ -639,6 +651,30 @@ def _fitted(text: str, size: float, room: float, keep_end: bool = False) -> tupl
             text = text[1:] if keep_end else text[:-1]
         text = "…" + text if keep_end else text + "…"
     return text, size
+
+
+def _project_rows(items, x, y, fields: dict) -> None:
+    """The project's rows on top of the title block: its title and number; the
+    sheet's number, the revision, who drew and who checked it."""
+    w = TITLE_BLOCK[0]
+    items.append(Shape([np.array([(x, y), (x + w, y), (x + w, y + PROJECT_ROWS),
+                                  (x, y + PROJECT_ROWS)])], PROFILE_PEN, None, True, "sheet"))
+    items.append(Lines(np.array([[(x, y + 6.5), (x + w, y + 6.5)],
+                                 [(x + 40, y + 6.5), (x + 40, y + PROJECT_ROWS)],
+                                 [(x + 62, y + 6.5), (x + 62, y + PROJECT_ROWS)],
+                                 [(x + 86, y + 6.5), (x + 86, y + PROJECT_ROWS)]]),
+                       SEEN_PEN, "sheet"))
+    number = fields.get("number", "")
+    room = w - 6 - (text_width(number, TEXT) + 3 if number else 0)
+    text, size = _fitted(fields.get("project", ""), 3.5, room)
+    items.append(Text(x + 3, y + 5.0, text, size))
+    if number:
+        items.append(Text(x + w - 3, y + 5.0, _fitted(number, TEXT, w / 2)[0], TEXT, 0.0, "end"))
+    cells = ((x, 40, "Sheet", fields.get("sheet_number", "")), (x + 40, 22, "Rev", fields.get("revision", "")),
+             (x + 62, 24, "Drawn", fields.get("drawn", "")), (x + 86, 24, "Checked", fields.get("checked", "")))
+    for left, width, name, value in cells:
+        text, size = _fitted(f"{name} {value}".strip(), TEXT, width - 3)
+        items.append(Text(left + 1.5, y + 11.3, text, size))
 
 
 def _title_block(items, x, y, title, what, scale, date, where):

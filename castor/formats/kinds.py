@@ -182,7 +182,8 @@ class Drawings(Kind):
     """A plan, section or elevation laid on its sheet (castor.drawings)."""
 
     name, plural = "drawing", "drawings"
-    options = ("--view", "--section", "--scale", "--sheet", "--title")
+    options = ("--view", "--section", "--scale", "--sheet", "--title", "--project", "--number",
+               "--revision", "--drawn", "--checked")
 
     def make(self, tree, settings, chosen, made):
         from castor.drawings import sheet_of
