@@ -302,7 +302,8 @@ def settings_of(args, overrides: dict[str, float]):
         drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale,
                                 sheet=args.sheet, fields=tuple(
                                     (name, getattr(args, name)) for name in TITLE_FIELDS
-                                    if getattr(args, name) is not None)),
+                                    if getattr(args, name) is not None),
+                                register=args.sheets),
         bim=BimSettings(classes=args.ifc_class))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)

@@ -269,6 +269,10 @@ OUTPUT_OPTIONS = (
                  PICTURES_AND_DRAWINGS),
     OutputOption("--checked", "TEXT", "who checked it, in a drawing's title block",
                  PICTURES_AND_DRAWINGS),
+    OutputOption("--sheets", "FILE", "a drawing set: FILE is the drawing register (TOML); "
+                 "every sheet in one .pdf (an index, then a page each), one .dxf (a layout "
+                 "each) or a file each for a %%d pattern", PICTURES_AND_DRAWINGS,
+                 parse="castor.drawings.register:parse_register"),
     OutputOption("--ifc-class", "NAME=CLASS", "IFC class of the object NAME, such as "
                  "maison=IfcWall (repeatable; default IfcBuildingElementProxy)", BUILDING_MODELS,
                  parse="castor.formats.ifc:parse_classes_option", absent=(), repeat=True),

@@ -90,10 +90,11 @@ class PictureSettings(Record):
 class DrawingSettings(Record):
     """Drawing a plan, section or elevation (castor.drawings)."""
 
-    __slots__ = ("section", "view", "scale", "sheet", "fields")
+    __slots__ = ("section", "view", "scale", "sheet", "fields", "register")
 
     def __init__(self, section: object = None, view: object = None, scale: float = DEFAULT_SCALE,
-                 sheet: object = None, fields: tuple[tuple[str, str], ...] = ()):
+                 sheet: object = None, fields: tuple[tuple[str, str], ...] = (),
+                 register: object = None):
         self.section = section  # castor.options.Section: cut by this plane
         self.view = view  # castor.options.View: seen from this side
         self.scale = scale  # 1:scale on paper
@@ -101,6 +102,7 @@ class DrawingSettings(Record):
         # the title block's fields given ("project", "number", "revision", "drawn",
         # "checked", and a register's "sheet_number", "sheet_title"), as (name, text)
         self.fields = fields
+        self.register = register  # castor.drawings.register.Register (--sheets), or None
 
 
 class BimSettings(Record):

@@ -18,7 +18,8 @@ from castor.drawings.model import Drawing, Layer, ViewBasis, view_for
 from castor.drawings.cut import cut_loops, section_area
 from castor.drawings.hidden import seen_lines
 
-__all__ = ["Drawing", "Layer", "ViewBasis", "draw", "section_area", "sheet_of", "title_of"]
+__all__ = ["Drawing", "DrawingSet", "Layer", "ViewBasis", "draw", "section_area", "set_of", "sheet_of",
+           "title_of"]
 
 
 def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
@@ -70,3 +71,54 @@ def sheet_of(scene, frame, settings, title: str | None = None, warn=None, faceti
         return layout(result, settings.sheet, title_of(scene, title), scene.where, warn)
     except DoesNotFit as exc:
         raise CastorError(str(exc), scene.location) from None
+
+
+class DrawingSet:
+    """A drawing register printed (--sheets): each sheet laid out, in the
+    register's order, with the register and, for a %d pattern, the pattern."""
+
+    def __init__(self, register, entries: list, sheets: list, pattern: str | None):
+        self.register = register  # castor.drawings.register.Register
+        self.entries = entries  # its SheetEntry for each sheet
+        self.sheets = sheets  # castor.drawings.sheet.Sheet ...
+        self.pattern = pattern  # -o's path when it is a %d pattern: a file per sheet
+
+
+def set_of(scene, frame, settings, title: str | None = None, warn=None, facetizer=None,
+           target: str | None = None) -> DrawingSet:
+    """Every sheet of the register (``settings.register``) drawn from the frame
+    and laid out; plans carry the set's section and elevation marks. A sheet
+    whose drawing does not fit its paper is a CastorError at its line of the
+    register, naming the scale that fits."""
+    from castor.diagnostics import CastorError, Location
+    from castor.drawings.marks import mark_plans
+    from castor.drawings.sheet import DoesNotFit, layout
+
+    register = settings.register
+    takeoff = None
+    if facetizer is not None and scene.classes is not None:
+        from castor.quantities import Takeoff
+
+        takeoff = Takeoff(scene, facetizer)  # shared by the sheets: solids made once
+    drawings = []
+    for entry in register.sheets:
+        drawing = draw(frame, entry.section, entry.view, entry.scale)
+        fields = tuple(settings.fields) + register.fields(entry)
+        drawing.fields = {name: plain(str(text)) for name, text in fields if plain(str(text))}
+        if takeoff is not None:
+            from castor.drawings.classes import classify
+
+            classify(drawing, takeoff, warn)
+        drawings.append(drawing)
+    mark_plans(drawings, register.sheets)
+    sheets = []
+    for entry, drawing in zip(register.sheets, drawings):
+        try:
+            sheets.append(layout(drawing, entry.paper, title_of(scene, title), scene.where, warn))
+        except DoesNotFit as exc:
+            raise CastorError(f"sheet {entry.number} ({entry.drawing}): {exc}",
+                              Location(register.path, entry.line, 1)) from None
+    from castor.formats.output import has_pattern
+
+    return DrawingSet(register, list(register.sheets), sheets,
+                      target if target is not None and has_pattern(target) else None)

@@ -183,15 +183,21 @@ class Drawings(Kind):
 
     name, plural = "drawing", "drawings"
     options = ("--view", "--section", "--scale", "--sheet", "--title", "--project", "--number",
-               "--revision", "--drawn", "--checked")
+               "--revision", "--drawn", "--checked", "--sheets")
 
     def make(self, tree, settings, chosen, made):
         from castor.drawings import sheet_of
 
         frame, facetizer = _polygons(tree, settings, made)
-        sheet = sheet_of(tree, frame, settings.drawing, settings.output.title,
-                         lambda message: made.warnings.append((message, tree.location)),
-                         facetizer)
+        warn = lambda message: made.warnings.append((message, tree.location))  # noqa: E731
+        if settings.drawing.register is not None:
+            from castor.drawings import set_of
+
+            sheet = set_of(tree, frame, settings.drawing, settings.output.title, warn,
+                           facetizer, settings.output.target)
+        else:
+            sheet = sheet_of(tree, frame, settings.drawing, settings.output.title, warn,
+                             facetizer)
         _figures(settings, made, frame, facetizer, tree)
         return sheet
 

@@ -1,0 +1,195 @@
+"""The drawing register (CLI.md, ``--sheets FILE``): the studio's list of
+sheets, in TOML, that one run prints as a set.
+
+```toml
+[project]
+title = "Maison Dupont"      # the title block's fields, for every sheet
+number = "2026-014"
+drawn = "MB"
+checked = "PM"
+revision = "B"
+sheet = "A3"                 # defaults for every sheet
+scale = "1:50"
+
+[[sheet]]
+number = "A-101"
+title = "Plan du rez-de-chaussée"
+drawing = "plan z=1.2"       # plan z=H | section x=V | section y=V | elevation front|back|left|right
+```
+
+Read with tomllib; an unknown key, drawing or size, or a value that is not
+text, is a usage error (a ValueError) naming the register's line.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import NamedTuple
+
+PROJECT_KEYS = ("title", "number", "drawn", "checked", "revision", "sheet", "scale")
+SHEET_KEYS = ("number", "title", "drawing", "sheet", "scale", "revision")
+DRAWINGS = "plan z=H, section x=V, section y=V or elevation front|back|left|right"
+
+
+class SheetEntry(NamedTuple):
+    """One sheet of the register."""
+
+    number: str
+    title: str
+    drawing: str  # as written: "plan z=1.2"
+    section: object  # castor.options.Section, or None (an elevation)
+    view: object  # castor.options.View
+    scale: float
+    paper: object  # castor.options.Paper, or None (as large as the drawing)
+    revision: str
+    line: int  # of its [[sheet]] header
+
+
+class Register(NamedTuple):
+    path: str
+    project: dict  # title, number, drawn, checked, revision (texts given)
+    sheets: tuple  # SheetEntry ...
+
+    def fields(self, entry: SheetEntry) -> tuple[tuple[str, str], ...]:
+        """The title block's fields of one sheet (castor.settings.DrawingSettings.fields)."""
+        fields = {"project": self.project.get("title", ""),
+                  "number": self.project.get("number", ""),
+                  "drawn": self.project.get("drawn", ""),
+                  "checked": self.project.get("checked", ""),
+                  "revision": entry.revision,
+                  "sheet_number": entry.number, "sheet_title": entry.title}
+        return tuple((k, v) for k, v in fields.items() if v)
+
+
+def _lines(text: str) -> dict:
+    """Where each key stands: (table, index, key) -> line number, the tables'
+    own headers under key None."""
+    where: dict = {}
+    table, index = "", -1
+    counts: dict[str, int] = {}
+    for number, line in enumerate(text.splitlines(), 1):
+        stripped = line.strip()
+        header = re.match(r"\[\[\s*([^\]]+?)\s*\]\]", stripped) or re.match(r"\[\s*([^\]]+?)\s*\]",
+                                                                             stripped)
+        if header:
+            table = header[1]
+            index = counts.get(table, 0)
+            counts[table] = index + 1
+            where[(table, index, None)] = number
+            continue
+        key = re.match(r'("[^"]*"|[A-Za-z0-9_-]+)\s*=', stripped)
+        if key:
+            where.setdefault((table, index, key[1].strip('"')), number)
+    return where
+
+
+def _closest(word: str, choices) -> str:
+    import difflib
+
+    found = difflib.get_close_matches(word, list(choices), 1, 0.6)
+    return f" (did you mean {found[0]}?)" if found else ""
+
+
+def parse_register(path: str) -> Register:
+    """The register in the TOML file ``path``; ValueError (a usage error) at a
+    line that names an unknown key, drawing or size."""
+    import tomllib
+
+    from castor.options import parse_scale, parse_section, parse_sheet, View
+
+    try:
+        with open(path, "rb") as handle:
+            raw = handle.read()
+    except OSError as exc:
+        raise ValueError(f"--sheets: cannot read {path}: {exc.strerror or exc}") from None
+    try:
+        text = raw.decode("utf-8")
+        data = tomllib.loads(text)
+    except UnicodeDecodeError:
+        raise ValueError(f"--sheets: {path} is not UTF-8 text") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"--sheets: {path}: {exc}") from None
+    where = _lines(text)
+
+    def fail(table, index, key, message):
+        line = where.get((table, index, key)) or where.get((table, index, None)) or 1
+        raise ValueError(f"{path}:{line}: {message}")
+
+    for name in data:
+        if name not in ("project", "sheet"):
+            fail(name, 0, None, f"unknown table [{name}]{_closest(name, ('project', 'sheet'))}; "
+                 "a register has [project] and [[sheet]] tables")
+    project = data.get("project", {})
+    if not isinstance(project, dict):
+        fail("", -1, "project", "'project' is a table: [project]")
+    sheets = data.get("sheet", [])
+    if not isinstance(sheets, list) or not sheets:
+        fail("", -1, None, "a register lists its sheets as [[sheet]] tables, at least one")
+
+    def text_of(table, index, key, value):
+        if not isinstance(value, (str, int, float)) or isinstance(value, bool):
+            fail(table, index, key, f"'{key}' takes text, such as {key} = \"...\"")
+        return str(value)
+
+    for key, value in project.items():
+        if key not in PROJECT_KEYS:
+            fail("project", 0, key, f"unknown key '{key}' in [project]"
+                 f"{_closest(key, PROJECT_KEYS)}; it takes {', '.join(PROJECT_KEYS)}")
+        text_of("project", 0, key, value)
+
+    def paper_and_scale(table, index, values, fallback):
+        paper, scale = fallback
+        if "sheet" in values:
+            try:
+                paper = parse_sheet(text_of(table, index, "sheet", values["sheet"]))
+            except ValueError:
+                fail(table, index, "sheet", f"unknown sheet size '{values['sheet']}': A4, A3, "
+                     "A2, A1 or A0 (landscape), or A3-portrait ...")
+        if "scale" in values:
+            try:
+                scale = parse_scale(text_of(table, index, "scale", values["scale"]))
+            except ValueError:
+                fail(table, index, "scale", f"scale takes 1:N such as \"1:50\", not "
+                     f"'{values['scale']}'")
+        return paper, scale
+
+    defaults = paper_and_scale("project", 0, project, (None, 100.0))
+    entries = []
+    for index, values in enumerate(sheets):
+        if not isinstance(values, dict):
+            fail("sheet", index, None, "each sheet is a [[sheet]] table")
+        for key, value in values.items():
+            if key not in SHEET_KEYS:
+                fail("sheet", index, key, f"unknown key '{key}' in [[sheet]]"
+                     f"{_closest(key, SHEET_KEYS)}; it takes {', '.join(SHEET_KEYS)}")
+            text_of("sheet", index, key, value)
+        if "drawing" not in values:
+            fail("sheet", index, None, f"the sheet has no drawing: drawing = \"{DRAWINGS}\"")
+        drawing = str(values["drawing"]).strip()
+        match = re.fullmatch(r"(plan|section|elevation)\s+(.+)", drawing, re.IGNORECASE)
+        section, view = None, None
+        try:
+            if not match:
+                raise ValueError
+            kind, rest = match[1].lower(), match[2].strip()
+            if kind == "elevation":
+                if rest.lower() not in ("front", "back", "left", "right"):
+                    raise ValueError
+                view = View(rest.lower(), 0.0, 0.0)
+            else:
+                section = parse_section(rest)
+                if (kind == "plan") != (section.axis == "z"):
+                    raise ValueError
+        except ValueError:
+            fail("sheet", index, "drawing", f"unknown drawing '{drawing}': {DRAWINGS}")
+        paper, scale = paper_and_scale("sheet", index, values, defaults)
+        entries.append(SheetEntry(str(values.get("number", index + 1)), str(values.get("title", "")),
+                                  drawing, section, view, scale, paper,
+                                  str(values.get("revision", project.get("revision", ""))),
+                                  where.get(("sheet", index, None), 1)))
+    numbers = [e.number for e in entries]
+    for index, entry in enumerate(entries):
+        if numbers.index(entry.number) != index:
+            fail("sheet", index, "number", f"sheet number '{entry.number}' is given twice")
+    kept = {k: str(v) for k, v in project.items() if k not in ("sheet", "scale")}
+    return Register(path, kept, tuple(entries))
