@@ -220,6 +220,10 @@ def _choose_format(p: _Parser, args) -> None:
     problem = unavailable() if unavailable is not None else None
     if problem is not None:
         p.error(problem)
+    if args.sheets is not None and args.format == "svg" and not (
+            args.output and "%" in args.output):
+        p.error("an SVG holds one sheet: give --sheets a pattern such as -o sheet-%d.svg, or "
+                "write one .pdf or .dxf")
 
 
 def _check_destinations(p: _Parser, args) -> None:

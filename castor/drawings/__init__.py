@@ -77,11 +77,24 @@ class DrawingSet:
     """A drawing register printed (--sheets): each sheet laid out, in the
     register's order, with the register and, for a %d pattern, the pattern."""
 
-    def __init__(self, register, entries: list, sheets: list, pattern: str | None):
+    def __init__(self, register, entries: list, sheets: list, pattern: str | None,
+                 number: int = 1):
         self.register = register  # castor.drawings.register.Register
         self.entries = entries  # its SheetEntry for each sheet
         self.sheets = sheets  # castor.drawings.sheet.Sheet ...
         self.pattern = pattern  # -o's path when it is a %d pattern: a file per sheet
+        self.number = number  # the frame's: its first sheet's file takes it, the next ones follow
+
+    def others(self, export) -> dict:
+        """For a %d pattern, the files of the sheets after the first (their paths
+        the pattern filled with the frame's number + 1, + 2, ...), made by
+        ``export(sheet)``; a single file holds every sheet: none."""
+        from castor.formats.output import frame_path
+
+        if self.pattern is None:
+            return {}
+        return {frame_path(self.pattern, self.number + k): export(sheet)
+                for k, sheet in enumerate(self.sheets[1:], 1)}
 
 
 def set_of(scene, frame, settings, title: str | None = None, warn=None, facetizer=None,
@@ -121,4 +134,5 @@ def set_of(scene, frame, settings, title: str | None = None, warn=None, facetize
     from castor.formats.output import has_pattern
 
     return DrawingSet(register, list(register.sheets), sheets,
-                      target if target is not None and has_pattern(target) else None)
+                      target if target is not None and has_pattern(target) else None,
+                      scene.number)

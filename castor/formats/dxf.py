@@ -293,6 +293,8 @@ def export_set(drawing_set) -> bytes:
                                        view_height=sheet.height / sheet.mm)
         viewport.dxf.status = 2
         shift += (x1 - x0 if x1 > x0 else x0 - x1) + SPACING / sheet.mm
+    if "Layout1" in doc.layouts and len(drawing_set.sheets):
+        doc.layouts.delete("Layout1")  # ezdxf's own empty layout
     stream = io.StringIO()
     doc.write(stream)
     return stream.getvalue().encode("utf-8")
@@ -316,3 +318,8 @@ def write(sheet, info: WriteInfo) -> Iterator[bytes]:
             return iter([export_drawing(sheet.sheets[0])])
         return iter([export_set(sheet)])
     return iter([export_drawing(sheet)])
+
+
+def companions(product, info: WriteInfo) -> dict:
+    """A drawing set written to a %d pattern: the files of its other sheets."""
+    return product.others(export_drawing) if hasattr(product, "sheets") else {}

@@ -232,3 +232,8 @@ def write(sheet, info: WriteInfo) -> Iterator[bytes]:
             return iter([export_drawing(sheet.sheets[0])])
         return iter([export_set(sheet)])
     return iter([export_drawing(sheet)])
+
+
+def companions(product, info: WriteInfo) -> dict:
+    """A drawing set written to a %d pattern: the files of its other sheets."""
+    return product.others(export_drawing) if hasattr(product, "sheets") else {}

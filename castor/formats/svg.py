@@ -160,5 +160,13 @@ def export_drawing(sheet) -> bytes:
 
 
 def write(sheet, info: WriteInfo) -> Iterator[bytes]:
-    """The registry's writer (castor.formats): the sheet as one piece."""
+    """The registry's writer (castor.formats): the sheet as one piece; of a
+    drawing set (--sheets, a file per sheet), its first sheet."""
+    if hasattr(sheet, "sheets"):
+        return iter([export_drawing(sheet.sheets[0])])
     return iter([export_drawing(sheet)])
+
+
+def companions(product, info: WriteInfo) -> dict:
+    """A drawing set written to a %d pattern: the files of its other sheets."""
+    return product.others(export_drawing) if hasattr(product, "sheets") else {}
