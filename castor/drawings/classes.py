@@ -127,7 +127,8 @@ def classify(drawing, takeoff, warn=None) -> None:
     if drawing.section is not None:
         _regions(drawing, takeoff, symbols, plan)
     symbols.storeys = [level for _, level in takeoff.storeys()]
-    _openings(drawing, takeoff, symbols)
+    blocks = takeoff.blocks()  # measured once: each call measures them again
+    _openings(drawing, blocks, symbols)
     if not plan:
         return
     z = float(drawing.section.value)
@@ -139,7 +140,7 @@ def classify(drawing, takeoff, warn=None) -> None:
     symbols.storey = (name, level)
     centre = _centre(takeoff)
     loops = [loop for layer in drawing.layers for loop in layer.cuts]
-    for block in takeoff.blocks():
+    for block in blocks:
         cls = block.opening.classification.ifc_class
         if not block.sill < z < block.head:
             continue
@@ -148,7 +149,7 @@ def classify(drawing, takeoff, warn=None) -> None:
         elif cls == WINDOW:
             _window(block, loops, symbols)
     for opening in takeoff.openings:
-        if not any(b.opening is opening for b in takeoff.blocks()):
+        if not any(b.opening is opening for b in blocks):
             warn(f"{opening.classification.short} '{opening.name}' ({opening.where}) cuts "
                  "nothing from the element it is subtracted from: no symbol is drawn")
     for p in takeoff.placed():
@@ -181,7 +182,7 @@ def _regions(drawing, takeoff, symbols: Symbols, plan: bool) -> None:
         layer.regions = by_object.get(layer.source, [])
 
 
-def _openings(drawing, takeoff, symbols: Symbols) -> None:
+def _openings(drawing, blocks, symbols: Symbols) -> None:
     """The page boxes of the openings the drawing cuts (the chains break at
     them) and of those it sees face on (what is seen through them is no
     level); for a section or an elevation, the sills and heads of the
@@ -189,7 +190,6 @@ def _openings(drawing, takeoff, symbols: Symbols) -> None:
     basis = drawing.view.basis()
     towards = basis[2]
     depth = drawing.view.plane_depth(drawing.section)
-    blocks = takeoff.blocks()
     if not blocks:
         return
     seen = []
