@@ -90,12 +90,74 @@ def _closest(word: str, choices) -> str:
     return f" (did you mean {found[0]}?)" if found else ""
 
 
-def parse_register(path: str) -> Register:
-    """The register in the TOML file ``path``; ValueError (a usage error) at a
-    line that names an unknown key, drawing or size."""
-    import tomllib
+class _Reader:
+    """Checks a register's values, each mistake a ValueError at its line."""
 
-    from castor.options import parse_scale, parse_section, parse_sheet, View
+    def __init__(self, path: str, text: str):
+        self.path = path
+        self.where = _lines(text)
+
+    def fail(self, table, index, key, message):
+        where = self.where
+        line = where.get((table, index, key)) or where.get((table, index, None)) or 1
+        raise ValueError(f"{self.path}:{line}: {message}")
+
+    def text(self, table, index, key, value) -> str:
+        if not isinstance(value, (str, int, float)) or isinstance(value, bool):
+            self.fail(table, index, key, f"'{key}' takes text, such as {key} = \"...\"")
+        return str(value)
+
+    def keys(self, table, index, values: dict, known: tuple, header: str) -> None:
+        for key, value in values.items():
+            if key not in known:
+                self.fail(table, index, key, f"unknown key '{key}' in {header}"
+                          f"{_closest(key, known)}; it takes {', '.join(known)}")
+            self.text(table, index, key, value)
+
+    def paper_and_scale(self, table, index, values: dict, fallback):
+        from castor.options import parse_scale, parse_sheet
+
+        paper, scale = fallback
+        if "sheet" in values:
+            try:
+                paper = parse_sheet(self.text(table, index, "sheet", values["sheet"]))
+            except ValueError:
+                self.fail(table, index, "sheet", f"unknown sheet size '{values['sheet']}': A4, "
+                          "A3, A2, A1 or A0 (landscape), or A3-portrait ...")
+        if "scale" in values:
+            try:
+                scale = parse_scale(self.text(table, index, "scale", values["scale"]))
+            except ValueError:
+                self.fail(table, index, "scale", f"scale takes 1:N such as \"1:50\", not "
+                          f"'{values['scale']}'")
+        return paper, scale
+
+    def drawing(self, index, values: dict):
+        """The section and view a sheet's ``drawing`` names."""
+        from castor.options import View, parse_section
+
+        if "drawing" not in values:
+            self.fail("sheet", index, None, f"the sheet has no drawing: drawing = \"{DRAWINGS}\"")
+        drawing = str(values["drawing"]).strip()
+        match = re.fullmatch(r"(plan|section|elevation)\s+(.+)", drawing, re.IGNORECASE)
+        try:
+            if not match:
+                raise ValueError
+            kind, rest = match[1].lower(), match[2].strip()
+            if kind == "elevation":
+                if rest.lower() not in ("front", "back", "left", "right"):
+                    raise ValueError
+                return drawing, None, View(rest.lower(), 0.0, 0.0)
+            section = parse_section(rest)
+            if (kind == "plan") != (section.axis == "z"):
+                raise ValueError
+            return drawing, section, None
+        except ValueError:
+            self.fail("sheet", index, "drawing", f"unknown drawing '{drawing}': {DRAWINGS}")
+
+
+def _read(path: str) -> tuple[str, dict]:
+    import tomllib
 
     try:
         with open(path, "rb") as handle:
@@ -104,92 +166,45 @@ def parse_register(path: str) -> Register:
         raise ValueError(f"--sheets: cannot read {path}: {exc.strerror or exc}") from None
     try:
         text = raw.decode("utf-8")
-        data = tomllib.loads(text)
+        return text, tomllib.loads(text)
     except UnicodeDecodeError:
         raise ValueError(f"--sheets: {path} is not UTF-8 text") from None
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"--sheets: {path}: {exc}") from None
-    where = _lines(text)
 
-    def fail(table, index, key, message):
-        line = where.get((table, index, key)) or where.get((table, index, None)) or 1
-        raise ValueError(f"{path}:{line}: {message}")
 
+def parse_register(path: str) -> Register:
+    """The register in the TOML file ``path``; ValueError (a usage error) at a
+    line that names an unknown key, drawing or size."""
+    text, data = _read(path)
+    reader = _Reader(path, text)
     for name in data:
         if name not in ("project", "sheet"):
-            fail(name, 0, None, f"unknown table [{name}]{_closest(name, ('project', 'sheet'))}; "
-                 "a register has [project] and [[sheet]] tables")
+            reader.fail(name, 0, None, f"unknown table [{name}]"
+                        f"{_closest(name, ('project', 'sheet'))}; a register has [project] and "
+                        "[[sheet]] tables")
     project = data.get("project", {})
     if not isinstance(project, dict):
-        fail("", -1, "project", "'project' is a table: [project]")
+        reader.fail("", -1, "project", "'project' is a table: [project]")
     sheets = data.get("sheet", [])
     if not isinstance(sheets, list) or not sheets:
-        fail("", -1, None, "a register lists its sheets as [[sheet]] tables, at least one")
-
-    def text_of(table, index, key, value):
-        if not isinstance(value, (str, int, float)) or isinstance(value, bool):
-            fail(table, index, key, f"'{key}' takes text, such as {key} = \"...\"")
-        return str(value)
-
-    for key, value in project.items():
-        if key not in PROJECT_KEYS:
-            fail("project", 0, key, f"unknown key '{key}' in [project]"
-                 f"{_closest(key, PROJECT_KEYS)}; it takes {', '.join(PROJECT_KEYS)}")
-        text_of("project", 0, key, value)
-
-    def paper_and_scale(table, index, values, fallback):
-        paper, scale = fallback
-        if "sheet" in values:
-            try:
-                paper = parse_sheet(text_of(table, index, "sheet", values["sheet"]))
-            except ValueError:
-                fail(table, index, "sheet", f"unknown sheet size '{values['sheet']}': A4, A3, "
-                     "A2, A1 or A0 (landscape), or A3-portrait ...")
-        if "scale" in values:
-            try:
-                scale = parse_scale(text_of(table, index, "scale", values["scale"]))
-            except ValueError:
-                fail(table, index, "scale", f"scale takes 1:N such as \"1:50\", not "
-                     f"'{values['scale']}'")
-        return paper, scale
-
-    defaults = paper_and_scale("project", 0, project, (None, 100.0))
+        reader.fail("", -1, None, "a register lists its sheets as [[sheet]] tables, at least one")
+    reader.keys("project", 0, project, PROJECT_KEYS, "[project]")
+    defaults = reader.paper_and_scale("project", 0, project, (None, 100.0))
     entries = []
     for index, values in enumerate(sheets):
         if not isinstance(values, dict):
-            fail("sheet", index, None, "each sheet is a [[sheet]] table")
-        for key, value in values.items():
-            if key not in SHEET_KEYS:
-                fail("sheet", index, key, f"unknown key '{key}' in [[sheet]]"
-                     f"{_closest(key, SHEET_KEYS)}; it takes {', '.join(SHEET_KEYS)}")
-            text_of("sheet", index, key, value)
-        if "drawing" not in values:
-            fail("sheet", index, None, f"the sheet has no drawing: drawing = \"{DRAWINGS}\"")
-        drawing = str(values["drawing"]).strip()
-        match = re.fullmatch(r"(plan|section|elevation)\s+(.+)", drawing, re.IGNORECASE)
-        section, view = None, None
-        try:
-            if not match:
-                raise ValueError
-            kind, rest = match[1].lower(), match[2].strip()
-            if kind == "elevation":
-                if rest.lower() not in ("front", "back", "left", "right"):
-                    raise ValueError
-                view = View(rest.lower(), 0.0, 0.0)
-            else:
-                section = parse_section(rest)
-                if (kind == "plan") != (section.axis == "z"):
-                    raise ValueError
-        except ValueError:
-            fail("sheet", index, "drawing", f"unknown drawing '{drawing}': {DRAWINGS}")
-        paper, scale = paper_and_scale("sheet", index, values, defaults)
+            reader.fail("sheet", index, None, "each sheet is a [[sheet]] table")
+        reader.keys("sheet", index, values, SHEET_KEYS, "[[sheet]]")
+        drawing, section, view = reader.drawing(index, values)
+        paper, scale = reader.paper_and_scale("sheet", index, values, defaults)
         entries.append(SheetEntry(str(values.get("number", index + 1)), str(values.get("title", "")),
                                   drawing, section, view, scale, paper,
                                   str(values.get("revision", project.get("revision", ""))),
-                                  where.get(("sheet", index, None), 1)))
+                                  reader.where.get(("sheet", index, None), 1)))
     numbers = [e.number for e in entries]
     for index, entry in enumerate(entries):
         if numbers.index(entry.number) != index:
-            fail("sheet", index, "number", f"sheet number '{entry.number}' is given twice")
+            reader.fail("sheet", index, "number", f"sheet number '{entry.number}' is given twice")
     kept = {k: str(v) for k, v in project.items() if k not in ("sheet", "scale")}
     return Register(path, kept, tuple(entries))
