@@ -185,27 +185,31 @@ class Interpreter:
             self.storeys.append(StoreyMark(statement.name, name or statement.name, where))
             self.declared_changed = True
 
+    def _may_be_annotated(self, location) -> bool:
+        """Whether the statement starting at ``location`` may have a comment after
+        its ';': its line has one, or the statement goes on below."""
+        text = self.reporter.source_lines.get((location.file, location.line))
+        return text is not None and ("//" in text or ";" not in text[location.column - 1:])
+
     def _comment(self, location):
         """The comment after the statement starting at ``location`` (castor.language.
-        annotations.definition_comment), or None; cheap when its line has none."""
-        lines = self.reporter.source_lines
-        text = lines.get((location.file, location.line))
-        if text is None or ("//" not in text and ";" in text[location.column - 1:]):
+        annotations.definition_comment), or None."""
+        if not self._may_be_annotated(location):
             return None
         from castor.language.annotations import definition_comment
 
+        lines = self.reporter.source_lines
         return definition_comment(lambda file, number: lines.get((file, number)), location)
 
     def _classify(self, statement: ObjectDef) -> None:
         """The class the comment on an object's definition gives it (LANGUAGE.md §11);
         what cannot be understood is a warning, and the object is unclassed."""
         where = statement.location
-        lines = self.reporter.source_lines
-        text = lines.get((where.file, where.line))
-        if text is None or ("//" not in text and ";" in text[where.column - 1:]):
+        if not self._may_be_annotated(where):
             return
         from castor.language.classes import object_classes
 
+        lines = self.reporter.source_lines
         for _, _, classification, problem in object_classes(
                 [(statement.name, where)], lambda file, number: lines.get((file, number))):
             if problem is not None:

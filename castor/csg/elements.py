@@ -12,7 +12,7 @@ Everything here is plain data found by walking the tree, without making any
 solid: an element holds its *address* in the tree (the operand taken at each
 node from its object's root), from which ``element_tree`` and
 ``opening_tree`` build the CSG tree of its own solid when an output asks
-(castor.csg.takeoff makes and measures them). Which solid is whose: a point
+(castor.quantities.Takeoff makes and measures them). Which solid is whose: a point
 of an object's solid belongs to the innermost classed object on its way
 down, going into the first operand of a union that holds it, into the first
 operand of a difference, and into the operand of an intersection that holds

@@ -200,93 +200,116 @@ def _side_frame(side: str, box_mm: np.ndarray):
             "left": (x0, -1, False), "right": (x1, 1, False)}[side]
 
 
-def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
-    """Lines, ticks and texts of one side's chain and overall; returns how many
-    of the chain's values had no room."""
-    edge, out, horizontal = _side_frame(chain.side, box_mm)
-    reads = READS[chain.side]
-    rows = ROWS[reads]
-    segments: list = []
-    texts: list = []
+class _Side:
+    """One side of the drawing's box, where a chain of dimensions stands: where
+    its lines, ticks and texts go on paper (the segments and texts it gathers),
+    and its dimensions as CAD keeps them (added to ``dims``)."""
 
-    def at(s, d):  # paper point: s along the side (paper), d out from the box
-        return (s, edge + out * d) if horizontal else (edge + out * d, s)
+    def __init__(self, chain: Chain, box_mm, mm: float, origin, dims: list):
+        self.chain = chain
+        self.edge, self.out, self.horizontal = _side_frame(chain.side, box_mm)
+        self.rows = ROWS[READS[chain.side]]
+        self.mm, self.origin, self.dims = mm, origin, dims
+        self.segments: list = []
+        self.texts: list = []
 
-    def along(v):  # page metres along the side to paper
-        return origin[0] + v * mm if horizontal else origin[1] - v * mm
+    def at(self, s, d):
+        """The paper point s along the side (paper), d out from the box."""
+        return (s, self.edge + self.out * d) if self.horizontal else (self.edge + self.out * d, s)
 
-    def text_at(s, row):
+    def along(self, v):
+        """Page metres along the side, to paper."""
+        return self.origin[0] + v * self.mm if self.horizontal else self.origin[1] - v * self.mm
+
+    def text_at(self, s, row):
         """The baseline point of a text centred at s in a row (mm out from the
         box): its reading top is the row's paper end nearer the paper's top
         (or left, for text turned to read from the right)."""
-        top = min(edge + out * row[0], edge + out * row[1]) + 2.1
-        return (s, top, 0.0) if horizontal else (top, s, 90.0)
+        top = min(self.edge + self.out * row[0], self.edge + self.out * row[1]) + 2.1
+        return (s, top, 0.0) if self.horizontal else (top, s, 90.0)
 
-    def line(ends, d):
+    def line(self, ends, d):
         a, b = min(ends), max(ends)
-        segments.append([at(a - OVERSHOOT, d), at(b + OVERSHOOT, d)])
+        self.segments.append([self.at(a - OVERSHOOT, d), self.at(b + OVERSHOOT, d)])
         for s in ends:
-            segments.append([at(s, EXTENSION_GAP), at(s, d + OVERSHOOT)])
+            self.segments.append([self.at(s, EXTENSION_GAP), self.at(s, d + OVERSHOOT)])
             t = 1.25  # the tick: an oblique stroke, 45 degrees, 2.5 mm long
-            (px, py) = at(s, d)
-            segments.append([(px - t, py + t), (px + t, py - t)])
+            (px, py) = self.at(s, d)
+            self.segments.append([(px - t, py + t), (px + t, py - t)])
 
-    def page(c):  # a paper coordinate across the side, back to page metres
-        return (origin[1] - c) / mm if horizontal else (c - origin[0]) / mm
+    def page(self, c):
+        """A paper coordinate across the side, back to page metres."""
+        return (self.origin[1] - c) / self.mm if self.horizontal else (c - self.origin[0]) / self.mm
 
-    def dimension(u1, u2, d, text_point, shown=True):
+    def dimension(self, u1, u2, d, text_point, shown=True):
         """The CAD dimension from u1 to u2 (page metres along the side)."""
-        line_at = page(edge + out * d)
-        if horizontal:
+        chain, origin, mm = self.chain, self.origin, self.mm
+        line_at = self.page(self.edge + self.out * d)
+        if self.horizontal:
             p1, p2, base, angle = (u1, chain.edge), (u2, chain.edge), (u1, line_at), 0.0
         else:
             p1, p2, base, angle = (chain.edge, u1), (chain.edge, u2), (line_at, u1), 90.0
-        offset = abs(chain.edge - page(edge + out * EXTENSION_GAP))
+        offset = abs(chain.edge - self.page(self.edge + self.out * EXTENSION_GAP))
         where = None
         if text_point is not None:
             where = ((text_point[0] - origin[0]) / mm, (origin[1] - text_point[1]) / mm)
-        dims.append(Dimension(p1, p2, base, angle, where, offset, shown))
+        self.dims.append(Dimension(p1, p2, base, angle, where, offset, shown))
 
+
+def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
+    """Lines, ticks and texts of one side's chain and overall; returns how many
+    of the chain's values had no room."""
+    side = _Side(chain, box_mm, mm, origin, dims)
     left_out = 0
     overall = chain.overall
-    o_lo, o_hi = sorted((along(overall[0]), along(overall[1])))
+    o_lo, o_hi = sorted((side.along(overall[0]), side.along(overall[1])))
     if len(chain.breaks):
-        ends = [along(b) for b in chain.breaks]
-        line(ends, CHAIN_LINE)
-        order = np.argsort(ends)
-        ends_sorted = [ends[i] for i in order]
-        main_row, stagger_row = [], []
-        for i in range(len(ends_sorted) - 1):
-            a, b = ends_sorted[i], ends_sorted[i + 1]
-            u1, u2 = sorted((chain.breaks[order[i]], chain.breaks[order[i + 1]]))
-            text = length_text(u2 - u1)
-            w = text_width(text, TEXT)
-            c = (a + b) / 2
-            if w + 1.0 <= b - a and not _placed(main_row, c - w / 2, c + w / 2):
-                main_row.append((c - w / 2, c + w / 2))
-                x, y, angle = text_at(c, rows["chain"])
-                texts.append(Text(x, y, text, TEXT, angle, "middle"))
-                dimension(u1, u2, CHAIN_LINE, None)
-            elif (o_hi - o_lo >= w + 1.0
-                  and not _placed(stagger_row, *_inside(c, w, o_lo, o_hi))):
-                c = sum(_inside(c, w, o_lo, o_hi)) / 2  # clear of the overall's extension lines
-                stagger_row.append(_inside(c, w, o_lo, o_hi))
-                x, y, angle = text_at(c, rows["stagger"])
-                texts.append(Text(x, y, text, TEXT, angle, "middle"))
-                dimension(u1, u2, CHAIN_LINE, (x, y))
-            else:
-                left_out += 1  # its ticks stay; in CAD, a dimension with no text
-                dimension(u1, u2, CHAIN_LINE, None, shown=False)
-        d_overall, row = OVERALL_LINE, rows["overall"]
+        left_out = _chain_values(side, o_lo, o_hi)
+        d_overall, row = OVERALL_LINE, side.rows["overall"]
     else:
-        d_overall, row = ALONE_LINE, rows["alone"]
-    line([o_lo, o_hi], d_overall)
+        d_overall, row = ALONE_LINE, side.rows["alone"]
+    side.line([o_lo, o_hi], d_overall)
     text = length_text(overall[1] - overall[0])
-    x, y, angle = text_at((o_lo + o_hi) / 2, row)
-    texts.append(Text(x, y, text, TEXT, angle, "middle"))
-    dimension(overall[0], overall[1], d_overall, None)
-    items.append(Lines(np.array(segments, float).reshape(-1, 2, 2), THIN_PEN, "annotation"))
-    items.extend(texts)
+    x, y, angle = side.text_at((o_lo + o_hi) / 2, row)
+    side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
+    side.dimension(overall[0], overall[1], d_overall, None)
+    items.append(Lines(np.array(side.segments, float).reshape(-1, 2, 2), THIN_PEN, "annotation"))
+    items.extend(side.texts)
+    return left_out
+
+
+def _chain_values(side: _Side, o_lo: float, o_hi: float) -> int:
+    """The chain's line and its values: each in its row where it has room, else
+    in the staggered row within the overall's extension lines, else left out
+    (its ticks stay; in CAD, a dimension with no text). Returns how many were."""
+    chain = side.chain
+    ends = [side.along(b) for b in chain.breaks]
+    side.line(ends, CHAIN_LINE)
+    order = np.argsort(ends)
+    ends_sorted = [ends[i] for i in order]
+    main_row, stagger_row = [], []
+    left_out = 0
+    for i in range(len(ends_sorted) - 1):
+        a, b = ends_sorted[i], ends_sorted[i + 1]
+        u1, u2 = sorted((chain.breaks[order[i]], chain.breaks[order[i + 1]]))
+        text = length_text(u2 - u1)
+        w = text_width(text, TEXT)
+        c = (a + b) / 2
+        if w + 1.0 <= b - a and not _placed(main_row, c - w / 2, c + w / 2):
+            main_row.append((c - w / 2, c + w / 2))
+            x, y, angle = side.text_at(c, side.rows["chain"])
+            side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
+            side.dimension(u1, u2, CHAIN_LINE, None)
+        elif (o_hi - o_lo >= w + 1.0
+              and not _placed(stagger_row, *_inside(c, w, o_lo, o_hi))):
+            c = sum(_inside(c, w, o_lo, o_hi)) / 2  # clear of the overall's extension lines
+            stagger_row.append(_inside(c, w, o_lo, o_hi))
+            x, y, angle = side.text_at(c, side.rows["stagger"])
+            side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
+            side.dimension(u1, u2, CHAIN_LINE, (x, y))
+        else:
+            left_out += 1
+            side.dimension(u1, u2, CHAIN_LINE, None, shown=False)
     return left_out
 
 

@@ -99,8 +99,9 @@ def _polygons(tree, settings, made, merge: bool = True):
     return frame, facetizer
 
 
-def _figures(settings, made, frame, facetizer, tree) -> None:
-    """The mesh frame kept where asked, its --stats line and --summary record."""
+def _figures(settings, made, frame, facetizer, tree=None) -> None:
+    """The mesh frame kept where asked, its --stats line and --summary record
+    (with the frame's tree, its take-off by class too: LANGUAGE.md §11)."""
     output = settings.output
     if output.keep_mesh:
         made.mesh = frame

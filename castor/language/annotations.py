@@ -267,29 +267,29 @@ def definition_comment(line_of, location: Location) -> tuple[str, Location, bool
         line = line_of(location.file, number)
         if line is None:
             return None
-        while index < len(line):
-            if line.startswith("/*", index):
-                end = line.find("*/", index + 2)
+        while True:
+            mark = _MARK.search(line, index)
+            if mark is None or mark.group() == "//":
+                break  # (a comment inside the statement: it goes on below)
+            if mark.group() == "/*":
+                end = line.find("*/", mark.end())
                 if end < 0:
                     return None
                 index = end + 2
-            elif line.startswith("//", index):
-                break  # a comment inside the statement: it goes on below
-            elif line[index] == ";":
-                rest = line[index + 1:]
-                found = rest.find("//")
-                if found < 0 or _without_comments(rest[:found]).strip():
-                    return None
-                begin = index + 1 + found + 2
-                crowded = number == location.line and bool(_without_comments(before).strip())
-                return line[begin:], Location(location.file, number, begin + 1), crowded
-            else:
-                index += 1
+                continue
+            rest = line[mark.end():]
+            found = rest.find("//")
+            if found < 0 or _without_comments(rest[:found]).strip():
+                return None
+            begin = mark.end() + found + 2
+            crowded = number == location.line and bool(_without_comments(before).strip())
+            return line[begin:], Location(location.file, number, begin + 1), crowded
         number += 1
         index = 0
     return None
 
 
+_MARK = re.compile(r"/\*|//|;")
 MAX_LINES = 200  # a definition's ';' is looked for this far below its name
 
 

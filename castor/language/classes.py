@@ -13,7 +13,6 @@ with the closest known word, the object then unclassed.
 
 from __future__ import annotations
 
-import difflib
 import re
 from typing import NamedTuple
 
@@ -214,6 +213,8 @@ def is_class_annotation(text: str) -> bool:
 
 
 def _closest(word: str, known) -> str:
+    import difflib  # here: only a misspelt annotation needs it
+
     close = difflib.get_close_matches(word.lower(), list(known), n=1, cutoff=0.6)
     return f" (did you mean {close[0]}?)" if close else ""
 
@@ -264,6 +265,8 @@ def read_object_annotation(text: str, location: Location) -> tuple[Classificatio
                              "object is unclassed", at)
     info = BY_NAME.get(head.lower())
     if info is None:
+        import difflib
+
         names = {n: (BY_NAME[n].ifc if n.startswith("ifc") else n) for n in BY_NAME}
         close = difflib.get_close_matches(head.lower(), list(names) + [STOREY], n=1, cutoff=0.6)
         hint = f" (did you mean {names.get(close[0], STOREY)}?)" if close else ""

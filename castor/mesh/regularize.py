@@ -123,9 +123,12 @@ def _remembered(tri: Triangles, clean_key) -> Triangles:
     made of it, and decides nothing by it: the regularization is computed
     with each triangle's row for its origin, and remembered as the rows each
     triangle comes from, which give the origins of the triangles of any frame."""
-    import hashlib
+    try:  # hashlib's own BLAKE2, without hashlib's 16 ms of OpenSSL set-up at start
+        from _blake2 import blake2b
+    except ImportError:
+        from hashlib import blake2b
 
-    digest = hashlib.blake2b(digest_size=16)
+    digest = blake2b(digest_size=16)
     for array in (tri.vertices, tri.triangles, tri.face_ids):
         digest.update(np.ascontiguousarray(array).data)
     key = digest.digest()

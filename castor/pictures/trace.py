@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from castor.csg import tree
+from castor.csg.paths import join
 from castor.pictures.mesh_rays import smooth_leaf
 from castor.pictures.spans import SPANS
 
@@ -36,6 +37,9 @@ class Leaf:
     inverse: np.ndarray  # (3, 4): scene point -> the primitive's own space
     low: np.ndarray
     high: np.ndarray
+    # where it comes from, for tools that name what a ray met (castor.editing):
+    # the tree's Primitive (or Smooth) and the path of the shared subtrees above it
+    origin: tuple = ()
 
 
 @dataclass
@@ -195,7 +199,7 @@ def compile_frame(frame: tree.FrameTree) -> Scene:
     roots = []
     for obj in frame.objects:
         if obj.root is not None:
-            node = _compile(obj.root, np.eye(4), scene.leaves)
+            node = _compile(obj.root, np.eye(4), scene.leaves, "")
             if node is not None:
                 roots.append(node)
     scene.root = _grouped(_make("U", roots))
@@ -239,16 +243,22 @@ def _matrix(values) -> np.ndarray:
     return m
 
 
-def _compile(node, matrix: np.ndarray, leaves: list):
+def _compile(node, matrix: np.ndarray, leaves: list, above: str):
+    """``above``: the path down to the nearest shared subtree (tree.leaves's prefix)."""
     if isinstance(node, tree.Primitive):
-        return _leaf(node, matrix @ _matrix(node.matrix), leaves)
+        return _leaf(node, matrix @ _matrix(node.matrix), leaves, above)
     if isinstance(node, tree.Use):
         if node.shared.child is None:
             return None
-        return _compile(node.shared.child, matrix @ _matrix(node.matrix), leaves)
+        return _compile(node.shared.child, matrix @ _matrix(node.matrix), leaves,
+                        join((above, node.path, f"({node.shared.name})")))
     if isinstance(node, tree.Smooth):  # traced through its refined facets
-        return smooth_leaf(node, matrix, leaves, Leaf)
-    operands = [_compile(child, matrix, leaves) for child in node.operands]
+        first = len(leaves)
+        made = smooth_leaf(node, matrix, leaves, Leaf)
+        for leaf in leaves[first:]:
+            leaf.origin = (node, above)
+        return made
+    operands = [_compile(child, matrix, leaves, above) for child in node.operands]
     if node.op == "D":
         if not operands or operands[0] is None:
             return None
@@ -285,7 +295,7 @@ def _make(op: str, operands: list):
     return TracedBoolean(op, flat, low, high)
 
 
-def _leaf(primitive: tree.Primitive, matrix: np.ndarray, leaves: list):
+def _leaf(primitive: tree.Primitive, matrix: np.ndarray, leaves: list, above: str = ""):
     if abs(np.linalg.det(matrix[:3, :3])) < 1e-300:
         return None  # flat: no volume
     inverse = np.linalg.inv(matrix)[:3, :]
@@ -295,7 +305,7 @@ def _leaf(primitive: tree.Primitive, matrix: np.ndarray, leaves: list):
     placed = corners @ matrix[:3, :].T
     pad = 1e-9 * (1 + np.abs(placed).max())
     leaf = Leaf(len(leaves), primitive.kind, tuple(primitive.shape), primitive.colour,
-                inverse, placed.min(axis=0) - pad, placed.max(axis=0) + pad)
+                inverse, placed.min(axis=0) - pad, placed.max(axis=0) + pad, (primitive, above))
     leaves.append(leaf)
     return leaf
 
@@ -343,8 +353,12 @@ def _first(node, rays: _Rays, rows: np.ndarray):
     each (len(rows),); a union is the nearest of its operands' first surfaces."""
     n = len(rows)
     t_best, face_best = np.full(n, INF), np.zeros(n, np.int64)
+    if n == 0:
+        return t_best, face_best
     if isinstance(node, TracedBoolean) and node.op == "U":
         hit = np.flatnonzero(_crosses_box(node, rays, rows))
+        if len(hit) == 0:  # no ray comes near: nothing below is asked (one ray: a snap)
+            return t_best, face_best
         for operand in node.operands:
             t, face = _first(operand, rays, rows[hit])
             nearer = t < t_best[hit]

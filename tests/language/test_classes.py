@@ -186,3 +186,16 @@ def test_no_annotation_text_breaks_the_reader(text):
     assert classification is None or problem is None
     annotation, storey, warning = read_comment(text, Location("f.cas", 1, 10), 3.0)
     assert annotation.control in ("number", "slider", "choice")
+
+
+def test_the_analysis_gives_each_object_its_class():
+    from castor.analysis.scene import analyse, object_classes
+    from castor.settings import Source
+
+    analysis = analyse(Source(text=SCENE, name="s.cas"))
+    found = {name: (where.line, c.ifc_class if c else None, p.message if p else None)
+             for name, where, c, p in object_classes(analysis)}
+    assert found["murs"] == (6, "IfcWall", None)
+    assert found["p"][:2] == (7, None) and "did you mean wall?" in found["p"][2]
+    assert "v" not in found  # its line's annotation is w's, which is warned about
+    assert "more than one statement" in found["w"][2]
