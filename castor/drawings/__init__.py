@@ -75,26 +75,16 @@ def sheet_of(scene, frame, settings, title: str | None = None, warn=None, faceti
 
 class DrawingSet:
     """A drawing register printed (--sheets): each sheet laid out, in the
-    register's order, with the register and, for a %d pattern, the pattern."""
+    register's order, with the register and -o's path."""
 
-    def __init__(self, register, entries: list, sheets: list, pattern: str | None,
+    def __init__(self, register, entries: list, sheets: list, target: str | None,
                  number: int = 1):
         self.register = register  # castor.drawings.register.Register
         self.entries = entries  # its SheetEntry for each sheet
         self.sheets = sheets  # castor.drawings.sheet.Sheet ...
-        self.pattern = pattern  # -o's path when it is a %d pattern: a file per sheet
+        # -o's path: a %d pattern gives a file per sheet (castor.formats.svg.sheet_files)
+        self.target = target
         self.number = number  # the frame's: its first sheet's file takes it, the next ones follow
-
-    def others(self, export) -> dict:
-        """For a %d pattern, the files of the sheets after the first (their paths
-        the pattern filled with the frame's number + 1, + 2, ...), made by
-        ``export(sheet)``; a single file holds every sheet: none."""
-        from castor.formats.output import frame_path
-
-        if self.pattern is None:
-            return {}
-        return {frame_path(self.pattern, self.number + k): export(sheet)
-                for k, sheet in enumerate(self.sheets[1:], 1)}
 
 
 def set_of(scene, frame, settings, title: str | None = None, warn=None, facetizer=None,
@@ -131,8 +121,4 @@ def set_of(scene, frame, settings, title: str | None = None, warn=None, facetize
         except DoesNotFit as exc:
             raise CastorError(f"sheet {entry.number} ({entry.drawing}): {exc}",
                               Location(register.path, entry.line, 1)) from None
-    from castor.formats.output import has_pattern
-
-    return DrawingSet(register, list(register.sheets), sheets,
-                      target if target is not None and has_pattern(target) else None,
-                      scene.number)
+    return DrawingSet(register, list(register.sheets), sheets, target, scene.number)

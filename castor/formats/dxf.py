@@ -309,12 +309,18 @@ def _layout_name(number: str, used: set) -> str:
     return name
 
 
+def patterned(product) -> bool:
+    from castor.formats.svg import patterned
+
+    return patterned(product)
+
+
 def write(sheet, info: WriteInfo) -> Iterator[bytes]:
     """The registry's writer (castor.formats): the sheet as one piece; a drawing
     set (--sheets) as one document with a layout per sheet, or its first sheet
     for a %d pattern."""
     if hasattr(sheet, "sheets"):
-        if sheet.pattern is not None:
+        if patterned(sheet):
             return iter([export_drawing(sheet.sheets[0])])
         return iter([export_set(sheet)])
     return iter([export_drawing(sheet)])
@@ -322,4 +328,6 @@ def write(sheet, info: WriteInfo) -> Iterator[bytes]:
 
 def companions(product, info: WriteInfo) -> dict:
     """A drawing set written to a %d pattern: the files of its other sheets."""
-    return product.others(export_drawing) if hasattr(product, "sheets") else {}
+    from castor.formats.svg import sheet_files
+
+    return sheet_files(product, export_drawing)

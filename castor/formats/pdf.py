@@ -223,12 +223,18 @@ def _page(page, sheet) -> None:
     page.showPage()
 
 
+def patterned(product) -> bool:
+    from castor.formats.svg import patterned
+
+    return patterned(product)
+
+
 def write(sheet, info: WriteInfo) -> Iterator[bytes]:
     """The registry's writer (castor.formats): the sheet as one piece; a drawing
     set (--sheets) as one document, or its first sheet for a %d pattern (the
     others are the set's companions, castor.formats.sets)."""
     if hasattr(sheet, "sheets"):
-        if sheet.pattern is not None:
+        if patterned(sheet):
             return iter([export_drawing(sheet.sheets[0])])
         return iter([export_set(sheet)])
     return iter([export_drawing(sheet)])
@@ -236,4 +242,6 @@ def write(sheet, info: WriteInfo) -> Iterator[bytes]:
 
 def companions(product, info: WriteInfo) -> dict:
     """A drawing set written to a %d pattern: the files of its other sheets."""
-    return product.others(export_drawing) if hasattr(product, "sheets") else {}
+    from castor.formats.svg import sheet_files
+
+    return sheet_files(product, export_drawing)

@@ -169,4 +169,23 @@ def write(sheet, info: WriteInfo) -> Iterator[bytes]:
 
 def companions(product, info: WriteInfo) -> dict:
     """A drawing set written to a %d pattern: the files of its other sheets."""
-    return product.others(export_drawing) if hasattr(product, "sheets") else {}
+    return sheet_files(product, export_drawing)
+
+
+def sheet_files(product, export) -> dict:
+    """For a drawing set written to a %d pattern, the files of the sheets after
+    the first (the pattern filled with the frame's number + 1, + 2, ...), made by
+    ``export(sheet)``; a single sheet, or a set in one file: none."""
+    from castor.formats.output import frame_path
+
+    if not patterned(product):
+        return {}
+    return {frame_path(product.target, product.number + k): export(sheet)
+            for k, sheet in enumerate(product.sheets[1:], 1)}
+
+
+def patterned(product) -> bool:
+    """Whether a drawing set goes to a %d pattern: a file per sheet."""
+    from castor.formats.output import has_pattern
+
+    return product.target is not None and has_pattern(product.target)

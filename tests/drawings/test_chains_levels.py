@@ -11,7 +11,7 @@ import re
 
 import pytest
 
-from test_symbols import HOUSE, SVG, castor, dxf_of, svg_of
+from tests.support.symbols import HOUSE, SVG, castor, dxf_of, svg_of
 
 # the house with a porch in front of its south wall: two columns and a canopy
 PORCH = HOUSE.replace("> maison;", "") + """\

@@ -11,7 +11,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from test_symbols import HOUSE, SVG, castor
+from tests.support.symbols import HOUSE, SVG, castor
 
 REGISTER = """\
 [project]

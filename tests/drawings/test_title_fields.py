@@ -9,7 +9,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from test_symbols import HOUSE, SVG, castor
+from tests.support.symbols import HOUSE, SVG, castor
 
 FIELDS = ("--project", "Maison <Dupont> & fils", "--number", "2026-014", "--revision", "B",
           "--drawn", "MB", "--checked", 'P"M')
