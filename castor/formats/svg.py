@@ -188,4 +188,5 @@ def patterned(product) -> bool:
     """Whether a drawing set goes to a %d pattern: a file per sheet."""
     from castor.formats.output import has_pattern
 
-    return product.target is not None and has_pattern(product.target)
+    target = getattr(product, "target", None) if hasattr(product, "sheets") else None
+    return target is not None and has_pattern(target)
