@@ -338,7 +338,10 @@ def _stair(placed, takeoff, z: float, view, symbols: Symbols, warn) -> None:
         warn(f"stair '{element.name}' ({element.where}) has {len(treads)} riser"
              f"{'' if len(treads) == 1 else 's'}: it is drawn as it is cut, with no arrow")
         return
-    first, last = treads[0][1].mean(axis=0), treads[-1][1].mean(axis=0)
+    # the middles of the lowest and highest treads (of their boxes: a tread's
+    # triangles say nothing of its middle)
+    first = (treads[0][1].min(axis=0) + treads[0][1].max(axis=0)) / 2
+    last = (treads[-1][1].min(axis=0) + treads[-1][1].max(axis=0)) / 2
     up = last - first
     if np.linalg.norm(up) < 1e-9:
         warn(f"stair '{element.name}' ({element.where}) rises in place: no flight to draw")

@@ -11,6 +11,7 @@ import numpy as np
 from castor.drawings.classes import Label, Stroke, Symbols
 
 GAP, LENGTH, ARROW = 3.0, 7.0, 2.5  # mm: from the drawing, the cut line's ends, arrows
+BEYOND = 27.0  # mm from the drawing to an elevation mark's tip: past the dimension chains
 # an elevation is seen from: the side of the plan it stands on, and the way it looks
 ELEVATIONS = {"front": ("bottom", (0.0, 1.0)), "back": ("top", (0.0, -1.0)),
               "left": ("left", (1.0, 0.0)), "right": ("right", (-1.0, 0.0))}
@@ -54,7 +55,11 @@ def _section_mark(symbols, entry, box, k: float) -> None:
         side = np.array([-look[1], look[0]]) * ARROW * 0.5 * k
         symbols.strokes.append(Stroke(np.array([outer, tip, tip - look * ARROW * k + side, tip,
                                                 tip - look * ARROW * k - side]), pen=0.25))
-        at = outer - look * 2.5 * k
+        # the sheet number beyond the arrow's tip, clear of the cut line
+        from castor.drawings.sheet import text_width
+
+        reach = (text_width(entry.number, 2.5) / 2 + 1.0) if look[0] else 2.5
+        at = tip + look * reach * k
         symbols.labels.append(Label((float(at[0]), float(at[1])), (entry.number,), 2.5))
 
 
@@ -64,7 +69,7 @@ def _elevation_mark(symbols, entry, box, k: float) -> None:
     middle = {"bottom": ((x0 + x1) / 2, y0), "top": ((x0 + x1) / 2, y1),
               "left": (x0, (y0 + y1) / 2), "right": (x1, (y0 + y1) / 2)}[side]
     look = np.array(look)
-    tip = np.array(middle) - look * GAP * k
+    tip = np.array(middle) - look * BEYOND * k
     base = tip - look * 4.0 * k
     across = np.array([-look[1], look[0]]) * 3.0 * k
     symbols.strokes.append(Stroke(np.array([tip, base + across, base - across]), pen=0.25,
