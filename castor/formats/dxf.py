@@ -79,8 +79,17 @@ class _To:
         return self.sheet.to_metres(points) + np.array([self.shift, 0.0])
 
     def model(self, points) -> np.ndarray:
-        """Page metres (the drawing's own points) where they go in model space."""
+        """Page metres (the drawing's own points) where they go in model space
+        (unshifted: the very numbers, -0.0 and all)."""
+        if not self.shift:
+            return np.asarray(points, float)
         return np.asarray(points, float) + np.array([self.shift, 0.0])
+
+    def point(self, p):
+        """One page point where it goes in model space, as the tuple it was."""
+        if not self.shift or p is None:
+            return p
+        return (float(p[0]) + self.shift, float(p[1]))
 
 
 def _sheet_items(msp, to: _To, items, layer):
@@ -219,9 +228,8 @@ def _model(doc, msp, to: _To, paper_items: bool) -> None:
     if sheet.dimensions:
         style = _dimension_style(doc, sheet.mm, to.paper_style)
     for d in sheet.dimensions:
-        at = None if d.text_at is None else tuple(to.model([d.text_at])[0])
-        dim = msp.add_linear_dim(base=tuple(to.model([d.base])[0]), p1=tuple(to.model([d.p1])[0]),
-                                 p2=tuple(to.model([d.p2])[0]), location=at, angle=d.angle,
+        dim = msp.add_linear_dim(base=to.point(d.base), p1=to.point(d.p1), p2=to.point(d.p2),
+                                 location=to.point(d.text_at), angle=d.angle,
                                  text="<>" if d.shown else " ",  # " ": no text (DXF's way)
                                  dimstyle=style, override={"dimexo": d.offset},
                                  dxfattribs={"layer": "dimensions"})
