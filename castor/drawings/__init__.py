@@ -12,6 +12,7 @@ and title block (a ``Sheet``), which the drawing formats of castor.formats
 from __future__ import annotations
 
 import os
+import re
 import unicodedata
 
 from castor.drawings.model import Drawing, Layer, ViewBasis, view_for
@@ -119,6 +120,9 @@ def set_of(scene, frame, settings, title: str | None = None, warn=None, facetize
         try:
             sheets.append(layout(drawing, entry.paper, title_of(scene, title), scene.where, warn))
         except DoesNotFit as exc:
-            raise CastorError(f"sheet {entry.number} ({entry.drawing}): {exc}",
+            # in the register's words: its scale and sheet keys, not the options
+            words = re.sub(r"--scale (1:\d+), or a larger --sheet", r'scale = "\1", or a larger sheet',
+                           str(exc)).replace("use a larger --sheet", "use a larger sheet")
+            raise CastorError(f"sheet {entry.number} ({entry.drawing}): {words}",
                               Location(register.path, entry.line, 1)) from None
     return DrawingSet(register, list(register.sheets), sheets, target, scene.number)

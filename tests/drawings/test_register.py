@@ -120,5 +120,5 @@ def test_a_sheet_that_does_not_fit_names_its_line_and_the_scale_that_fits(tmp_pa
     text = REGISTER.replace('scale = "1:100"', 'scale = "1:20"\nsheet = "A4"')
     said = with_register(tmp_path, text, "-o", "set.pdf", status=1)
     assert "r.toml:15:1: error: sheet A-201" in said
-    assert "the largest scale that fits is 1:50" in said
+    assert "the largest scale that fits is 1:50: scale = \"1:50\"" in said
     assert not (tmp_path / "set.pdf").exists()
