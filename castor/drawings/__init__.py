@@ -15,17 +15,17 @@ import os
 import re
 import unicodedata
 
-from castor.drawings.model import Drawing, Layer, ViewBasis, view_for
+from castor.drawings.model import Drawing, Layer, view_for
 from castor.drawings.cut import cut_loops, section_area
 from castor.drawings.hidden import seen_lines
 
-__all__ = ["Drawing", "DrawingSet", "Layer", "ViewBasis", "draw", "section_area", "set_of", "sheet_of",
+__all__ = ["Drawing", "DrawingSet", "Layer", "draw", "section_area", "set_of", "sheet_of",
            "title_of"]
 
 
 def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
-    """The drawing of a mesh frame: cut by ``section`` (castor.options.Section)
-    if given, seen from ``view`` (castor.options.View) otherwise."""
+    """The drawing of a mesh frame: cut by ``section`` (castor.settings.Section)
+    if given, seen from ``view`` (castor.settings.View) otherwise."""
     seen = view_for(section, view)
     depth = seen.plane_depth(section)
     sources = [k for k, o in enumerate(frame.objects) if o.polygon_count]
@@ -42,16 +42,16 @@ def plain(text: str) -> str:
     return "".join(" " if unicodedata.category(c) in ("Cc", "Cs") else c for c in text).strip()
 
 
-def title_of(scene, title: str | None) -> str:
+def title_of(tree, title: str | None) -> str:
     """The sheet's title: --title, else the name of the '>' object, else the file's."""
     if title:
         return plain(title) or "castor"
-    if len(scene.objects) == 1 and scene.objects[0].name:
-        return scene.objects[0].name
-    return os.path.basename(scene.location.file) or "castor"
+    if len(tree.objects) == 1 and tree.objects[0].name:
+        return tree.objects[0].name
+    return os.path.basename(tree.location.file) or "castor"
 
 
-def sheet_of(scene, frame, settings, title: str | None = None, warn=None, facetizer=None):
+def sheet_of(tree, frame, settings, title: str | None = None, warn=None, facetizer=None):
     """The frame drawn and laid on its sheet (castor.drawings.sheet.Sheet), as
     ``settings`` (castor.settings.DrawingSettings) ask, titled ``title``
     (--title); what a drawing format writes. ``warn(message)`` hears of
@@ -63,15 +63,15 @@ def sheet_of(scene, frame, settings, title: str | None = None, warn=None, faceti
 
     result = draw(frame, settings.section, settings.view, settings.scale)
     result.fields = {name: plain(str(text)) for name, text in settings.fields if plain(str(text))}
-    if facetizer is not None and scene.classes is not None:
+    if facetizer is not None and tree.classes is not None:
         from castor.drawings.classes import classify
         from castor.quantities import Takeoff
 
-        classify(result, Takeoff(scene, facetizer), warn)
+        classify(result, Takeoff(tree, facetizer), warn)
     try:
-        return layout(result, settings.sheet, title_of(scene, title), scene.where, warn)
+        return layout(result, settings.sheet, title_of(tree, title), tree.where, warn)
     except DoesNotFit as exc:
-        raise CastorError(str(exc), scene.location) from None
+        raise CastorError(str(exc), tree.location) from None
 
 
 class DrawingSet:
@@ -88,7 +88,7 @@ class DrawingSet:
         self.number = number  # the frame's: its first sheet's file takes it, the next ones follow
 
 
-def set_of(scene, frame, settings, title: str | None = None, warn=None, facetizer=None,
+def set_of(tree, frame, settings, title: str | None = None, warn=None, facetizer=None,
            target: str | None = None) -> DrawingSet:
     """Every sheet of the register (``settings.register``) drawn from the frame
     and laid out; plans carry the set's section and elevation marks. A sheet
@@ -100,10 +100,10 @@ def set_of(scene, frame, settings, title: str | None = None, warn=None, facetize
 
     register = settings.register
     takeoff = None
-    if facetizer is not None and scene.classes is not None:
+    if facetizer is not None and tree.classes is not None:
         from castor.quantities import Takeoff
 
-        takeoff = Takeoff(scene, facetizer)  # shared by the sheets: solids made once
+        takeoff = Takeoff(tree, facetizer)  # shared by the sheets: solids made once
     drawings = []
     for entry in register.sheets:
         drawing = draw(frame, entry.section, entry.view, entry.scale)
@@ -118,11 +118,11 @@ def set_of(scene, frame, settings, title: str | None = None, warn=None, facetize
     sheets = []
     for entry, drawing in zip(register.sheets, drawings):
         try:
-            sheets.append(layout(drawing, entry.paper, title_of(scene, title), scene.where, warn))
+            sheets.append(layout(drawing, entry.paper, title_of(tree, title), tree.where, warn))
         except DoesNotFit as exc:
             # in the register's words: its scale and sheet keys, not the options
             words = re.sub(r"--scale (1:\d+), or a larger --sheet", r'scale = "\1", or a larger sheet',
                            str(exc)).replace("use a larger --sheet", "use a larger sheet")
             raise CastorError(f"sheet {entry.number} ({entry.drawing}): {words}",
                               Location(register.path, entry.line, 1)) from None
-    return DrawingSet(register, list(register.sheets), sheets, target, scene.number)
+    return DrawingSet(register, list(register.sheets), sheets, target, tree.number)

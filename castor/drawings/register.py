@@ -37,10 +37,10 @@ class SheetEntry(NamedTuple):
     number: str
     title: str
     drawing: str  # as written: "plan z=1.2"
-    section: object  # castor.options.Section, or None (an elevation)
-    view: object  # castor.options.View
+    section: object  # castor.settings.Section, or None (an elevation)
+    view: object  # castor.settings.View
     scale: float
-    paper: object  # castor.options.Paper, or None (as large as the drawing)
+    paper: object  # castor.settings.Paper, or None (as large as the drawing)
     revision: str
     line: int  # of its [[sheet]] header
 
@@ -134,7 +134,8 @@ class _Reader:
 
     def drawing(self, index, values: dict):
         """The section and view a sheet's ``drawing`` names."""
-        from castor.options import View, parse_section
+        from castor.options import parse_section
+    from castor.settings import View
 
         if "drawing" not in values:
             self.fail("sheet", index, None, f"the sheet has no drawing: drawing = \"{DRAWINGS}\"")

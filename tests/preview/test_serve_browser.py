@@ -12,7 +12,7 @@ import shutil
 import numpy as np
 import pytest
 
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.settings import Source
 from castor.serve.server import PreviewServer
 from tests.support.preview_page import browser, house, page, skip_without_chromium  # noqa: F401

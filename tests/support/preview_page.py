@@ -38,7 +38,7 @@ def browser():
 
 @pytest.fixture
 def house(tmp_path, monkeypatch):
-    from castor.serve.scene import Watched
+    from castor.serve.evaluation import Watched
     from castor.serve.server import PreviewServer
     from castor.settings import Source
 
