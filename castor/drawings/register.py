@@ -135,7 +135,7 @@ class _Reader:
     def drawing(self, index, values: dict):
         """The section and view a sheet's ``drawing`` names."""
         from castor.options import parse_section
-    from castor.settings import View
+        from castor.settings import View
 
         if "drawing" not in values:
             self.fail("sheet", index, None, f"the sheet has no drawing: drawing = \"{DRAWINGS}\"")
