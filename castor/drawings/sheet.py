@@ -13,146 +13,22 @@ them, a triangle on the level's line with its height above.
 from __future__ import annotations
 
 import datetime
-import math
 import os
-from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
 
 from castor.drawings.annotate import (Chain, dimension_chains, length_text, level_heights,
                                       level_text, vertical_chain)
-
-CUT_PEN, PROFILE_PEN, SEEN_PEN, THIN_PEN = 0.5, 0.35, 0.18, 0.13  # mm
-POCHE = "#8c8c8c"
-TEXT = 2.5  # mm, the height of dimension, level and sheet text
-MARGIN = 10.0  # mm round the sheet's content, and from the paper's edge to the border
-STANDARD_SCALES = (20, 50, 100, 200, 500, 1000)
-TITLE_BLOCK = (110.0, 30.0)  # mm
-PROJECT_ROWS = 13.0  # mm the project's fields add on top of the title block
-
-
-def _title_size(drawing) -> tuple[float, float]:
-    """The title block's width and height: taller with the project's fields."""
-    return TITLE_BLOCK[0], TITLE_BLOCK[1] + (PROJECT_ROWS if getattr(drawing, "fields", None) else 0.0)
-GROUND_OVERHANG = 5.0  # mm the ground line runs on beyond the drawing
-
-# where the parts of a dimension stand, in mm out from the drawing's box
-EXTENSION_GAP = 2.0  # extension lines start this far from the drawing
-OVERSHOOT = 1.5  # and run on past the dimension line
-CHAIN_LINE, OVERALL_LINE, ALONE_LINE = 10.0, 19.0, 10.0
-# text rows (from, to): the chain's own row, its staggered row, the overall's;
-# text stands on the side of its line that reads as "above": towards the
-# drawing at the bottom and right, away from it at the top and left
-ROWS = {"inward": {"chain": (6.5, 9.0), "stagger": (12.0, 14.5), "overall": (15.5, 18.0),
-                   "alone": (6.5, 9.0)},
-        "outward": {"chain": (11.0, 13.5), "stagger": (14.5, 17.0), "overall": (20.0, 22.5),
-                    "alone": (11.0, 13.5)}}
-READS = {"bottom": "inward", "right": "inward", "top": "outward", "left": "outward"}
-DEPTH = {"inward": 21.0, "outward": 23.5}  # mm a side's dimensions take
-LEVEL_WIDTH = 22.0  # mm a column of levels takes
-
-
-# Helvetica's advance widths (per em) for the characters drawings write most
-_WIDTHS = {**{c: 0.556 for c in "0123456789+-±$#_?"}, ".": 0.278, ",": 0.278, " ": 0.278,
-           ":": 0.278, "=": 0.584, "i": 0.222, "l": 0.222, "j": 0.222, "f": 0.278, "t": 0.278,
-           "I": 0.278, "m": 0.833, "w": 0.722, "M": 0.833, "W": 0.944, "r": 0.333}
-
-
-def text_width(text: str, size: float) -> float:
-    """The width of ``text`` set in Helvetica at ``size`` mm, near enough to place it."""
-    return size * sum(_WIDTHS.get(c, 0.667 if c.isupper() else 0.556) for c in text)
-
-
-class Lines(NamedTuple):
-    """Straight segments (L, 2, 2) in paper mm, drawn with one pen."""
-
-    segments: np.ndarray
-    pen: float
-    kind: str  # "profile", "seen", "annotation", "sheet", "symbol", "overhead"
-    dashed: bool = False  # ISO 128's dashed line: DASH mm dashes, GAP mm gaps
-
-
-DASH, GAP = 3.0, 1.5  # mm
-
-
-class Arc(NamedTuple):
-    """A circular arc in paper mm, counter-clockwise as seen on the paper from
-    ``start`` to ``end`` degrees (0 along paper x, 90 up the paper)."""
-
-    x: float
-    y: float
-    radius: float
-    start: float
-    end: float
-    pen: float
-    kind: str = "symbol"
-
-
-class Shape(NamedTuple):
-    """Closed (or open) outlines in paper mm, filled or not."""
-
-    loops: list
-    pen: float
-    fill: str | None = None
-    closed: bool = True
-    kind: str = "annotation"  # "cut", "annotation", "sheet"
-    pattern: str | None = None  # a hatch (castor.drawings.classes.HATCHES) over the fill
-    label: str = ""  # what it is (a cut region: its element's class)
-
-
-class Text(NamedTuple):
-    x: float
-    y: float  # the baseline's anchor point, paper mm
-    text: str
-    size: float = TEXT
-    angle: float = 0.0  # degrees, counter-clockwise as seen on the paper
-    anchor: str = "start"  # "start", "middle", "end"
-
-
-class Dimension(NamedTuple):
-    """One dimension as CAD keeps it, in page metres: measured from p1 to p2
-    along ``angle`` (0 or 90), its line through ``base``, its text at
-    ``text_at`` (None: on the line's middle, where CAD puts it)."""
-
-    p1: tuple
-    p2: tuple
-    base: tuple
-    angle: float
-    text_at: tuple | None
-    offset: float  # metres from p1 and p2 to where the extension lines start
-    shown: bool = True  # False: no room for its text, which is left out
-
-
-@dataclass
-class Group:
-    name: str
-    items: list = field(default_factory=list)
-
-
-@dataclass
-class Sheet:
-    """A drawing laid on paper: the paper's size, the objects' groups, the
-    annotation groups and what a CAD file needs to rebuild the dimensions."""
-
-    width: float
-    height: float
-    title: str
-    description: str
-    origin: tuple[float, float]  # the paper point of the page's (0, 0) metres
-    mm: float  # paper millimetres per metre
-    layers: list[Group]  # one per object
-    groups: list[Group]  # "dimensions", "levels", "sheet"
-    dimensions: list[Dimension]
-    drawing: object  # castor.drawings.model.Drawing
-
-    def to_metres(self, points: np.ndarray) -> np.ndarray:
-        """Paper mm back to page metres (where a CAD file puts the sheet's items)."""
-        points = np.asarray(points, float)
-        return np.column_stack([(points[..., 0].ravel() - self.origin[0]) / self.mm,
-                                (self.origin[1] - points[..., 1].ravel()) / self.mm]
-                               ).reshape(points.shape)
-
+from castor.drawings.legend import (_legend, _legend_items, _legend_width, _project_rows,
+                                    _symbols, _title_size, PROJECT_ROWS)
+# the sheet's items and pens (castor.drawings.paper), as the writers import them from here
+from castor.drawings.paper import (ALONE_LINE, CHAIN_LINE, CUT_PEN, DASH, DEPTH,  # noqa: F401
+                                   EXTENSION_GAP, GAP, GROUND_OVERHANG, LEVEL_WIDTH, MARGIN,
+                                   OVERALL_LINE, OVERSHOOT, POCHE, PROFILE_PEN, READS, ROWS,
+                                   SEEN_PEN, STANDARD_SCALES, TEXT, THIN_PEN, TITLE_BLOCK, Arc,
+                                   Dimension, Group, Lines, Shape, Sheet, Text, _fitted,
+                                   text_width)
 
 class DoesNotFit(Exception):
     """The drawing is larger than the sheet at the asked scale."""
@@ -412,22 +288,6 @@ def _bar_width(drawing, scale: float) -> float:
     return bar_m * 1000.0 / scale + 10.0 + (20.0 if drawing.is_plan else 0.0) + _legend_width(drawing)
 
 
-LEGEND_ROWS, LEGEND_ROW, LEGEND_SWATCH = 4, 5.5, (8.0, 4.0)  # rows a column, mm
-
-
-def _legend(drawing) -> list:
-    return list(getattr(drawing.symbols, "legend", None) or [])
-
-
-def _legend_width(drawing) -> float:
-    """The legend's width: columns of LEGEND_ROWS swatches with their words."""
-    entries = _legend(drawing)
-    if not entries:
-        return 0.0
-    columns = [entries[k:k + LEGEND_ROWS] for k in range(0, len(entries), LEGEND_ROWS)]
-    return sum(LEGEND_SWATCH[0] + 6.0 + max(text_width(w, TEXT) for _, w in c) for c in columns)
-
-
 def _band(drawing, scale: float, room: float | None) -> tuple[float, bool]:
     """The band below the content (scale bar, north arrow, title block): its
     height, and whether the scale bar stands above the title block, which it
@@ -547,70 +407,6 @@ def _drawn(drawing, ground: bool, box_mm, origin, mm: float) -> list[Group]:
     return layers
 
 
-def _symbols(drawing, origin, mm: float) -> Group | None:
-    """The classes' symbols (castor.drawings.classes) in paper mm: doors'
-    leaves and swings, windows, stairs, what is overhead (dashed), room tags
-    and a plan's floor level; None without classes."""
-    symbols = drawing.symbols
-    if symbols is None:
-        return None
-
-    def paper_of(points):
-        points = np.asarray(points, float)
-        return np.stack([points[..., 0] * mm + origin[0], origin[1] - points[..., 1] * mm], axis=-1)
-
-    group = Group("symbols")
-    by_pen: dict[tuple, list] = {}
-    for stroke in symbols.strokes:
-        points = paper_of(stroke.points)
-        if stroke.closed:
-            points = np.concatenate([points, points[:1]])
-        by_pen.setdefault((stroke.pen, stroke.dashed), []).extend(
-            np.stack([points[:-1], points[1:]], axis=1).tolist())
-    for (pen, dashed), segments in sorted(by_pen.items()):
-        group.items.append(Lines(np.array(segments, float).reshape(-1, 2, 2), pen,
-                                 "overhead" if dashed else "symbol", dashed))
-    for arc in symbols.arcs:
-        (x, y), = paper_of([arc.centre]).tolist()
-        group.items.append(Arc(x, y, arc.radius * mm, arc.start, arc.end, arc.pen))
-    for label in symbols.labels:
-        (x, y), = paper_of([label.at]).tolist()
-        step = label.size * 1.3
-        for k, line in enumerate(label.lines):
-            size = label.size if k == 0 else TEXT
-            # the line's middle at the label's point, further lines below it
-            t = math.radians(label.angle)
-            down = k * step + size * 0.35
-            group.items.append(Text(x + math.sin(t) * down, y + math.cos(t) * down, line, size,
-                                    label.angle, "middle"))
-    if symbols.storey is not None and symbols.level_at is not None:
-        (x, y), = paper_of([symbols.level_at]).tolist()
-        y += 3.0 * 1.3 + 5.5  # below the first room's tag
-        text = level_text(symbols.storey[1])
-        group.items.append(Shape([np.array([(x - 5.5, y - 2.2), (x - 2.5, y - 2.2), (x - 4.0, y)])],
-                                 THIN_PEN, None, True, "symbol"))
-        group.items.append(Lines(np.array([[(x - 7.0, y), (x - 1.0, y)]]), THIN_PEN, "symbol"))
-        group.items.append(Text(x - 0.5, y - 0.5, text, TEXT, 0.0, "start"))
-    return group
-
-
-def _legend_items(drawing, items, x: float, y: float) -> None:
-    """The hatches the sheet uses, each a swatch and its words, in columns from
-    (x, y), the lowest row's baseline."""
-    w, h = LEGEND_SWATCH
-    entries = _legend(drawing)
-    for start in range(0, len(entries), LEGEND_ROWS):
-        column = entries[start:start + LEGEND_ROWS]
-        for k, (pattern, words) in enumerate(column):
-            top = y - (len(column) - 1 - k) * LEGEND_ROW - h + 0.5
-            box = np.array([(x, top), (x + w, top), (x + w, top + h), (x, top + h)])
-            solid = pattern == "SOLID"
-            items.append(Shape([box], THIN_PEN, POCHE if solid else "white", True, "legend",
-                               None if solid else pattern, words))
-            items.append(Text(x + w + 2.0, top + h - 0.5, words, TEXT))
-        x += w + 6.0 + max(text_width(words, TEXT) for _, words in column)
-
-
 def _annotated(drawing, frame: _Frame, box_mm, origin, mm: float, level_x: float,
                warn) -> tuple[Group, Group, list]:
     """The dimensions' and the levels' groups, and the dimensions as CAD keeps them."""
@@ -662,42 +458,6 @@ def _sheet_band(drawing, paper, width: float, height: float, stacked: bool, mm: 
         _legend_items(drawing, group.items,
                       bx + bar_m * mm + 10.0 + (20.0 if drawing.is_plan else 0.0), by + 4.0)
     return group
-
-
-def _fitted(text: str, size: float, room: float, keep_end: bool = False) -> tuple[str, float]:
-    """The text and size that fit ``room`` mm: smaller down to TEXT, then cut
-    short (at its start for a path, whose end says most)."""
-    while size > TEXT and text_width(text, size) > room:
-        size = max(TEXT, size - 0.25)
-    if text_width(text, size) > room:
-        while text and text_width(text + "…", size) > room:
-            text = text[1:] if keep_end else text[:-1]
-        text = "…" + text if keep_end else text + "…"
-    return text, size
-
-
-def _project_rows(items, x, y, fields: dict) -> None:
-    """The project's rows on top of the title block: its title and number; the
-    sheet's number, the revision, who drew and who checked it."""
-    w = TITLE_BLOCK[0]
-    items.append(Shape([np.array([(x, y), (x + w, y), (x + w, y + PROJECT_ROWS),
-                                  (x, y + PROJECT_ROWS)])], PROFILE_PEN, None, True, "sheet"))
-    items.append(Lines(np.array([[(x, y + 6.5), (x + w, y + 6.5)],
-                                 [(x + 40, y + 6.5), (x + 40, y + PROJECT_ROWS)],
-                                 [(x + 62, y + 6.5), (x + 62, y + PROJECT_ROWS)],
-                                 [(x + 86, y + 6.5), (x + 86, y + PROJECT_ROWS)]]),
-                       SEEN_PEN, "sheet"))
-    number = fields.get("number", "")
-    room = w - 6 - (text_width(number, TEXT) + 3 if number else 0)
-    text, size = _fitted(fields.get("project", ""), 3.5, room)
-    items.append(Text(x + 3, y + 5.0, text, size))
-    if number:
-        items.append(Text(x + w - 3, y + 5.0, _fitted(number, TEXT, w / 2)[0], TEXT, 0.0, "end"))
-    cells = ((x, 40, "Sheet", fields.get("sheet_number", "")), (x + 40, 22, "Rev", fields.get("revision", "")),
-             (x + 62, 24, "Drawn", fields.get("drawn", "")), (x + 86, 24, "Checked", fields.get("checked", "")))
-    for left, width, name, value in cells:
-        text, size = _fitted(f"{name} {value}".strip(), TEXT, width - 3)
-        items.append(Text(left + 1.5, y + 11.3, text, size))
 
 
 def _title_block(items, x, y, title, what, scale, date, where):
