@@ -115,8 +115,6 @@ class _Reader:
             self.text(table, index, key, value)
 
     def paper_and_scale(self, table, index, values: dict, fallback):
-        from castor.options import parse_scale, parse_sheet
-
         paper, scale = fallback
         if "sheet" in values:
             try:
@@ -134,7 +132,6 @@ class _Reader:
 
     def drawing(self, index, values: dict):
         """The section and view a sheet's ``drawing`` names."""
-        from castor.options import parse_section
         from castor.settings import View
 
         if "drawing" not in values:
@@ -155,6 +152,46 @@ class _Reader:
             return drawing, section, None
         except ValueError:
             self.fail("sheet", index, "drawing", f"unknown drawing '{drawing}': {DRAWINGS}")
+
+
+# the values as the command line's options take them (castor.options parses
+# those; a register is read below the command line, so here again)
+def parse_sheet(text: str):
+    from castor.settings import PAPER_SIZES, Paper
+
+    match = re.fullmatch(r"\s*(A[0-4])(-portrait)?\s*", text, re.IGNORECASE)
+    if not match:
+        raise ValueError(text)
+    size = match[1].upper()
+    width, height = PAPER_SIZES[size]
+    return Paper(f"{size}-portrait", height, width) if match[2] else Paper(size, width, height)
+
+
+def parse_scale(text: str) -> float:
+    import math
+
+    match = re.fullmatch(r"\s*1\s*:\s*(\S+)\s*", text)
+    try:
+        value = float(match[1]) if match else math.nan
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(text)
+    return value
+
+
+def parse_section(text: str):
+    import math
+
+    from castor.settings import Section
+
+    match = re.fullmatch(r"\s*([xyzXYZ])\s*=\s*(\S+)\s*", text)
+    if not match:
+        raise ValueError(text)
+    value = float(match[2])  # a ValueError when it is no number
+    if not math.isfinite(value):
+        raise ValueError(text)
+    return Section(match[1].lower(), value)
 
 
 def _read(path: str) -> tuple[str, dict]:
