@@ -15,7 +15,7 @@ import threading
 
 from castor import __version__
 from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
-from castor.options import OUTPUT_OPTIONS, negative_values, option_value, parse_count
+from castor.options import OUTPUT_OPTIONS, TITLE_FIELDS, negative_values, option_value, parse_count
 from castor.settings import DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE
 
 
@@ -221,6 +221,10 @@ def _choose_format(p: _Parser, args) -> None:
     problem = unavailable() if unavailable is not None else None
     if problem is not None:
         p.error(problem)
+    if args.sheets is not None and args.format == "svg" and not (
+            args.output and "%" in args.output):
+        p.error("an SVG holds one sheet: give --sheets a pattern such as -o sheet-%d.svg, or "
+                "write one .pdf or .dxf")
 
 
 def _check_destinations(p: _Parser, args) -> None:
@@ -301,7 +305,10 @@ def settings_of(args, overrides: dict[str, float]):
         picture=PictureSettings(size=args.size, view=args.view, eye=args.eye, look=args.look,
                                 sun=args.sun, samples=args.samples, edges=args.edges),
         drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale,
-                                sheet=args.sheet),
+                                sheet=args.sheet, fields=tuple(
+                                    (name, getattr(args, name)) for name in TITLE_FIELDS
+                                    if getattr(args, name) is not None),
+                                register=args.sheets),
         bim=BimSettings(classes=args.ifc_class))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)

@@ -207,6 +207,21 @@ OUTPUT_OPTIONS = (
     # one title for every document that has one: a drawing's, an IFC project's
     OutputOption("--title", "TEXT", "the title of a drawing or an IFC project (default: the "
                  "'>' object's name, or the file's)", PICTURES_AND_DRAWINGS),
+    # the title block's project fields (CLI.md; also a register's [project])
+    OutputOption("--project", "TEXT", "a drawing's project title, in its title block",
+                 PICTURES_AND_DRAWINGS),
+    OutputOption("--number", "TEXT", "the project's number, in a drawing's title block",
+                 PICTURES_AND_DRAWINGS),
+    OutputOption("--revision", "TEXT", "the revision, in a drawing's title block",
+                 PICTURES_AND_DRAWINGS),
+    OutputOption("--drawn", "TEXT", "who drew it, in a drawing's title block",
+                 PICTURES_AND_DRAWINGS),
+    OutputOption("--checked", "TEXT", "who checked it, in a drawing's title block",
+                 PICTURES_AND_DRAWINGS),
+    OutputOption("--sheets", "FILE", "a drawing set: FILE is the drawing register (TOML); "
+                 "every sheet in one .pdf (an index, then a page each), one .dxf (a layout "
+                 "each) or a file each for a %%d pattern", PICTURES_AND_DRAWINGS,
+                 parse="castor.drawings.register:parse_register"),
     OutputOption("--pixel-error", "E", "facets sized to the screen: each curved surface "
                  "within E pixels of its facets seen from the camera (--view or --eye/--look, "
                  "--size)", PICTURES_AND_DRAWINGS, parse=parse_pixel_error,
@@ -215,6 +230,10 @@ OUTPUT_OPTIONS = (
                  "maison=IfcWall (repeatable; default IfcBuildingElementProxy)", BUILDING_MODELS,
                  parse="castor.formats.ifc:parse_classes_option", absent=(), repeat=True),
 )
+
+
+# the title block's fields the command line gives (their options' names)
+TITLE_FIELDS = ("project", "number", "revision", "drawn", "checked")
 
 
 def option_value(option: OutputOption, value):

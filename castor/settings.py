@@ -180,14 +180,19 @@ class PictureSettings(Record):
 class DrawingSettings(Record):
     """Drawing a plan, section or elevation (castor.drawings)."""
 
-    __slots__ = ("section", "view", "scale", "sheet")
+    __slots__ = ("section", "view", "scale", "sheet", "fields", "register")
 
     def __init__(self, section: object = None, view: object = None, scale: float = DEFAULT_SCALE,
-                 sheet: object = None):
+                 sheet: object = None, fields: tuple[tuple[str, str], ...] = (),
+                 register: object = None):
         self.section = section  # castor.settings.Section: cut by this plane
         self.view = view  # castor.settings.View: seen from this side
         self.scale = scale  # 1:scale on paper
         self.sheet = sheet  # castor.settings.Paper (--sheet); None: paper as large as the drawing
+        # the title block's fields given ("project", "number", "revision", "drawn",
+        # "checked", and a register's "sheet_number", "sheet_title"), as (name, text)
+        self.fields = fields
+        self.register = register  # castor.drawings.register.Register (--sheets), or None
 
 
 class BimSettings(Record):

@@ -34,6 +34,10 @@ class Layer:
     cuts: list[np.ndarray] = field(default_factory=list)  # each (n, 2)
     lines: np.ndarray = field(default_factory=lambda: np.zeros((0, 2, 2)))  # (L, 2, 2)
     profile: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))  # (L,)
+    source: int = -1  # the index of its object in the frame
+    # with classes (castor.drawings.classes): its cut regions element by element,
+    # each hatched by its class; None: the cuts are solid grey
+    regions: list | None = None
 
 
 @dataclass
@@ -42,6 +46,8 @@ class Drawing:
     view: Orthographic
     scale: float  # the N of 1:N
     section: object = None  # castor.settings.Section, None for an elevation
+    symbols: object = None  # castor.drawings.classes.Symbols, with classes only
+    fields: dict = field(default_factory=dict)  # the title block's fields (settings.fields)
 
     @property
     def is_plan(self) -> bool:
@@ -52,7 +58,13 @@ class Drawing:
         if self.section is None:
             return f"Elevation {self.view.name}"
         kind = "Plan" if self.section.axis == "z" else "Section"
-        return f"{kind} {self.section.axis} = {self.section.value:.2f}"
+        text = f"{kind} {self.section.axis} = {self.section.value:.2f}"
+        storey = getattr(self.symbols, "storey", None)
+        if storey is not None:
+            from castor.drawings.annotate import level_text
+
+            text += f", {storey[0]} {level_text(storey[1])}"
+        return text
 
     def box(self) -> np.ndarray:
         """(2, 2): the lower-left and upper-right corners of what is drawn, in metres."""

@@ -154,11 +154,11 @@ _DECLARED = (
     _declare("gif", "gif", (".gif",), PICTURE, "every frame ray traced, as an animation",
              one_frame=False),
     _declare("svg", "svg", (".svg",), DRAWING, "a plan, section or elevation as a vector drawing",
-             binary=False),
+             binary=False, companions=True),  # companions: a drawing set's other sheets
     _declare("dxf", "dxf", (".dxf",), DRAWING, "a plan, section or elevation for CAD, in metres",
-             binary=False),
+             binary=False, companions=True),
     _declare("pdf", "pdf", (".pdf",), DRAWING,
-             "a plan, section or elevation on its sheet, for printing"),
+             "a plan, section or elevation on its sheet, for printing", companions=True),
 )
 
 _registry: dict[str, Format] | None = None

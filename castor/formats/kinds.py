@@ -187,14 +187,22 @@ class Drawings(Kind):
     """A plan, section or elevation laid on its sheet (castor.drawings)."""
 
     name, plural = "drawing", "drawings"
-    options = ("--view", "--section", "--scale", "--sheet", "--title")
+    options = ("--view", "--section", "--scale", "--sheet", "--title", "--project", "--number",
+               "--revision", "--drawn", "--checked", "--sheets")
 
     def make(self, tree, settings, chosen, made):
         from castor.drawings import sheet_of
 
         frame, facetizer = _polygons(tree, settings, made)
-        sheet = sheet_of(tree, frame, settings.drawing, settings.output.title,
-                         lambda message: made.warnings.append((message, tree.location)))
+        warn = lambda message: made.warnings.append((message, tree.location))  # noqa: E731
+        if settings.drawing.register is not None:
+            from castor.drawings import set_of
+
+            sheet = set_of(tree, frame, settings.drawing, settings.output.title, warn,
+                           facetizer, settings.output.target)
+        else:
+            sheet = sheet_of(tree, frame, settings.drawing, settings.output.title, warn,
+                             facetizer)
         _figures(settings, made, frame, facetizer, tree)
         return sheet
 
