@@ -64,6 +64,8 @@ class Gestures:
         arguments = request.get("arguments", {})
         if not isinstance(arguments, dict):
             raise CommandError("the arguments are one JSON object")
+        if not self.uri:
+            raise CommandError("no scene yet: open one in the editor")
         arguments = dict(arguments, uri=self.uri)  # the page never names a file
         if command in EDITS and arguments.get("version") is None:
             raise CommandError("an edit names the version of the text it was made on "

@@ -1,0 +1,50 @@
+"""The live preview of an editor's buffers (``castor --lsp --serve``): the
+same page and server as ``castor --serve``, but the scene's text is the
+buffer the editor sends the language server, unsaved, and the files it
+includes are read from the other open buffers (castor.language.preprocess.
+unsaved), so that the preview follows the buffer, not the file.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from castor.serve.scene import Evaluation, Watched, evaluate
+from castor.serve.server import Preview
+from castor.settings import ReadSettings, Source
+
+
+class BufferPreview(Preview):
+    """A Preview whose scene is a text given by ``follow``."""
+
+    def __init__(self, reading: ReadSettings = ReadSettings(), path: str | None = None):
+        text = ""
+        if path is not None:
+            try:
+                with open(path, encoding="utf-8", errors="replace", newline="") as handle:
+                    text = handle.read()
+            except OSError:
+                text = ""
+        super().__init__(Watched(Source(text=text, name=path or "<scene>"), reading,
+                                 quiet=True))
+        self.path = path
+        self.buffers: dict[str, str] = {}  # path -> an open buffer's text
+
+    def follow(self, path: str, text: str, buffers: dict[str, str]) -> None:
+        """The scene is now ``text`` (the file ``path``), with these buffers
+        read in place of their files: evaluate it again."""
+        with self.state:
+            if path == self.path and text == self.job.source.text and buffers == self.buffers:
+                return
+            self.path = path
+            self.job = replace(self.job, source=Source(text=text, name=path))
+            self.buffers = dict(buffers)
+            self._wanted += 1
+            self.state.notify_all()
+        self._stop_stale()
+
+    def evaluation(self, job: Watched, stale) -> Evaluation:
+        from castor.language.preprocess import unsaved
+
+        with unsaved(self.buffers):
+            return evaluate(job, stale)
