@@ -51,6 +51,25 @@ class SceneError(CastorError):
     """A statement that parses but means nothing: unknown names, argument counts."""
 
 
+class ArgumentCountError(SceneError):
+    """A primitive or transformation given the wrong number of arguments;
+    ``names``: the parameter names its arguments read (one of them may be a
+    macro of an #include that could not be read, which would have given more)."""
+
+    def __init__(self, message: str, location: Location | None = None,
+                 names: frozenset = frozenset()):
+        super().__init__(message, location)
+        self.names = names
+
+
+class UndefinedObject(SceneError):
+    """A use of an object name that has no definition (``name``)."""
+
+    def __init__(self, message: str, location: Location | None, name: str):
+        super().__init__(message, location)
+        self.name = name
+
+
 class EvaluationError(CastorError):
     """A fault found while evaluating at a '>' command: undefined parameter, domain error."""
 
@@ -112,8 +131,17 @@ class Reporter:
         # set by the preprocessor: (file, line, expanded text) -> the macro uses of
         # a line it changed (LineExpansions), or None
         self.expansions = None
+        # the #include files that could not be read (set by the preprocessor)
+        self.unread_includes: list[str] = []
+        # places whose error explains every other error there: a macro use left
+        # unexpanded (its argument count), which its statement cannot parse
+        self.explained: set[Location] = set()
 
     def error(self, err: CastorError) -> None:
+        if self.explained and not isinstance(err, PreprocessError) and err.location is not None \
+                and self._placed(err.location)[0] in self.explained:
+            return  # one message per cause
+        self._keep("error", err.message, err.location)
         self.errors += 1
         self._emit("error", err.message, err.location)
         if self.errors >= self.max_errors:
@@ -123,28 +151,38 @@ class Reporter:
     def warning(self, message: str, location: Location | None = None) -> None:
         self.warnings += 1
         if not self.quiet:
+            self._keep("warning", message, location)
             self._emit("warning", message, location)
 
     def note(self, message: str) -> None:
         self._emit_plain(message)
 
-    def _emit(self, kind: str, message: str, location: Location | None) -> None:
-        if location is None:
-            self._emit_plain(f"castor: {kind}: {message}")
-            return
-        note = None
+    def _keep(self, kind: str, message: str, location: Location | None) -> None:
+        """What a reporter that keeps its diagnostics as data does with one."""
+
+    def _placed(self, location: Location) -> tuple[Location, str | None, str | None]:
+        """Where a place was written, through the macros of its line (as gcc
+        points at a macro's use), the line as written, and the note naming the
+        macro when the place is inside an expansion."""
         text = self.source_lines.get((location.file, location.line))
         mapped = None
         if self.expansions is not None:
             mapped = self.expansions(location.file, location.line, text)
-        if mapped is not None:
-            # point at the macro's use in the line as written, as gcc does
-            column, expansion = mapped.locate(location.column)
-            location = Location(location.file, location.line, column)
-            text = mapped.original
-            if expansion is not None:
-                note = (f"{location}: note: in expansion of macro {expansion.macro}, "
-                        f"defined at {expansion.defined_at}")
+        if mapped is None:
+            return location, text, None
+        column, expansion = mapped.locate(location.column)
+        location = Location(location.file, location.line, column)
+        note = None
+        if expansion is not None:
+            note = (f"{location}: note: in expansion of macro {expansion.macro}, "
+                    f"defined at {expansion.defined_at}")
+        return location, mapped.original, note
+
+    def _emit(self, kind: str, message: str, location: Location | None) -> None:
+        if location is None:
+            self._emit_plain(f"castor: {kind}: {message}")
+            return
+        location, text, note = self._placed(location)
         lines = [f"{location}: {kind}: {message}"]
         if text is not None:
             text = text.rstrip("\n").expandtabs(1)
@@ -201,15 +239,6 @@ class CollectingReporter(Reporter):
         text = self.source_lines.get((location.file, location.line)) if location else None
         self.diagnostics.append(Diagnostic(kind, message, location,
                                            text.rstrip("\n") if text is not None else None))
-
-    def error(self, err: CastorError) -> None:
-        self._keep("error", err.message, err.location)
-        super().error(err)
-
-    def warning(self, message: str, location: Location | None = None) -> None:
-        if not self.quiet:
-            self._keep("warning", message, location)
-        super().warning(message, location)
 
     def unreadable(self, name: str, reason: str) -> None:
         """A scene file that cannot be read: an error without a place."""

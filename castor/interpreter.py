@@ -14,7 +14,8 @@ import itertools
 import math
 from typing import Callable, Iterable
 
-from castor.diagnostics import CastorError, Reporter, TooManyErrors
+from castor.diagnostics import (ArgumentCountError, CastorError, Reporter, TooManyErrors,
+                                UndefinedObject)
 from castor.language.expressions import UndefinedParameter, evaluate
 from castor.language.parse import Parser, SkippedDefinition
 from castor.language.reader import Chunk
@@ -46,6 +47,15 @@ class Interpreter:
         self.evaluator = Evaluator()
         self.frames_attempted = 0
         self.annotated: set[str] = set()  # parameters whose annotation was looked at
+        # LANGUAGE.md §11: the classes of objects by the place of their definition,
+        # the storeys' parameters; handed to the evaluator with each frame
+        self.classified: dict[tuple[str, int, int], object] = {}
+        self.storeys: list = []
+        self.declared_changed = False
+        self.failed: set[str] = set()  # parameters whose last definition had errors
+        # objects whose definition had only errors that others explain (and were not said)
+        self.unsaid: set[str] = set()
+        self.said = False  # whether an error of the statement being run was said
 
     def run(self, chunks: Iterable[Chunk], streaming: bool = True) -> None:
         """Execute every statement; stops early only after too many errors.
@@ -78,9 +88,17 @@ class Interpreter:
     def execute(self, item) -> None:
         try:
             if isinstance(item, CastorError):
-                self.reporter.error(item)
-            elif isinstance(item, SkippedDefinition):
-                pass
+                if not self._explained(item):
+                    self.reporter.error(item)
+                    self.said = True
+                return
+            if isinstance(item, SkippedDefinition):
+                if item.name is None:
+                    pass
+                elif item.name[0].isupper():
+                    self.failed.add(item.name)
+                elif not self.said:  # every fault of its definition was explained
+                    self.unsaid.add(item.name)
             elif isinstance(item, ParamDef):
                 self._define_parameter(item)
             elif isinstance(item, ObjectDef):
@@ -88,13 +106,24 @@ class Interpreter:
             elif isinstance(item, Facetize):
                 self._facetize(item)
         except CastorError as exc:
-            self.reporter.error(exc)
+            if not self._explained(exc):
+                self.reporter.error(exc)
+        self.said = False
 
     def _define_parameter(self, statement: ParamDef) -> None:
         name = statement.name
         if name not in self.annotated:
             self.annotated.add(name)
-            self.check_annotation(statement)
+            self._read_storey(statement)
+            try:
+                self._assign(statement)
+            finally:  # after the value is known: a slider's range is checked against it
+                self.check_annotation(statement)
+            return
+        self._assign(statement)
+
+    def _assign(self, statement: ParamDef) -> None:
+        name = statement.name
         if name in self.settings.overrides:
             return  # --set wins over the scene's assignments, as openscad -D does
         if name == "TOLERANCE" and self.settings.tolerance is not None:
@@ -102,11 +131,30 @@ class Interpreter:
         try:
             self.tables.parameters[name] = evaluate(statement.expr, self.tables.parameters)
         except UndefinedParameter as exc:
-            exc.message += (f"; parameter definitions are evaluated at once, where they stand, "
-                            f"so a repetition's variable such as '>[{exc.name} = ...]' has no "
-                            f"value here: write the expression inside the object that uses "
-                            f"it, or as a macro (#define {name} (...))")
+            self.failed.add(name)
+            if not self._explained(exc):
+                exc.message += (f"; parameter definitions are evaluated at once, where they "
+                                f"stand, so a repetition's variable such as '>[{exc.name} = "
+                                f"...]' has no value here: write the expression inside the "
+                                f"object that uses it, or as a macro (#define {name} (...))")
             raise
+        except CastorError:
+            self.failed.add(name)
+            raise
+        self.failed.discard(name)
+
+    def _explained(self, error: CastorError) -> bool:
+        """Whether an error already reported explains this one: one message per
+        cause. A use of a parameter whose definition had errors says nothing
+        more (an object's says so in a message of its own); nor does an argument
+        count where an argument names a parameter that has no value after an
+        #include that could not be read (it may be one of that file's macros,
+        such as a colour's three components)."""
+        if isinstance(error, UndefinedParameter):
+            return error.name in self.failed and error.name not in self.tables.parameters
+        if isinstance(error, ArgumentCountError) and self.reporter.unread_includes:
+            return any(name not in self.tables.parameters for name in error.names)
+        return isinstance(error, UndefinedObject) and error.name in self.unsaid
 
     def check_annotation(self, statement: ParamDef) -> None:
         """A malformed annotation (the comment after a parameter's first definition,
@@ -117,9 +165,77 @@ class Interpreter:
             return
         from castor.language.annotations import malformed
 
-        warning = malformed(text, where)
+        value = None if statement.name in self.settings.overrides else \
+            self.tables.parameters.get(statement.name)
+        warning = malformed(text, where, value)
         if warning is not None:
             self.reporter.warning(warning.message, warning.location)
+
+    def _read_storey(self, statement: ParamDef) -> None:
+        """``R1 = 3.0; // [storey "Étage"]``: R1's value is a storey's floor level."""
+        where = statement.location
+        text = self.reporter.source_lines.get((where.file, where.line))
+        if text is None or "storey" not in text:
+            return
+        from castor.language.annotations import storey_of
+        from castor.language.classes import StoreyMark
+
+        name = storey_of(text, where)
+        if name is not None:
+            self.storeys.append(StoreyMark(statement.name, name or statement.name, where))
+            self.declared_changed = True
+
+    def _may_be_annotated(self, location) -> bool:
+        """Whether the statement starting at ``location`` may have a comment after
+        its ';': its line has one, or the statement goes on below."""
+        text = self.reporter.source_lines.get((location.file, location.line))
+        return text is not None and ("//" in text or ";" not in text[location.column - 1:])
+
+    def _comment(self, location):
+        """The comment after the statement starting at ``location`` (castor.language.
+        annotations.definition_comment), or None."""
+        if not self._may_be_annotated(location):
+            return None
+        from castor.language.annotations import definition_comment
+
+        lines = self.reporter.source_lines
+        return definition_comment(lambda file, number: lines.get((file, number)), location)
+
+    def _classify(self, statement: ObjectDef) -> None:
+        """The class the comment on an object's definition gives it (LANGUAGE.md §11);
+        what cannot be understood is a warning, and the object is unclassed."""
+        where = statement.location
+        if not self._may_be_annotated(where):
+            return
+        from castor.language.classes import object_classes
+
+        lines = self.reporter.source_lines
+        for _, _, classification, problem in object_classes(
+                [(statement.name, where)], lambda file, number: lines.get((file, number))):
+            if problem is not None:
+                self.reporter.warning(problem.message, problem.location)
+            if classification is not None:
+                self.classified[(where.file, where.line, where.column)] = classification
+                self.declared_changed = True
+
+    def _stray_annotation(self, statement: Facetize) -> None:
+        """An annotation on a '>' command says nothing of anything: a warning."""
+        found = self._comment(statement.location)
+        if found is None or not found[0].lstrip().startswith("["):
+            return
+        text, at, _ = found
+        lead = len(text) - len(text.lstrip())
+        self.reporter.warning("annotation: a '>' command is not a definition; an annotation "
+                              "says what an object or a parameter is: put it on the line of "
+                              "its definition", at._replace(column=at.column + lead))
+
+    def _declared(self):
+        if self.declared_changed:
+            from castor.language.classes import Declared
+
+            self.declared_changed = False
+            self.evaluator.declared = Declared(tuple(self.classified.items()),
+                                               tuple(self.storeys))
 
     def _define_object(self, statement: ObjectDef) -> None:
         name = statement.name
@@ -129,6 +245,8 @@ class Interpreter:
                 statement.location)
         self.tables.objects[name] = statement.node
         self.tables.broken.discard(name)
+        self._classify(statement)
+        self.unsaid.discard(name)
 
     def _facetize(self, statement: Facetize) -> None:
         """One frame, or one for each value of ``>[T = ...]``; an error found in
@@ -136,6 +254,8 @@ class Interpreter:
         from castor.csg.evaluate import FrameErrors, repeat_values
 
         where = f"{statement.location.file}:{statement.location.line}"
+        self._stray_annotation(statement)
+        self._declared()
         if statement.repeat is None:
             values = [None]
         else:
@@ -160,6 +280,8 @@ class Interpreter:
             if self.submit is not None:
                 self.submit(scene)
         for error, numbers in failures.values():
+            if self._explained(error):
+                continue
             if len(values) > 1:
                 error.message += f" (in {frames_text(numbers)})"
             self.reporter.error(error)
@@ -167,11 +289,9 @@ class Interpreter:
 
 def frames_text(numbers: list[int]) -> str:
     """'frame 3', 'frames 1 to 11', 'frames 1, 3, 7'."""
-    if len(numbers) == 1:
-        return f"frame {numbers[0]}"
-    if numbers == list(range(numbers[0], numbers[-1] + 1)):
-        return f"frames {numbers[0]} to {numbers[-1]}"
-    return "frames " + ", ".join(str(n) for n in numbers)
+    from castor.csg.evaluate import counted
+
+    return counted("frame", numbers)
 
 
 __all__ = ["Interpreter", "TooManyErrors", "frames_text"]

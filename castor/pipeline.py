@@ -15,6 +15,7 @@ work, in this process or another; ``frames`` does it here for a whole source.
 
 from __future__ import annotations
 
+import io
 import sys
 import time
 from typing import Callable, Iterator
@@ -85,61 +86,88 @@ def statements(source: Source, reading: ReadSettings, reporter: Reporter,
         return reader.chunks(_lines(source, reader, unreadable))
     from castor.language.preprocess import preprocess
 
-    sources = list(_texts(source, unreadable))
+    sources = list(_texts(source, unreadable, reporter))
     text = preprocess(sources, list(reading.defines), list(reading.undefines),
                       list(reading.include_dirs), reporter, included)
     return Reader(reporter, directives_allowed=True).chunks(text.splitlines())
 
 
-def _texts(source: Source, unreadable) -> Iterator[tuple[str, str]]:
-    """(name, text) of each input, whole."""
-    if source.text is not None:
-        yield source.name, source.text
-        return
-    for name in source.files or ("-",):
-        if name == "-":
-            yield "<stdin>", sys.stdin.read()
-            continue
-        text = _read(name, unreadable)
-        if text is not None:
-            yield name, text
+def _texts(source: Source, unreadable, reporter: Reporter) -> Iterator[tuple[str, str]]:
+    """(name, text) of each input, whole; one that is not text is said and skipped."""
+    from castor.language.reader import NotText, text_of
+
+    for name, data in _inputs(source, unreadable):
+        try:
+            with data:
+                yield name, text_of(name, data.read() if _textual(data) else data)
+        except NotText as exc:
+            reporter.error(exc)
 
 
-def _lines(source: Source, reader, unreadable) -> Iterator[str]:
+def _lines(source: Source, reader, unreadable) -> Iterator:
     """The lines of the inputs as they arrive (for --no-cpp): standard input is
-    read a line at a time, so that a statement runs before the next is typed."""
+    read a line at a time, so that a statement runs before the next is typed.
+    An input that is not text gives its error (NotText) in place of its lines."""
+    from castor.language.reader import NotText, lines_of, text_of
+
+    for name, data in _inputs(source, unreadable):
+        reader.start_file(name)
+        try:
+            with data:
+                if source.text is not None:
+                    yield from text_of(name, source.text).splitlines(keepends=True)
+                else:
+                    yield from lines_of(name, data)
+        except NotText as exc:
+            yield exc
+
+
+def _inputs(source: Source, unreadable) -> Iterator[tuple[str, object]]:
+    """(name, stream) of each input: the text given, standard input (its bytes
+    when it has them), or each file opened as bytes."""
     if source.text is not None:
-        reader.start_file(source.name)
-        yield from source.text.splitlines(keepends=True)
+        yield source.name, io.StringIO(source.text)
         return
     for name in source.files or ("-",):
         if name == "-":
-            reader.start_file("<stdin>")
-            yield from iter(sys.stdin.readline, "")
+            stdin = sys.stdin
+            yield "<stdin>", _Borrowed(getattr(stdin, "buffer", stdin))
             continue
         handle = _open(name, unreadable)
         if handle is not None:
-            reader.start_file(name)
-            with handle:
-                yield from handle
+            yield name, handle
+
+
+class _Borrowed:
+    """Standard input in a ``with``: read, never closed."""
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def __getattr__(self, name):
+        return getattr(self.stream, name)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        return False
+
+
+def _textual(data) -> bool:
+    """A stream of str (an in-memory text, a test's standard input), not of bytes."""
+    stream = data.stream if isinstance(data, _Borrowed) else data
+    return isinstance(stream, io.TextIOBase)
 
 
 def _open(name: str, unreadable):
     try:
-        return open(name, encoding="utf-8", errors="replace")
+        return open(name, "rb")
     except OSError as exc:
         if unreadable is None:
             raise UsageError(f"error: cannot read '{name}': {exc.strerror}") from None
         unreadable(name, exc.strerror)
         return None
-
-
-def _read(name: str, unreadable) -> str | None:
-    handle = _open(name, unreadable)
-    if handle is None:
-        return None
-    with handle:
-        return handle.read()
 
 
 def _unless(cancelled: Callable[[], bool], pieces):

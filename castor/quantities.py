@@ -126,8 +126,10 @@ def _number(x: float) -> float | int:
     return int(x) if x.is_integer() and abs(x) < 1e15 else x
 
 
-def summary_record(frame: Frame) -> dict:
-    """One frame of the --summary document (OUTPUT.md, "Quantities")."""
+def summary_record(frame: Frame, scene=None, facetizer=None) -> dict:
+    """One frame of the --summary document (OUTPUT.md, "Quantities"); with the
+    frame's tree and the facetizer that made it, and classes in the scene, the
+    totals per class and storey, the openings and the spaces too."""
     objects = []
     for f in frame_figures(frame):
         objects.append({
@@ -140,7 +142,10 @@ def summary_record(frame: Frame) -> dict:
             "colours": [{"rgb": [_number(c) for c in rgb], "area": _number(area)}
                         for rgb, area in f.colours],
         })
-    return {"number": frame.number, "where": frame.where, "objects": objects}
+    record = {"number": frame.number, "where": frame.where, "objects": objects}
+    if scene is not None and facetizer is not None and scene.classes is not None:
+        record.update(Takeoff(scene, facetizer).record())
+    return record
 
 
 class Summary:
@@ -154,11 +159,337 @@ class Summary:
 
     def text(self) -> str:
         frames = sorted(self.frames, key=lambda record: record["number"])
-        # one line per object: readable, and still easy for grep
+        # one line per object (per class total, opening, space): readable, and
+        # still easy for grep
         parts = []
         for record in frames:
-            head = json.dumps({k: v for k, v in record.items() if k != "objects"})[:-1]
-            objects = ",\n   ".join(json.dumps(o) for o in record["objects"])
-            parts.append(f' {head}, "objects": [\n   {objects}]}}' if objects
-                         else f' {head}, "objects": []}}')
+            head = json.dumps({k: v for k, v in record.items()
+                               if not isinstance(v, list)})[:-1]
+            for key, items in record.items():
+                if not isinstance(items, list):
+                    continue
+                listed = ",\n   ".join(json.dumps(o) for o in items)
+                head += (f', "{key}": [\n   {listed}]' if listed else f', "{key}": []')
+            parts.append(f" {head}}}")
         return '{"frames": [\n' + ",\n".join(parts) + "]}\n"
+
+
+# --- the take-off by class and storey (LANGUAGE.md §11)
+
+LEVEL_SLACK = 0.01  # levels this close are one; an element this far below a level is on it
+
+
+def section_area(obj: FrameObject, z: float) -> float:
+    """The area of the object's section by the plane at height ``z``: each
+    polygon crossing it gives a segment, oriented by its outward normal so that
+    the shoelace sum of the segments is the area inside (no loop over them)."""
+    from castor.mesh.arrays import fan_triangles
+
+    if obj.polygon_count == 0:
+        return 0.0
+    tris, _ = fan_triangles(obj.offsets, obj.indices)
+    corners = obj.vertices[tris]  # (T, 3, 3)
+    above = corners[:, :, 2] > z
+    crossing = above.any(axis=1) & ~above.all(axis=1)
+    corners = corners[crossing]
+    above = above[crossing]
+    if len(corners) == 0:
+        return 0.0
+    points = []
+    for i, j in ((0, 1), (1, 2), (2, 0)):
+        a, b = corners[:, i], corners[:, j]
+        cut = above[:, i] != above[:, j]
+        t = np.where(cut, (z - a[:, 2]) / np.where(cut, b[:, 2] - a[:, 2], 1.0), 0.0)
+        points.append((a + (b - a) * t[:, None], cut))
+    # two of the three sides are cut: the segment's ends
+    ends = np.stack([p for p, _ in points], axis=1)  # (T, 3, 3)
+    cuts = np.stack([c for _, c in points], axis=1)  # (T, 3)
+    order = np.argsort(~cuts, axis=1, kind="stable")[:, :2]
+    p = np.take_along_axis(ends, order[:, 0, None, None].repeat(3, axis=2), axis=1)[:, 0]
+    q = np.take_along_axis(ends, order[:, 1, None, None].repeat(3, axis=2), axis=1)[:, 0]
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    # the inside is on the left going along z x normal
+    along = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
+    flip = ((q - p)[:, :2] * along).sum(axis=1) < 0
+    p, q = np.where(flip[:, None], q, p), np.where(flip[:, None], p, q)
+    return float((p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]).sum() / 2)
+
+
+def shells(obj: FrameObject) -> list[FrameObject]:
+    """The object's separate closed surfaces, each an object of its own."""
+    if obj.polygon_count == 0:
+        return []
+    following = np.arange(1, len(obj.indices) + 1)
+    following[obj.offsets[1:] - 1] = obj.offsets[:-1]
+    label = components(len(obj.vertices), obj.indices, obj.indices[following])
+    of_polygon = label[obj.indices[obj.offsets[:-1]]]
+    pieces = []
+    for value in np.unique(of_polygon):
+        chosen = np.flatnonzero(of_polygon == value)
+        lengths = np.diff(obj.offsets)[chosen]
+        starts = obj.offsets[:-1][chosen]
+        take = np.concatenate([np.arange(s, s + n) for s, n in zip(starts, lengths)])
+        used, indices = np.unique(obj.indices[take], return_inverse=True)
+        offsets = np.concatenate([[0], np.cumsum(lengths)])
+        pieces.append(FrameObject(obj.vertices[used], offsets, indices.reshape(-1),
+                                  obj.origin_of[chosen], obj.origins, obj.name))
+    return pieces
+
+
+def footprint(vertices: np.ndarray) -> tuple[float, float, tuple[float, float]]:
+    """The smallest rectangle around the vertices seen from above: its long
+    side, its short side and the long side's direction. A block cut in a wall
+    at any angle has the wall's length along the long side and its thickness
+    across it."""
+    points = np.unique(np.round(vertices[:, :2], 9), axis=0)
+    if len(points) < 3:
+        span = points.max(axis=0) - points.min(axis=0) if len(points) else np.zeros(2)
+        return float(max(span)), float(min(span)), (1.0, 0.0)
+    hull = _hull(points)
+    edges = np.roll(hull, -1, axis=0) - hull
+    lengths = np.linalg.norm(edges, axis=1)
+    keep = lengths > 1e-12
+    along = edges[keep] / lengths[keep, None]
+    across = np.stack([-along[:, 1], along[:, 0]], axis=1)
+    u = hull @ along.T  # (points, directions)
+    v = hull @ across.T
+    a, b = u.max(axis=0) - u.min(axis=0), v.max(axis=0) - v.min(axis=0)
+    best = int(np.argmin(a * b))
+    # prefer the axes when they are as good (a box in a wall along x or y)
+    spans = hull.max(axis=0) - hull.min(axis=0)
+    if spans.prod() <= a[best] * b[best] * (1 + 1e-9):
+        return (float(spans.max()), float(spans.min()),
+                (1.0, 0.0) if spans[0] >= spans[1] else (0.0, 1.0))
+    if a[best] >= b[best]:
+        return float(a[best]), float(b[best]), tuple(map(float, along[best]))
+    return float(b[best]), float(a[best]), tuple(map(float, across[best]))
+
+
+def _hull(points: np.ndarray) -> np.ndarray:
+    """The convex hull of a few points in the plane, counter-clockwise
+    (Andrew's monotone chain; ``points`` sorted and distinct)."""
+    def half(seq):
+        chain: list = []
+        for p in seq:
+            while len(chain) >= 2 and _turn(chain[-2], chain[-1], p) <= 0:
+                chain.pop()
+            chain.append(p)
+        return chain[:-1]
+
+    return np.array(half(points) + half(points[::-1]))
+
+
+def _turn(a, b, c) -> float:
+    return float((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+
+
+class Placed(NamedTuple):
+    """An element measured and put on its storey."""
+
+    element: object  # castor.csg.elements.Element
+    figures: Figures
+    storey: str
+
+
+class Block(NamedTuple):
+    """One opening: a separate block a door or window cut out of its element."""
+
+    opening: object  # castor.csg.elements.Opening
+    piece: int  # which of the opening's blocks, from 0
+    solid: FrameObject
+    figures: Figures
+    host: object  # the Element it was cut from (by the boxes), or None
+    storey: str
+    width: float  # along the wall (the long side of its plan)
+    thickness: float  # across it: the wall's
+    height: float
+    sill: float
+    head: float
+    direction: tuple[float, float]  # of the width, in plan
+
+
+class Room(NamedTuple):
+    """A space measured: its name, storey, floor area and volume."""
+
+    space: object  # castor.csg.elements.SpaceUse
+    name: str  # the annotation's room name, else the object's
+    storey: str
+    floor_area: float
+    volume: float
+    solid: FrameObject
+
+
+class Takeoff:
+    """The elements, openings, storeys and spaces of one frame, their solids made
+    when first asked for, with the facetizer that made the frame (its caches
+    hold the frame's shared subtrees, so only the booleans that part the
+    solids out are new work). What the take-off, the drawings and the IFC
+    handover read of a frame's classes."""
+
+    def __init__(self, scene, facetizer):
+        from castor.csg.elements import Boxes, find
+
+        self.boxes = Boxes()
+        self.scene = scene
+        self.facetizer = facetizer
+        self.elements, self.openings = find(scene)
+        self._solids: dict = {}
+        self._storeys: list[tuple[str, float]] | None = None
+        self._placed: list[Placed] | None = None
+
+    def _made(self, key, node) -> FrameObject:
+        if key not in self._solids:
+            from castor.csg import tree
+
+            if node is None:
+                self._solids[key] = FrameObject(np.zeros((0, 3)), np.zeros(1, np.int64),
+                                                np.zeros(0, np.int64), np.zeros(0, np.int64), [])
+            else:
+                scene = tree.FrameTree(self.scene.number, self.scene.where, self.scene.location,
+                                       (tree.Object(str(key), node),))
+                # triangles: the figures are the same, and no polygons are written
+                merging = self.facetizer.merge_polygons
+                self.facetizer.merge_polygons = False
+                try:
+                    self._solids[key] = self.facetizer.frame(scene).objects[0]
+                finally:
+                    self.facetizer.merge_polygons = merging
+        return self._solids[key]
+
+    def solid(self, element) -> FrameObject:
+        """The element's own solid, as polygons."""
+        from castor.csg.elements import element_tree
+
+        return self._made(("element", element.number),
+                          element_tree(self.scene, element, self.boxes))
+
+    def figures(self, element) -> Figures:
+        return object_figures(self.solid(element), element.name)
+
+    def space_solid(self, index: int) -> FrameObject:
+        from castor.csg import tree
+
+        space = self.scene.spaces[index]
+        return self._made(("space", index), tree.Use(space.matrix, "", space.shared))
+
+    def storeys(self) -> list[tuple[str, float]]:
+        """(name, floor level) from the lowest: LANGUAGE.md §11's rule."""
+        if self._storeys is None:
+            self._storeys = self._find_storeys()
+        return self._storeys
+
+    def _find_storeys(self) -> list[tuple[str, float]]:
+        declared = self.scene.classes.storeys if self.scene.classes is not None else ()
+        values = dict(self.scene.parameters)
+        found = [(m.name, float(values[m.parameter])) for m in declared if m.parameter in values]
+        if found:
+            return sorted(found, key=lambda s: s[1])
+        tops = sorted(f.bbox[1][2] for f in (self.figures(e) for e in self.elements
+                                             if _is_floor(e)) if f.bbox is not None)
+        levels: list[float] = []
+        for top in tops:
+            if not levels or top - levels[-1] > LEVEL_SLACK:
+                levels.append(top)
+        if not levels:
+            return [("Level 0", 0.0)]
+        return [(f"Level {k}", level) for k, level in enumerate(levels)]
+
+    def storey_at(self, height: float) -> str:
+        """The highest storey whose level is at most ``height`` (+ the slack), or
+        the lowest."""
+        storeys = self.storeys()
+        chosen = storeys[0][0]
+        for name, level in storeys:
+            if level <= height + LEVEL_SLACK:
+                chosen = name
+        return chosen
+
+    def placed(self) -> list[Placed]:
+        """Every element with a solid, measured, on its storey (by its bottom; a
+        floor slab by its top)."""
+        if self._placed is None:
+            self._placed = []
+            for element in self.elements:
+                f = self.figures(element)
+                if f.bbox is None:
+                    continue  # the rest of an object wholly made of classed parts
+                height = f.bbox[1][2] if _is_floor(element) else f.bbox[0][2]
+                self._placed.append(Placed(element, f, self.storey_at(height)))
+        return self._placed
+
+    def blocks(self) -> list[Block]:
+        """Every opening's blocks, in the order of the openings."""
+        from castor.csg.elements import opening_tree
+
+        out = []
+        for opening in self.openings:
+            whole = self._made(("opening", opening.number), opening_tree(self.scene, opening))
+            for k, piece in enumerate(shells(whole)):
+                f = object_figures(piece, opening.name)
+                (_, _, z0), (_, _, z1) = f.bbox
+                width, thickness, direction = footprint(piece.vertices)
+                out.append(Block(opening, k, piece, f, _host(self.placed(), f.bbox),
+                                 self.storey_at(z0), width, thickness, z1 - z0, z0, z1,
+                                 direction))
+        return out
+
+    def rooms(self) -> list[Room]:
+        out = []
+        for index, space in enumerate(self.scene.spaces):
+            solid = self.space_solid(index)
+            f = object_figures(solid, space.name)
+            if f.bbox is None:
+                continue
+            bottom = f.bbox[0][2]
+            out.append(Room(space, space.classification.long_name or space.name,
+                            self.storey_at(bottom), section_area(solid, bottom + 1e-3),
+                            f.volume, solid))
+        return out
+
+    def record(self) -> dict:
+        """What --summary adds to a frame: storeys, totals per class and storey,
+        openings, spaces."""
+        totals: dict[tuple[str, str], list] = {}
+        for p in self.placed():
+            total = totals.setdefault((p.element.ifc_class, p.storey), [0, 0.0, 0.0])
+            total[0] += 1
+            total[1] += p.figures.volume
+            total[2] += p.figures.area
+        order = {name: k for k, (name, _) in enumerate(self.storeys())}
+        classes = [{"class": c, "storey": s, "count": n, "volume": _number(v), "area": _number(a)}
+                   for (c, s), (n, v, a) in sorted(totals.items(),
+                                                   key=lambda i: (order[i[0][1]], i[0][0]))]
+        openings = []
+        for b in self.blocks():
+            openings.append({
+                "class": b.opening.classification.ifc_class, "name": b.opening.name,
+                "host": b.host.name if b.host is not None else None, "storey": b.storey,
+                "width": _number(b.width), "height": _number(b.height), "sill": _number(b.sill),
+                "head": _number(b.head), "volume": _number(b.figures.volume),
+                **dict(b.opening.classification.settings)})
+        spaces = [{"name": r.name, "object": r.space.name, "storey": r.storey,
+                   "floor_area": _number(r.floor_area), "volume": _number(r.volume)}
+                  for r in self.rooms()]
+        return {"storeys": [{"name": n, "level": _number(level)} for n, level in self.storeys()],
+                "classes": classes, "openings": openings, "spaces": spaces}
+
+
+def _is_floor(element) -> bool:
+    c = element.classification
+    return c is not None and c.ifc_class == "IfcSlab" and c.predefined == "floor"
+
+
+def _host(placed: list[Placed], box):
+    """The element whose box holds most of the opening's box; of those that
+    hold as much, the one whose box is smallest (a wall rather than the house)."""
+    best, rank = None, None
+    low, high = np.asarray(box[0]), np.asarray(box[1])
+    for p in placed:
+        a, b = p.figures.bbox
+        overlap = float(np.clip(np.minimum(high, b) - np.maximum(low, a), 0, None).prod())
+        if overlap <= 0:
+            continue
+        key = (-round(overlap, 9), float(np.prod(np.subtract(b, a))))
+        if rank is None or key < rank:
+            best, rank = p.element, key
+    return best

@@ -58,7 +58,8 @@ def token_end(text: str | None, location: Location) -> int:
     if not 0 < location.line <= len(lines):
         return location.column + 1
     source = lines[location.line - 1]
-    match = re.compile(r"[!@$]?\w+|\S").match(source, max(location.column - 1, 0))
+    # an annotation's bracket (LANGUAGE.md §11) is one token: [wal]
+    match = re.compile(r"\[[^\]\n]*\]|[!@$]?\w+|\S").match(source, max(location.column - 1, 0))
     return match.end() + 1 if match else location.column + 1
 
 
@@ -283,6 +284,12 @@ def hover(analysis: Analysis, file: str, line: int, column: int,
     if word.text[0] in "!@$":
         text = vocabulary_text(word.text)
         return (text, word) if text else None
+    from castor.analysis import classes
+
+    annotated = classes.annotation_hover(analysis.source_text(file) or "", file, line, column,
+                                         word.name, analysis)
+    if annotated is not None:  # a word of the comment after a definition
+        return (annotated, word) if annotated else None
     name = word.name
     found = macros(analysis).get(name)
     if found is not None:
@@ -332,6 +339,11 @@ def _object_hover(analysis, name, figures) -> str | None:
     source = (analysis.source_text(where.file) or "").split("\n")
     first = _short(source[where.line - 1].strip()) if 0 < where.line <= len(source) else ""
     text = f"object {name}, {where.file}:{where.line}\n{first}"
+    from castor.analysis.classes import class_of, described
+
+    found = class_of(analysis, where)
+    if found is not None and described(found):
+        text += f"\n{described(found)}"
     summary = figures(analysis, name)
     if summary and "refused" in summary:
         text += f"\nbox and volume not made: {summary['refused']}"
@@ -350,7 +362,9 @@ class Completion:
     label: str
     detail: str
     documentation: str
-    kind: str  # "primitive", "transform", "boolean", "parameter", "object", "macro"
+    # "primitive", "transform", "boolean", "parameter", "object", "macro"; in an
+    # annotation (castor.analysis.classes): "class", "type", "setting", "value"
+    kind: str
     insert: str
     snippet: str | None = None  # with its arguments as placeholders: cu(${1:R}, ...)
 
@@ -361,8 +375,19 @@ def _snippet(name: str, arguments: list[str]) -> str:
 
 
 def completions(analysis: Analysis | None, text: str, file: str, line: int,
-                column: int) -> list[Completion]:
-    """After '!', '@' or '$': the vocabulary; else the names defined before the cursor."""
+                column: int, trigger: str | None = None) -> list[Completion]:
+    """After '!', '@' or '$': the vocabulary; in a definition's annotation, after
+    ``// [``, the classes and what they take (castor.analysis.classes); else the
+    names defined before the cursor. Typing ``trigger`` '[' or '=' asks for
+    the annotation's words only."""
+    from castor.analysis.classes import ANNOTATION_TRIGGERS, offers
+
+    offered = offers(text, file, line, column, analysis)
+    if offered is not None:
+        return [Completion(o.label, o.detail, o.documentation, o.kind, o.insert)
+                for o in offered]
+    if trigger in ANNOTATION_TRIGGERS:
+        return []
     lines = text.split("\n")
     source = lines[line - 1] if 0 < line <= len(lines) else ""
     before = source[:max(column - 1, 0)]
@@ -408,7 +433,10 @@ class Symbol:
 
 
 def symbols(analysis: Analysis, file: str) -> list[Symbol]:
-    """The outline of one file: its parameters, objects and '>' commands, in order."""
+    """The outline of one file: its parameters, objects (with their classes) and
+    '>' commands, in order."""
+    from castor.analysis.classes import class_of, outline_detail
+
     out = []
     text = analysis.source_text(file)
     lines = (text or "").split("\n")
@@ -420,7 +448,8 @@ def symbols(analysis: Analysis, file: str) -> list[Symbol]:
         if d.kind == "parameter":
             out.append(Symbol(d.name, "parameter", d.location, end, f"= {_number(d.value)}"))
         elif d.kind == "object":
-            out.append(Symbol(d.name, "object", d.location, end, "object"))
+            out.append(Symbol(d.name, "object", d.location, end,
+                              outline_detail(class_of(analysis, d.location))))
         else:
             out.append(Symbol(source.strip()[:60] or ">", "frame", d.location, end, "frame"))
     return out

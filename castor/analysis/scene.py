@@ -25,8 +25,8 @@ from castor.pipeline import Overtaken, evaluate
 from castor.settings import EvaluationSettings, ReadSettings, Source
 
 __all__ = ["Analysis", "Definition", "Diagnostic", "Overtaken", "analyse", "analyse_buffers",
-           "macro_definitions", "object_figures", "parameters", "primitive_places", "shown_name",
-           "written_at"]
+           "macro_definitions", "object_classes", "object_figures", "parameters",
+           "primitive_places", "shown_name", "written_at"]
 
 
 @dataclass(frozen=True)
@@ -185,6 +185,26 @@ def parameters(analysis: Analysis):
 
 # an object larger than this is not made for a hover (its figures say why)
 HOVER_POLYGONS = 2_000_000
+
+
+def object_classes(analysis: Analysis):
+    """What each object definition's annotation says it is (LANGUAGE.md §11): for
+    each annotated definition, its name, where it is, its class (None when the
+    annotation cannot be understood) and the warning about it, if any: what a
+    hover, an outline and the warnings as you type read."""
+    from castor.language.classes import object_classes as classes_of
+
+    lines: dict[str, list[str] | None] = {}
+
+    def line_of(file: str, number: int) -> str | None:
+        if file not in lines:
+            text = analysis.source_text(file)
+            lines[file] = None if text is None else text.split("\n")
+        found = lines[file]
+        return found[number - 1] if found is not None and 0 < number <= len(found) else None
+
+    return classes_of([(d.name, d.location) for d in analysis.definitions
+                       if d.kind == "object"], line_of)
 
 
 def object_figures(analysis: Analysis, name: str, tolerance: float | None = None) -> dict | None:

@@ -87,6 +87,7 @@ class Evaluator:
         self.memo: dict[tuple, tuple[NamedNode, tree.Shared | None]] = {}
         self.errors: list[CastorError] = []
         self._seen_errors: set[tuple] = set()
+        self.declared = None  # the scene's classes (castor.language.classes.Declared), if any
 
     def frame(self, objects: tuple[SceneNode, ...], env: MutableMapping[str, float], number: int,
               where: str, location: Location) -> tree.FrameTree:
@@ -111,7 +112,12 @@ class Evaluator:
         if self.errors:
             raise FrameErrors(self.errors)
         parameters = tuple((k, v) for k, v in env.items() if k != "PI")
-        return tree.FrameTree(number, where, location, tuple(made), parameters)
+        scene = tree.FrameTree(number, where, location, tuple(made), parameters, self.declared)
+        if self.declared is not None and self.declared.has_spaces:
+            from castor.csg.elements import without_spaces
+
+            scene = without_spaces(scene)
+        return scene
 
     def _fail(self, error: CastorError) -> None:
         key = (error.message, error.location)
@@ -253,12 +259,16 @@ class Evaluator:
                 operands.append(self._node(child, env, matrix, stretch, tolerance,
                                            trail.down(step), rel.down(step)))
         else:
+            before, starts = len(self.errors), []
             with restored(env, node.repeat.param):
                 for k, value in enumerate(repeat_values(node.repeat, env), 1):
                     env[node.repeat.param] = value
                     step = f"{op}{k}"
+                    starts.append(len(self.errors))
                     operands.append(self._node(node.operands[0], env, matrix, stretch,
                                                tolerance, trail.down(step), rel.down(step)))
+            if len(self.errors) > before + 1:
+                self.errors[before:] = _merged(self.errors[before:], starts, before, trail, op)
         if op == "D":
             if not operands or operands[0] is None:
                 return None
@@ -294,6 +304,40 @@ class Evaluator:
         path = rel.down(f"!{node.kind}").steps()
         return tree.Primitive(node.kind, shape, colour, matrix, tolerance, stretch, path,
                               node.location)
+
+
+def _merged(errors: list[CastorError], starts: list[int], offset: int, trail: Trail,
+            op: str) -> list[CastorError]:
+    """The errors of a repetition's operands (those of operand k from
+    ``starts[k - 1] - offset`` on), each error that several operands share said
+    once, naming the first and how many (CLI.md: one message per cause)."""
+    import copy
+    import re
+
+    groups: dict[tuple, tuple[CastorError, list[int]]] = {}
+    k = 0
+    for index, error in enumerate(errors, offset):
+        while k < len(starts) and starts[k] <= index:
+            k += 1
+        own = re.compile(re.escape(str(trail.down(f"{op}{k}"))) + r"(?!\d)")
+        key = (type(error), own.sub("\0", error.message), error.location)
+        groups.setdefault(key, (error, []))[1].append(k)
+    out = []
+    for error, operands in groups.values():
+        if len(operands) > 1:
+            error = copy.copy(error)
+            error.message += f" (the same in {counted('operand', operands)} of the repetition)"
+        out.append(error)
+    return out
+
+
+def counted(word: str, numbers: list[int]) -> str:
+    """'frame 3', 'frames 1 to 11', 'frames 1, 3, 7'."""
+    if len(numbers) == 1:
+        return f"{word} {numbers[0]}"
+    if numbers == list(range(numbers[0], numbers[-1] + 1)):
+        return f"{word}s {numbers[0]} to {numbers[-1]}"
+    return f"{word}s " + ", ".join(str(n) for n in numbers)
 
 
 def _check_reach(matrix: tree.Matrix, extent: float, node: PrimitiveNode, here: Trail) -> None:

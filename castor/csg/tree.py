@@ -137,15 +137,22 @@ class Object(Record):
 class FrameTree(Record):
     """The scene of one frame: what a facetizer, a ray tracer or a drawing needs."""
 
-    __slots__ = ("number", "where", "location", "objects", "parameters")
+    __slots__ = ("number", "where", "location", "objects", "parameters", "classes", "spaces")
 
     def __init__(self, number: int, where: str, location: Location, objects: tuple[Object, ...],
-                 parameters: tuple[tuple[str, float], ...] = ()):
+                 parameters: tuple[tuple[str, float], ...] = (), classes=None,
+                 spaces: tuple = ()):
         self.number = number
         self.where = where  # FILE:LINE of the '>' command
         self.location = location
         self.objects = objects
         self.parameters = parameters  # the values in force at the '>' (not PI)
+        # what the scene's annotations declare (castor.language.classes.Declared),
+        # None without any: LANGUAGE.md §11, read by castor.csg.elements
+        self.classes = classes
+        # the rooms (castor.csg.elements.SpaceUse) taken out of the objects: a
+        # space is not a solid to build
+        self.spaces = spaces
 
     def shared(self) -> dict[str, Shared]:
         """Every shared subtree of the frame, by key."""

@@ -174,93 +174,116 @@ def _side_frame(side: str, box_mm: np.ndarray):
             "left": (x0, -1, False), "right": (x1, 1, False)}[side]
 
 
-def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
-    """Lines, ticks and texts of one side's chain and overall; returns how many
-    of the chain's values had no room."""
-    edge, out, horizontal = _side_frame(chain.side, box_mm)
-    reads = READS[chain.side]
-    rows = ROWS[reads]
-    segments: list = []
-    texts: list = []
+class _Side:
+    """One side of the drawing's box, where a chain of dimensions stands: where
+    its lines, ticks and texts go on paper (the segments and texts it gathers),
+    and its dimensions as CAD keeps them (added to ``dims``)."""
 
-    def at(s, d):  # paper point: s along the side (paper), d out from the box
-        return (s, edge + out * d) if horizontal else (edge + out * d, s)
+    def __init__(self, chain: Chain, box_mm, mm: float, origin, dims: list):
+        self.chain = chain
+        self.edge, self.out, self.horizontal = _side_frame(chain.side, box_mm)
+        self.rows = ROWS[READS[chain.side]]
+        self.mm, self.origin, self.dims = mm, origin, dims
+        self.segments: list = []
+        self.texts: list = []
 
-    def along(v):  # page metres along the side to paper
-        return origin[0] + v * mm if horizontal else origin[1] - v * mm
+    def at(self, s, d):
+        """The paper point s along the side (paper), d out from the box."""
+        return (s, self.edge + self.out * d) if self.horizontal else (self.edge + self.out * d, s)
 
-    def text_at(s, row):
+    def along(self, v):
+        """Page metres along the side, to paper."""
+        return self.origin[0] + v * self.mm if self.horizontal else self.origin[1] - v * self.mm
+
+    def text_at(self, s, row):
         """The baseline point of a text centred at s in a row (mm out from the
         box): its reading top is the row's paper end nearer the paper's top
         (or left, for text turned to read from the right)."""
-        top = min(edge + out * row[0], edge + out * row[1]) + 2.1
-        return (s, top, 0.0) if horizontal else (top, s, 90.0)
+        top = min(self.edge + self.out * row[0], self.edge + self.out * row[1]) + 2.1
+        return (s, top, 0.0) if self.horizontal else (top, s, 90.0)
 
-    def line(ends, d):
+    def line(self, ends, d):
         a, b = min(ends), max(ends)
-        segments.append([at(a - OVERSHOOT, d), at(b + OVERSHOOT, d)])
+        self.segments.append([self.at(a - OVERSHOOT, d), self.at(b + OVERSHOOT, d)])
         for s in ends:
-            segments.append([at(s, EXTENSION_GAP), at(s, d + OVERSHOOT)])
+            self.segments.append([self.at(s, EXTENSION_GAP), self.at(s, d + OVERSHOOT)])
             t = 1.25  # the tick: an oblique stroke, 45 degrees, 2.5 mm long
-            (px, py) = at(s, d)
-            segments.append([(px - t, py + t), (px + t, py - t)])
+            (px, py) = self.at(s, d)
+            self.segments.append([(px - t, py + t), (px + t, py - t)])
 
-    def page(c):  # a paper coordinate across the side, back to page metres
-        return (origin[1] - c) / mm if horizontal else (c - origin[0]) / mm
+    def page(self, c):
+        """A paper coordinate across the side, back to page metres."""
+        return (self.origin[1] - c) / self.mm if self.horizontal else (c - self.origin[0]) / self.mm
 
-    def dimension(u1, u2, d, text_point, shown=True):
+    def dimension(self, u1, u2, d, text_point, shown=True):
         """The CAD dimension from u1 to u2 (page metres along the side)."""
-        line_at = page(edge + out * d)
-        if horizontal:
+        chain, origin, mm = self.chain, self.origin, self.mm
+        line_at = self.page(self.edge + self.out * d)
+        if self.horizontal:
             p1, p2, base, angle = (u1, chain.edge), (u2, chain.edge), (u1, line_at), 0.0
         else:
             p1, p2, base, angle = (chain.edge, u1), (chain.edge, u2), (line_at, u1), 90.0
-        offset = abs(chain.edge - page(edge + out * EXTENSION_GAP))
+        offset = abs(chain.edge - self.page(self.edge + self.out * EXTENSION_GAP))
         where = None
         if text_point is not None:
             where = ((text_point[0] - origin[0]) / mm, (origin[1] - text_point[1]) / mm)
-        dims.append(Dimension(p1, p2, base, angle, where, offset, shown))
+        self.dims.append(Dimension(p1, p2, base, angle, where, offset, shown))
 
+
+def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
+    """Lines, ticks and texts of one side's chain and overall; returns how many
+    of the chain's values had no room."""
+    side = _Side(chain, box_mm, mm, origin, dims)
     left_out = 0
     overall = chain.overall
-    o_lo, o_hi = sorted((along(overall[0]), along(overall[1])))
+    o_lo, o_hi = sorted((side.along(overall[0]), side.along(overall[1])))
     if len(chain.breaks):
-        ends = [along(b) for b in chain.breaks]
-        line(ends, CHAIN_LINE)
-        order = np.argsort(ends)
-        ends_sorted = [ends[i] for i in order]
-        main_row, stagger_row = [], []
-        for i in range(len(ends_sorted) - 1):
-            a, b = ends_sorted[i], ends_sorted[i + 1]
-            u1, u2 = sorted((chain.breaks[order[i]], chain.breaks[order[i + 1]]))
-            text = length_text(u2 - u1)
-            w = text_width(text, TEXT)
-            c = (a + b) / 2
-            if w + 1.0 <= b - a and not _placed(main_row, c - w / 2, c + w / 2):
-                main_row.append((c - w / 2, c + w / 2))
-                x, y, angle = text_at(c, rows["chain"])
-                texts.append(Text(x, y, text, TEXT, angle, "middle"))
-                dimension(u1, u2, CHAIN_LINE, None)
-            elif (o_hi - o_lo >= w + 1.0
-                  and not _placed(stagger_row, *_inside(c, w, o_lo, o_hi))):
-                c = sum(_inside(c, w, o_lo, o_hi)) / 2  # clear of the overall's extension lines
-                stagger_row.append(_inside(c, w, o_lo, o_hi))
-                x, y, angle = text_at(c, rows["stagger"])
-                texts.append(Text(x, y, text, TEXT, angle, "middle"))
-                dimension(u1, u2, CHAIN_LINE, (x, y))
-            else:
-                left_out += 1  # its ticks stay; in CAD, a dimension with no text
-                dimension(u1, u2, CHAIN_LINE, None, shown=False)
-        d_overall, row = OVERALL_LINE, rows["overall"]
+        left_out = _chain_values(side, o_lo, o_hi)
+        d_overall, row = OVERALL_LINE, side.rows["overall"]
     else:
-        d_overall, row = ALONE_LINE, rows["alone"]
-    line([o_lo, o_hi], d_overall)
+        d_overall, row = ALONE_LINE, side.rows["alone"]
+    side.line([o_lo, o_hi], d_overall)
     text = length_text(overall[1] - overall[0])
-    x, y, angle = text_at((o_lo + o_hi) / 2, row)
-    texts.append(Text(x, y, text, TEXT, angle, "middle"))
-    dimension(overall[0], overall[1], d_overall, None)
-    items.append(Lines(np.array(segments, float).reshape(-1, 2, 2), THIN_PEN, "annotation"))
-    items.extend(texts)
+    x, y, angle = side.text_at((o_lo + o_hi) / 2, row)
+    side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
+    side.dimension(overall[0], overall[1], d_overall, None)
+    items.append(Lines(np.array(side.segments, float).reshape(-1, 2, 2), THIN_PEN, "annotation"))
+    items.extend(side.texts)
+    return left_out
+
+
+def _chain_values(side: _Side, o_lo: float, o_hi: float) -> int:
+    """The chain's line and its values: each in its row where it has room, else
+    in the staggered row within the overall's extension lines, else left out
+    (its ticks stay; in CAD, a dimension with no text). Returns how many were."""
+    chain = side.chain
+    ends = [side.along(b) for b in chain.breaks]
+    side.line(ends, CHAIN_LINE)
+    order = np.argsort(ends)
+    ends_sorted = [ends[i] for i in order]
+    main_row, stagger_row = [], []
+    left_out = 0
+    for i in range(len(ends_sorted) - 1):
+        a, b = ends_sorted[i], ends_sorted[i + 1]
+        u1, u2 = sorted((chain.breaks[order[i]], chain.breaks[order[i + 1]]))
+        text = length_text(u2 - u1)
+        w = text_width(text, TEXT)
+        c = (a + b) / 2
+        if w + 1.0 <= b - a and not _placed(main_row, c - w / 2, c + w / 2):
+            main_row.append((c - w / 2, c + w / 2))
+            x, y, angle = side.text_at(c, side.rows["chain"])
+            side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
+            side.dimension(u1, u2, CHAIN_LINE, None)
+        elif (o_hi - o_lo >= w + 1.0
+              and not _placed(stagger_row, *_inside(c, w, o_lo, o_hi))):
+            c = sum(_inside(c, w, o_lo, o_hi)) / 2  # clear of the overall's extension lines
+            stagger_row.append(_inside(c, w, o_lo, o_hi))
+            x, y, angle = side.text_at(c, side.rows["stagger"])
+            side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
+            side.dimension(u1, u2, CHAIN_LINE, (x, y))
+        else:
+            left_out += 1
+            side.dimension(u1, u2, CHAIN_LINE, None, shown=False)
     return left_out
 
 
@@ -285,17 +308,24 @@ def _level_symbols(levels, box_mm, x, items):
     return [level for level, _ in shown]
 
 
-def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> Sheet:
-    """The drawing on its sheet (``paper``: castor.options.Paper, or None for a
-    sheet as large as the drawing needs). Raises DoesNotFit when the drawing
-    is larger than the paper at its scale."""
-    mm = 1000.0 / drawing.scale
+class _Frame(NamedTuple):
+    """What stands round a drawing at a scale, before it is placed on paper (paper
+    mm, the page's origin at (0, 0), y down)."""
+
+    box: np.ndarray  # the box of what is drawn (with the ground line's overhang)
+    ground: bool  # a ground line under an elevation or a vertical section
+    chains: list  # the dimension chains (castor.drawings.annotate.Chain)
+    levels: list  # the level heights of an elevation or a vertical section
+    level_x: float  # where the column of levels stands
+    content: np.ndarray  # the box of the drawing and everything round it
+
+
+def _framed(drawing, mm: float) -> _Frame:
     (x0, y0), (x1, y1) = drawing.box()
     vertical = tuple(drawing.view.up) == (0, 0, 1)  # an elevation or a vertical section
     ground = vertical
     if ground:
         y0, y1 = min(y0, 0.0), max(y1, 0.0)
-    # the box of what is drawn, on paper with the page origin at (0, 0)
     box = np.array([[x0 * mm, -y1 * mm], [x1 * mm, -y0 * mm]])
     if ground:
         box[0, 0] -= GROUND_OVERHANG
@@ -308,39 +338,107 @@ def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> 
     levels = level_heights(drawing.layers, np.array([[x0, y0], [x1, y1]])) if vertical else []
     level_x = box[1, 0] + depth["right"] + (4.0 if depth["right"] else 6.0)
     right = depth["right"] + (LEVEL_WIDTH + 6.0 if levels else 0.0)
-    # the content's box on paper: the drawing and everything round it
     content = np.array([[box[0, 0] - depth["left"], box[0, 1] - depth["top"]],
                         [box[1, 0] + right, box[1, 1] + depth["bottom"]]])
-    title_w, title_h = TITLE_BLOCK
-    bar_m, bar_step = scale_bar_length(drawing.scale)
-    bar_w = bar_m * mm + 10.0 + (20.0 if drawing.is_plan else 0.0)
-    band = title_h + 8.0  # below the content: scale bar, north arrow, title block
-    cw, ch = content[1] - content[0]
-    if paper is None:
-        width = max(cw, title_w + bar_w + 10.0) + 2 * MARGIN
-        height = ch + band + 2 * MARGIN
-        shift = np.array([MARGIN + (width - 2 * MARGIN - cw) / 2, MARGIN]) - content[0]
+    return _Frame(box, ground, chains, levels, level_x, content)
+
+
+# the scale bar and north arrow above the title block, when the two do not
+# fit side by side (an upright A4): the band is this much taller
+STACKED = 25.0
+
+
+def _bar_width(drawing, scale: float) -> float:
+    """The scale bar's width with its label, and the north arrow's beside it for a plan."""
+    bar_m, _ = scale_bar_length(scale)
+    return bar_m * 1000.0 / scale + 10.0 + (20.0 if drawing.is_plan else 0.0)
+
+
+def _band(drawing, scale: float, room: float | None) -> tuple[float, bool]:
+    """The band below the content (scale bar, north arrow, title block): its
+    height, and whether the scale bar stands above the title block, which it
+    does when the two do not fit side by side in ``room`` mm (None: no paper)."""
+    side_by_side = room is None or TITLE_BLOCK[0] + _bar_width(drawing, scale) + 10.0 <= room
+    return TITLE_BLOCK[1] + 8.0 + (0.0 if side_by_side else STACKED), not side_by_side
+
+
+class _Room(NamedTuple):
+    """A drawing at one scale on one paper: what it needs and what the paper holds."""
+
+    frame: _Frame
+    band: float
+    stacked: bool
+    area: tuple[float, float]  # the paper's room for the content, mm
+
+    @property
+    def need(self) -> tuple[float, float]:
+        return tuple(self.frame.content[1] - self.frame.content[0])
+
+    def fits(self, paper, drawing, scale: float) -> bool:
+        room = paper.width - 2 * MARGIN
+        return (self.need[0] <= self.area[0] and self.need[1] <= self.area[1]
+                and max(TITLE_BLOCK[0], _bar_width(drawing, scale)) + 10.0 <= room)
+
+
+def _room(drawing, paper, scale: float) -> _Room:
+    band, stacked = _band(drawing, scale, float(paper.width) - 2 * MARGIN)
+    area = (float(paper.width) - 2 * MARGIN - 10.0, float(paper.height) - 2 * MARGIN - 10.0 - band)
+    return _Room(_framed(drawing, 1000.0 / scale), band, stacked, area)
+
+
+def _refusal(drawing, paper, room: _Room) -> DoesNotFit:
+    """Why the drawing does not fit its paper at its scale, and the largest
+    standard scale at which it does (laid out as it would then be)."""
+    cw, ch = room.need
+    if cw <= room.area[0] and ch <= room.area[1]:
+        need = (f"its scale bar needs {_bar_width(drawing, drawing.scale):.0f} mm; "
+                f"the sheet holds {paper.width - 2 * MARGIN - 10.0:.0f} mm")
     else:
+        need = (f"{cw:.0f} x {ch:.0f} mm; the sheet holds {room.area[0]:.0f} x "
+                f"{room.area[1]:.0f} mm")
+    fits = [n for n in STANDARD_SCALES if _room(drawing, paper, n).fits(paper, drawing, n)]
+    if fits:
+        return DoesNotFit(f"the drawing does not fit on {paper.name} at 1:{drawing.scale:g} "
+                          f"({need}); the largest scale that fits is 1:{min(fits)}: "
+                          f"--scale 1:{min(fits)}, or a larger --sheet")
+    return DoesNotFit(f"the drawing does not fit on {paper.name} at 1:{drawing.scale:g} "
+                      f"({need}), nor at 1:{STANDARD_SCALES[-1]}; use a larger --sheet")
+
+
+def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> Sheet:
+    """The drawing on its sheet (``paper``: castor.options.Paper, or None for a
+    sheet as large as the drawing needs). Raises DoesNotFit when the drawing
+    is larger than the paper at its scale."""
+    mm = 1000.0 / drawing.scale
+    stacked = False
+    if paper is None:
+        frame = _framed(drawing, mm)
+        band, _ = _band(drawing, drawing.scale, None)
+        cw, ch = frame.content[1] - frame.content[0]
+        width = max(cw, TITLE_BLOCK[0] + _bar_width(drawing, drawing.scale) + 10.0) + 2 * MARGIN
+        height = ch + band + 2 * MARGIN
+        shift = np.array([MARGIN + (width - 2 * MARGIN - cw) / 2, MARGIN]) - frame.content[0]
+    else:
+        room = _room(drawing, paper, drawing.scale)
+        if not room.fits(paper, drawing, drawing.scale):
+            raise _refusal(drawing, paper, room)
+        frame, stacked = room.frame, room.stacked
+        (cw, ch), (area_w, area_h) = room.need, room.area
         width, height = float(paper.width), float(paper.height)
-        area_w = width - 2 * MARGIN - 10.0
-        area_h = height - 2 * MARGIN - 10.0 - band
-        if cw > area_w or ch > area_h or title_w + bar_w + 10 > width - 2 * MARGIN:
-            extra = np.array([cw, ch]) - np.array([x1 - x0, y1 - y0]) * mm
-            fits = [n for n in STANDARD_SCALES
-                    if (x1 - x0) * 1000 / n + extra[0] <= area_w
-                    and (y1 - y0) * 1000 / n + extra[1] <= area_h]
-            need = f"{cw:.0f} x {ch:.0f} mm; the sheet holds {area_w:.0f} x {area_h:.0f} mm"
-            if fits:
-                raise DoesNotFit(f"the drawing does not fit on {paper.name} at 1:{drawing.scale:g} "
-                                 f"({need}); the largest scale that fits is 1:{min(fits)}: "
-                                 f"--scale 1:{min(fits)}, or a larger --sheet")
-            raise DoesNotFit(f"the drawing does not fit on {paper.name} at 1:{drawing.scale:g} "
-                             f"({need}), nor at 1:{STANDARD_SCALES[-1]}; use a larger --sheet")
         top_left = np.array([MARGIN + 5.0 + (area_w - cw) / 2, MARGIN + 5.0 + (area_h - ch) / 2])
-        shift = top_left - content[0]
+        shift = top_left - frame.content[0]
     origin = (float(shift[0]), float(shift[1]))
-    box_mm = box + shift
-    level_x += shift[0]
+    box_mm = frame.box + shift
+    layers = _drawn(drawing, frame.ground, box_mm, origin, mm)
+    dimensions, levels, cad = _annotated(drawing, frame, box_mm, origin, mm,
+                                         frame.level_x + shift[0], warn)
+    band = _sheet_band(drawing, paper, width, height, stacked, mm, title, where)
+    return Sheet(width, height, title, drawing.description(), origin, mm, layers,
+                 [dimensions, levels, band], cad, drawing)
+
+
+def _drawn(drawing, ground: bool, box_mm, origin, mm: float) -> list[Group]:
+    """One group per object of the drawing (and the ground line), in paper mm."""
 
     def paper_of(points):
         points = np.asarray(points, float)
@@ -364,10 +462,16 @@ def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> 
         layers.append(Group("ground", [Lines(np.array([[[box_mm[0, 0], origin[1]],
                                                         [box_mm[1, 0], origin[1]]]]),
                                              PROFILE_PEN, "profile")]))
-    dimensions_group, levels_group, sheet_group = Group("dimensions"), Group("levels"), Group("sheet")
+    return layers
+
+
+def _annotated(drawing, frame: _Frame, box_mm, origin, mm: float, level_x: float,
+               warn) -> tuple[Group, Group, list]:
+    """The dimensions' and the levels' groups, and the dimensions as CAD keeps them."""
+    dimensions_group, levels_group = Group("dimensions"), Group("levels")
     cad: list[Dimension] = []
     left_out = {}
-    for chain in chains:
+    for chain in frame.chains:
         missing = _dimension_side(chain, box_mm, mm, origin, dimensions_group.items, cad)
         if missing:
             left_out[chain.side] = missing
@@ -375,27 +479,34 @@ def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> 
         sides = ", ".join(f"{n} on the {side}" for side, n in left_out.items())
         warn(f"{sum(left_out.values())} dimension(s) left out, too narrow for their text at "
              f"1:{drawing.scale:g} ({sides}); a larger scale shows them")
-    if levels:
-        placed = [(level, origin[1] - level.height * mm) for level in levels]
+    if frame.levels:
+        placed = [(level, origin[1] - level.height * mm) for level in frame.levels]
         _level_symbols(placed, box_mm, level_x, levels_group.items)
-    # the band: title block at the lower right, scale bar and north arrow at the left
+    return dimensions_group, levels_group, cad
+
+
+def _sheet_band(drawing, paper, width: float, height: float, stacked: bool, mm: float,
+                title: str, where: str) -> Group:
+    """The border (on paper), the title block at the lower right, the scale bar
+    and the north arrow at the left of it, or above it when ``stacked``."""
+    group = Group("sheet")
+    title_w, title_h = TITLE_BLOCK
+    tx, ty = width - MARGIN - title_w, height - MARGIN - title_h
     if paper is not None:
-        sheet_group.items.append(Shape([np.array([(MARGIN, MARGIN), (width - MARGIN, MARGIN),
-                                                  (width - MARGIN, height - MARGIN),
-                                                  (MARGIN, height - MARGIN)])], PROFILE_PEN,
-                                       None, True, "sheet"))
-        tx, ty = width - MARGIN - title_w, height - MARGIN - title_h
-        bx, by = MARGIN + 5.0, height - MARGIN - 8.0
+        group.items.append(Shape([np.array([(MARGIN, MARGIN), (width - MARGIN, MARGIN),
+                                            (width - MARGIN, height - MARGIN),
+                                            (MARGIN, height - MARGIN)])], PROFILE_PEN,
+                                 None, True, "sheet"))
+        bx, by = MARGIN + 5.0, (ty - 6.0 if stacked else height - MARGIN - 8.0)
     else:
-        tx, ty = width - MARGIN - title_w, height - MARGIN - title_h
         bx, by = MARGIN, height - MARGIN - 8.0
-    _title_block(sheet_group.items, tx, ty, title, drawing.description(),
+    _title_block(group.items, tx, ty, title, drawing.description(),
                  f"1:{drawing.scale:g}", sheet_date(), where)
-    _scale_bar(sheet_group.items, bx, by, bar_m, bar_step, mm)
+    bar_m, bar_step = scale_bar_length(drawing.scale)
+    _scale_bar(group.items, bx, by, bar_m, bar_step, mm)
     if drawing.is_plan:
-        _north_arrow(sheet_group.items, bx + bar_m * mm + 18.0, by - 9.0)
-    return Sheet(width, height, title, drawing.description(), origin, mm, layers,
-                 [dimensions_group, levels_group, sheet_group], cad, drawing)
+        _north_arrow(group.items, bx + bar_m * mm + 18.0, by - 9.0)
+    return group
 
 
 def _fitted(text: str, size: float, room: float, keep_end: bool = False) -> tuple[str, float]:

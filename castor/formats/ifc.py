@@ -285,7 +285,8 @@ def _elements(built: _Builder, scene: tree.FrameTree, frame: Frame, classes: dic
         items = _face_sets(built.f, obj, material, style)
         shape = create("IfcProductDefinitionShape", None, None, [
             create("IfcShapeRepresentation", body, "Body", "Tessellation", items)])
-        cls = classes.get(obj.name) or classes.get(name) or DEFAULT_CLASS
+        cls = classes.get(obj.name) or classes.get(name) or _annotated(scene, source) \
+            or DEFAULT_CLASS
         element = create(cls, guid("element", name), None, name, source.where or frame.where,
                          None, built.placement(storey_place), shape, None)
         elements.append(element)
@@ -300,6 +301,16 @@ def _elements(built: _Builder, scene: tree.FrameTree, frame: Frame, classes: dic
         create("IfcRelDefinesByProperties", guid("defines", "Castor_Quantities", name), None,
                None, None, [element], quantities)
     return elements
+
+
+def _annotated(scene: tree.FrameTree, source: tree.Object) -> str | None:
+    """The class an annotation gives the '>' object itself (LANGUAGE.md §11);
+    --ifc-class overrides it. (The elements inside it are the BIM handover's.)"""
+    root = source.root
+    if scene.classes is None or not isinstance(root, tree.Use):
+        return None
+    mark = scene.classes.of(root.shared.location)
+    return None if mark is None or mark.ifc_class not in ELEMENT_CLASSES else mark.ifc_class
 
 
 def _face_sets(f, obj, material: np.ndarray, style) -> list:

@@ -94,13 +94,14 @@ def _polygons(tree, settings, made, merge: bool = True):
     """The frame's polygons (a warning when there are none), and its facetizer."""
     facetizer = facetizer_for(settings.mesh, merge)
     frame = facetizer.frame(tree)
-    if frame.polygon_count == 0:
+    if frame.polygon_count == 0 and not tree.spaces:  # rooms only: not an empty frame
         made.warnings.append((_empty(tree), tree.location))
     return frame, facetizer
 
 
-def _figures(settings, made, frame, facetizer) -> None:
-    """The mesh frame kept where asked, its --stats line and --summary record."""
+def _figures(settings, made, frame, facetizer, tree=None) -> None:
+    """The mesh frame kept where asked, its --stats line and --summary record
+    (with the frame's tree, its take-off by class too: LANGUAGE.md §11)."""
     output = settings.output
     if output.keep_mesh:
         made.mesh = frame
@@ -111,7 +112,7 @@ def _figures(settings, made, frame, facetizer) -> None:
         if output.stats:
             made.stats = stats_line(frame, stats.primitives, stats.booleans, stats.seconds)
         if output.summary:
-            made.summary = summary_record(frame)
+            made.summary = summary_record(frame, tree, facetizer)
 
 
 class Polygons(Kind):
@@ -127,7 +128,7 @@ class Polygons(Kind):
         # counts the frame's polygons
         merge = chosen is None or not chosen.triangles_only or settings.output.summary
         frame, facetizer = _polygons(tree, settings, made, merge)
-        _figures(settings, made, frame, facetizer)
+        _figures(settings, made, frame, facetizer, tree)
         return frame
 
     def weight(self, product) -> int:
@@ -149,7 +150,7 @@ class Pictures(Kind):
         empty = pictures.probe(compiled)
         if empty is None:  # no ray met anything: only the polygons can tell
             empty = facetizer_for(settings.mesh, True).frame(tree).polygon_count == 0
-        if empty:
+        if empty and not tree.spaces:
             made.warnings.append((_empty(tree), tree.location))
         if chosen.gathers:  # an animation is drawn at the end, one camera for all its frames
             product = Framing(tree, compiled.box if compiled.root is not None else None)
@@ -163,7 +164,8 @@ class Pictures(Kind):
         if settings.output.summary:  # the take-off is written whatever the output (OUTPUT.md)
             from castor.quantities import summary_record
 
-            made.summary = summary_record(facetizer_for(settings.mesh, True).frame(tree))
+            facetizer = facetizer_for(settings.mesh, True)
+            made.summary = summary_record(facetizer.frame(tree), tree, facetizer)
         return product
 
     def gather(self, parts: list, settings, each: Callable) -> list:
@@ -189,7 +191,7 @@ class Drawings(Kind):
         frame, facetizer = _polygons(tree, settings, made)
         sheet = sheet_of(tree, frame, settings.drawing, settings.output.title,
                          lambda message: made.warnings.append((message, tree.location)))
-        _figures(settings, made, frame, facetizer)
+        _figures(settings, made, frame, facetizer, tree)
         return sheet
 
 
@@ -202,7 +204,7 @@ class BuildingModels(Kind):
     def make(self, tree, settings, chosen, made):
         frame, facetizer = _polygons(tree, settings, made)
         model = BuildingModel(tree, frame, settings.output.title, dict(settings.bim.classes))
-        _figures(settings, made, frame, facetizer)
+        _figures(settings, made, frame, facetizer, tree)
         return model
 
     def after_run(self, settings, objects: set[str]) -> list[str]:

@@ -78,6 +78,7 @@ class Parameter:
     location: Location
     group: str | None
     annotation: Annotation = field(default_factory=Annotation)
+    storey: str | None = None  # [storey "Name"] (LANGUAGE.md §11): a storey's floor level
 
     @property
     def hidden(self) -> bool:
@@ -94,6 +95,8 @@ class Parameter:
             out["range"] = {"min": a.minimum, "step": a.step, "max": a.maximum}
         if a.choices is not None:
             out["choices"] = [{"value": v, "label": label} for v, label in a.choices]
+        if self.storey is not None:
+            out["storey"] = self.storey
         return out
 
 
@@ -248,15 +251,133 @@ def expression_text(lines: list[str], line: int, column: int) -> str:
     return " ".join("".join(pieces).split())
 
 
-def malformed(line: str, location: Location) -> Malformed | None:
+def definition_comment(line_of, location: Location) -> tuple[str, Location, bool] | None:
+    """The '//' comment after the ';' that ends the definition starting at
+    ``location`` (the ';' may be on a later line), where its text starts, and
+    whether another statement stands before the definition on that line (an
+    annotation then says nothing of it: LANGUAGE.md §11). None when there is
+    no such comment, or when another statement follows on its line (the
+    comment is that one's). ``line_of(file, number)``: a line's text or None."""
+    number, index = location.line, max(location.column - 1, 0)
+    first = line_of(location.file, number)
+    if first is None:
+        return None
+    before = first[:index]
+    for _ in range(MAX_LINES):
+        line = line_of(location.file, number)
+        if line is None:
+            return None
+        while True:
+            mark = _MARK.search(line, index)
+            if mark is None or mark.group() == "//":
+                break  # (a comment inside the statement: it goes on below)
+            if mark.group() == "/*":
+                end = line.find("*/", mark.end())
+                if end < 0:
+                    return None
+                index = end + 2
+                continue
+            rest = line[mark.end():]
+            found = rest.find("//")
+            if found < 0 or _without_comments(rest[:found]).strip():
+                return None
+            begin = mark.end() + found + 2
+            crowded = number == location.line and bool(_without_comments(before).strip())
+            return line[begin:], Location(location.file, number, begin + 1), crowded
+        number += 1
+        index = 0
+    return None
+
+
+_MARK = re.compile(r"/\*|//|;")
+MAX_LINES = 200  # a definition's ';' is looked for this far below its name
+
+
+def _without_comments(text: str) -> str:
+    return re.sub(r"/\*.*?\*/", " ", text)
+
+
+def outside(annotation: Annotation, value: float | None) -> str | None:
+    """What is wrong when a slider's or a list's parameter holds a value the
+    control cannot show (``H = 9; // [1:0.5:5]``), or None."""
+    if value is None or not math.isfinite(value):
+        return None
+    slack = 1e-9 * max(1.0, abs(value))
+    if annotation.choices is not None:
+        if any(abs(value - v) <= slack for v, _ in annotation.choices):
+            return None
+        listed = ", ".join(_plain(v) for v, _ in annotation.choices)
+        return f"the value {_plain(value)} is not among the choices {listed}"
+    if annotation.minimum is not None and not (
+            annotation.minimum - slack <= value <= annotation.maximum + slack):
+        return (f"the value {_plain(value)} is outside the slider's range "
+                f"{_plain(annotation.minimum)} to {_plain(annotation.maximum)}")
+    return None
+
+
+def read_comment(text: str, location: Location, value: float | None = None,
+                 crowded: bool = False) -> tuple[Annotation, str | None, Malformed | None]:
+    """A parameter's comment (``location``: where its text starts): its
+    annotation, the storey it declares (LANGUAGE.md §11) and what is wrong
+    with it, a value out of the control's reach included. ``crowded``: another
+    statement stands before the definition on its line (a storey is then not
+    said of it)."""
+    from castor.language.classes import is_class_annotation, read_parameter_annotation
+
+    if is_class_annotation(text):
+        storey, problem = read_parameter_annotation("", text, location)
+        lead = text.lstrip()
+        close = lead.find("]")
+        description = lead[close + 1:].strip() if close >= 0 else ""
+        annotation = Annotation(description=description)
+        if crowded:
+            at = Location(location.file, location.line,
+                          location.column + len(text) - len(text.lstrip()))
+            return annotation, None, Malformed(
+                "annotation: this line holds more than one statement, so the annotation does "
+                "not say which it is for; put the definition on a line of its own", at)
+        if problem is not None:
+            return annotation, None, Malformed(problem.message, problem.location)
+        return annotation, storey.name, None
+    annotation, warning = parse_annotation(text, location)
+    if warning is None:
+        wrong = outside(annotation, value)
+        if wrong is not None:
+            lead = len(text) - len(text.lstrip())
+            warning = Malformed(f"parameter annotation: {wrong}; the parameter is offered as a "
+                                f"number input",
+                                Location(location.file, location.line, location.column + lead))
+            annotation = Annotation(description=annotation.description)
+    return annotation, None, warning
+
+
+def malformed(line: str, location: Location, value: float | None = None) -> Malformed | None:
     """The warning about the annotation on the line of a parameter's definition
-    (``line``: its text; ``location``: where the definition starts), if malformed:
-    what castor and castor --check say as they run."""
+    (``line``: its text; ``location``: where the definition starts; ``value``:
+    the parameter's value there, None when not known), if any: what castor and
+    castor --check say as they run."""
     comment = comment_after_statement(line, max(location.column - 1, 0))
     if comment is None:
         return None
     text, start = comment
-    return parse_annotation(text, Location(location.file, location.line, start + 1))[1]
+    return read_comment(text, Location(location.file, location.line, start + 1), value,
+                        _crowded(line, location))[2]
+
+
+def _crowded(line: str, location: Location) -> bool:
+    """Whether a statement stands before the one starting at ``location`` on its line."""
+    return bool(_without_comments(line[:max(location.column - 1, 0)]).strip())
+
+
+def storey_of(line: str, location: Location) -> str | None:
+    """The storey name a parameter's annotation declares (``[storey "Étage"]``),
+    "" for ``[storey]`` without a name, None when it declares none."""
+    comment = comment_after_statement(line, max(location.column - 1, 0))
+    if comment is None or "storey" not in comment[0]:
+        return None
+    text, start = comment
+    return read_comment(text, Location(location.file, location.line, start + 1), None,
+                        _crowded(line, location))[1]
 
 
 def annotate(definitions, source_text) -> tuple[list[Parameter], list[Malformed]]:
@@ -286,16 +407,19 @@ def annotate(definitions, source_text) -> tuple[list[Parameter], list[Malformed]
         for number, title in groups[location.file]:
             if number < location.line:
                 group = title
-        annotation = Annotation()
+        annotation, storey = Annotation(), None
         line = lines[location.line - 1]
         comment = comment_after_statement(line, max(location.column - 1, 0))
         if comment is not None:
             text, start = comment
-            annotation, warning = parse_annotation(
-                text, Location(location.file, location.line, start + 1))
+            annotation, storey, warning = read_comment(
+                text, Location(location.file, location.line, start + 1), value,
+                _crowded(line, location))
             if warning is not None:
                 warnings.append(warning)
+            if storey == "":
+                storey = name
         parameters.append(Parameter(name, value,
                                     expression_text(lines, location.line, location.column),
-                                    location, group, annotation))
+                                    location, group, annotation, storey))
     return parameters, warnings

@@ -72,168 +72,308 @@ def _spaced(text: str) -> str:
     return " ".join(text.split())
 
 
+_PARAMETER = re.compile(r"[A-Za-z_]\w*(\s*\.\.\.)?|\.\.\.")
+_CONDITION = re.compile(r"Could not evaluate expression due to .* \(passed to evaluator: '(.*)'\)",
+                        re.S)
+_ARGUMENT_COUNT = re.compile(r"Macro (\w+) requires (\d+) arguments but was passed (\d+)")
+
+
+def _argument_count(text: str, start: int) -> int:
+    """How many arguments the parentheses opened just before ``start`` hold (as
+    many as pcpp counts: an empty pair holds one), or -1 when they do not close."""
+    depth, count = 1, 1
+    for char in text[start:]:
+        if char == "(":
+            depth += 1
+        elif char == ")":
+            depth -= 1
+            if depth == 0:
+                return count
+        elif char == "," and depth == 1:
+            count += 1
+    return -1
+
+
+def _where(token, default: str = "<stdin>") -> Location:
+    """The start of the line of a directive's token."""
+    return Location(getattr(token, "source", None) or default,
+                    int(getattr(token, "lineno", 0) or 0), 1)
+
+
+class Hooks:
+    """castor's side of pcpp's preprocessor: its messages, where each macro is
+    defined, the files it opened or looked for. Mixed into pcpp.Preprocessor
+    by ``_make_preprocessor`` (pcpp is imported only when a pass runs)."""
+
+    def __init__(self, reporter: Reporter, originals: SourceLines, defines: dict[str, str],
+                 included: list[str] | None):
+        super().__init__()
+        self.reporter = reporter
+        self.originals = originals
+        self.given = defines  # the -D macros
+        self.included = included  # for the live preview, which watches them
+        self.line_directive = "#line"
+        self.compress = 0
+        self.definitions: dict[str, Location] = {}  # macro -> where it was #defined
+        self.redefinitions: list[tuple[str, Location]] = []  # of -D macros
+        self.unreadable: list[str] = []
+        self.opened: list[tuple[str, str]] = []  # (path, text) of each file #included
+        self.missing: list[str] = []  # paths looked for, not there (for the cache)
+        self.quiet = False  # while a use is expanded again to map a position
+
+    def on_error(self, file, line, msg):
+        self.return_code += 1
+        if self.quiet:
+            return  # a use expanded again to map a position: said at its pass already
+        if file == "unknown":  # pcpp's name for a place it lost: the directive's
+            file, line = (getattr(self.lastdirective, "source", None),
+                          getattr(self.lastdirective, "lineno", 0))
+        location = Location(file, int(line or 0), 1) if file else None  # None: from -D
+        condition = _CONDITION.fullmatch(msg)
+        if condition:  # not Python's exception, in castor's words
+            msg = (f"#if or #elif cannot evaluate '{condition[1]}'; write a condition of "
+                   f"numbers, macros, defined(NAME) and C's operators")
+        counted = _ARGUMENT_COUNT.fullmatch(msg)
+        if counted and location is not None:
+            location, msg = self._argument_count(location, *counted.groups())
+            # the use stays unexpanded, and the statement cannot parse: one message
+            self.reporter.explained.add(location)
+        self.reporter.error(PreprocessError(msg, location))
+
+    def _argument_count(self, location: Location, name: str, wanted: str, given: str):
+        """The place and castor's words for a macro use with the wrong number of
+        arguments: at the first use on the line with that many."""
+        text = self.originals.line(location.file, location.line)
+        column = 1
+        if text is not None:
+            self.reporter.source_lines[(location.file, location.line)] = text
+            uses = [(use.start() + 1, _argument_count(text, use.end()))
+                    for use in re.finditer(rf"(?<![\w]){re.escape(name)}\s*\(", text)]
+            column = next((c for c, n in uses if n == int(given)), uses[0][0] if uses else 1)
+        return (Location(location.file, location.line, column),
+                f"macro {name} takes {wanted} argument{'' if wanted == '1' else 's'}, but "
+                f"{given} {'was' if given == '1' else 'were'} given")
+
+    def on_include_not_found(self, is_malformed, is_system_include, curdir, includepath):
+        """Report the #include at its place and drop the directive: the run goes on,
+        so that the errors after it are seen too, as an external cpp shows them."""
+        import pcpp
+
+        location = self._include_location(includepath)
+        name = _printable(includepath)
+        if not is_malformed and not includepath.strip():
+            message = "#include names no file; write #include \"file.cas\""
+        elif "\0" in includepath:
+            message = (f"include file name '{name}' holds a NUL byte, which no file name "
+                       f"can hold")
+        elif self.unreadable:
+            message = f"cannot read include file '{name}': {self.unreadable[0]}"
+        elif is_malformed:
+            message = f"malformed #include {name}; write #include \"file.cas\""
+        else:
+            message = (f"cannot find include file '{name}' (searched: "
+                       f"{self._searched(is_system_include)}); give the directory that holds "
+                       f"it with -I DIR")
+        self.reporter.unread_includes.append(includepath)
+        self.reporter.error(PreprocessError(message, location))
+        raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+
+    def _include_location(self, includepath: str) -> Location:
+        """Where the #include being read names its file (its line's '#' when the
+        name is not on the line as written)."""
+        token = self.lastdirective
+        file = getattr(token, "source", None) or "<stdin>"
+        line = getattr(token, "lineno", 0) or 0
+        text = self.originals.line(file, line)
+        column = 1
+        if text is not None:
+            self.reporter.source_lines[(file, line)] = text
+            found = text.find(includepath) if includepath else -1
+            column = found if found > 0 else text.find("#") + 1
+        return Location(file, line, column)
+
+    def _searched(self, is_system_include: bool) -> str:
+        """The directories an #include looked in, as a message names them."""
+        searched = []
+        for directory in ([] if is_system_include else self.temp_path) + self.path:
+            name = shown(os.path.abspath(directory)) or "."
+            if name == os.path.abspath("").rstrip(os.sep):
+                name = "."
+            if name not in searched:
+                searched.append(name)
+        return ", ".join(searched or ["."])
+
+    def on_file_open(self, is_system_include, includepath):
+        """Open and read an include file whole, as UTF-8 text. Any failure is an
+        OSError for pcpp, which then tries the next directory and at the end
+        calls on_include_not_found; why a file that is there could not be read
+        (a directory, no permission, not UTF-8) is kept for its message."""
+        if len(self.temp_path) > MAX_INCLUDE_DEPTH:
+            raise IncludeTooDeep(includepath)
+        try:
+            text = unsaved_text(includepath)
+            if text is None:
+                with open(includepath, encoding="utf-8") as handle:
+                    text = handle.read()
+        except FileNotFoundError:
+            self.missing.append(includepath)
+            raise
+        except IsADirectoryError:
+            self.unreadable.append("it is a directory")
+            raise
+        except OSError as exc:
+            self.unreadable.append(exc.strerror or str(exc))
+            raise
+        except ValueError as exc:  # a NUL byte in the name, or not UTF-8 text
+            if isinstance(exc, UnicodeDecodeError):
+                line = exc.object[:exc.start].count(b"\n") + 1
+                self.unreadable.append(
+                    f"it is not UTF-8 text (byte 0x{exc.object[exc.start]:02x} on line {line})")
+            raise OSError(str(exc)) from None
+        if self.included is not None:
+            self.included.append(includepath)
+        self.opened.append((includepath, text))
+        return io.StringIO(text[1:] if text.startswith("\ufeff") else text)
+
+    def on_directive_handle(self, directive, toks, ifpassthru, precedingtoks):
+        import pcpp
+
+        self.lastdirective = directive
+        self.unreadable = []  # why the files this directive names could not be read
+        if directive.value == "define" and toks:
+            self._defining(directive, toks)
+        if directive.value == "pragma" and not any(tok.value.strip() for tok in toks):
+            raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)  # as cpp: nothing to do
+        what = _NEEDS.get(directive.value)
+        if what and not any(tok.value.strip() for tok in toks):
+            # pcpp itself would fail on these with an IndexError
+            self.reporter.error(PreprocessError(f"#{directive.value} needs {what}",
+                                                _where(directive)))
+            raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+        return True
+
+    def on_directive_unknown(self, directive, toks, ifpassthru, precedingtoks):
+        if directive.value == "line" or directive.value.isdigit():
+            return None  # a line marker from an earlier cpp: the reader follows it
+        text = "".join(tok.value for tok in toks).strip()
+        location = _where(directive)
+        if directive.value == "error":
+            self.return_code += 1
+            self.reporter.error(PreprocessError(f"#error {text}", location))
+        elif directive.value == "warning":
+            self.reporter.warning(f"#warning {text}", location)
+        elif directive.value != "pragma":  # unknown pragmas are ignored, as cpp does
+            self.reporter.error(PreprocessError(
+                f"unknown preprocessor directive '#{_printable(directive.value)}'", location))
+        return True
+
+    def _defining(self, directive, toks):
+        """Note where each macro is defined; warn when a -D macro is redefined
+        differently (cpp does too), since the file's value then wins."""
+        words = [t.value for t in toks if t.value.strip()]
+        if not words:
+            return
+        name = words[0]
+        location = _where(directive)
+        if name in self.given and name not in self.definitions:
+            text = "".join(t.value for t in toks).strip()
+            value = text[len(name):].strip()
+            if _spaced(value) != _spaced(self.given[name]):
+                # said once the pass is over, if the #define was not in a
+                # skipped #ifndef block (pcpp calls this hook there too)
+                self.redefinitions.append((name, location))
+        self.definitions[name] = location
+
+    def define(self, tokens):
+        """pcpp's #define, after castor's check of the parameters: an empty one
+        (``#define MUR(LX, LY,)``, an IndexError inside pcpp) is an error at its
+        place, and the macro is defined without it, so that its uses read as
+        written; a parameter that is not a name is an error, the macro left out."""
+        if not isinstance(tokens, str):
+            tokens = self._checked_parameters(tokens)
+            if tokens is None:
+                return
+        try:
+            super().define(tokens)
+        except LookupError:  # a definition pcpp did not expect: said, never a crash
+            token = tokens[0] if tokens and not isinstance(tokens, str) else None
+            self.reporter.error(PreprocessError("malformed #define", _where(token)))
+
+    def _checked_parameters(self, tokens: list):
+        """The #define's tokens with its empty parameters left out, or None when
+        a parameter is not a name (each fault reported at its place)."""
+        if len(tokens) < 2 or tokens[1].value != "(":
+            return tokens
+        kept, group, faults = [tokens[1]], [], []
+        for k in range(2, len(tokens)):
+            token = tokens[k]
+            if token.value not in (",", ")"):
+                group.append((k, token))
+                continue
+            text = "".join(t.value for _, t in group).strip()
+            if not text and (token.value == "," or kept[-1].value == ","):
+                faults.append((k, f"a parameter is missing before '{token.value}'"))
+                if token.value == ")":
+                    if kept[-1].value == ",":
+                        kept.pop()  # the ',' before an empty last parameter
+                    kept.append(token)
+            elif text and not _PARAMETER.fullmatch(text):
+                first = next(j for j, t in group if t.value.strip())
+                faults.append((first, f"'{text}' is not a parameter name"))
+                self._parameter_faults(tokens, faults)
+                return None
+            else:
+                kept.extend(t for _, t in group)
+                kept.append(token)
+            group = []
+            if token.value == ")":
+                self._parameter_faults(tokens, faults)
+                return [tokens[0]] + kept + tokens[k + 1:]
+        return tokens  # no ')': pcpp says so
+
+    def _parameter_faults(self, tokens: list, faults: list) -> None:
+        """Report each fault of a #define's parameters at its column."""
+        name = tokens[0]
+        original = self.originals.line(name.source or "<stdin>", int(name.lineno or 0))
+        start = original.find(name.value + "(") if original is not None else -1
+        for k, message in faults:
+            location = _where(name)
+            if start >= 0:
+                column = start + sum(len(t.value) for t in tokens[:k]) + 1
+                location = Location(location.file, location.line, column)
+                self.reporter.source_lines[(location.file, location.line)] = original
+            self.reporter.error(PreprocessError(
+                f"#define {name.value}: {message}; write the parameters as names between "
+                f"commas, as in #define {name.value}(X, Y)", location))
+
+    def warn_redefinitions(self):
+        for name, location in self.redefinitions:
+            macro = self.macros.get(name)
+            if macro is None or _spaced("".join(t.value for t in macro.value)) == \
+                    _spaced(self.given[name]):
+                continue
+            original = self.originals.line(location.file, location.line)
+            if original is not None:
+                self.reporter.source_lines[(location.file, location.line)] = original
+            self.reporter.warning(
+                f"'{name}' redefined: this #define replaces -D {name}="
+                f"{self.given[name]} of the command line; to let -D choose, write "
+                f"#ifndef {name} ... #endif around it", location)
+
+    def on_comment(self, tok):
+        return True  # keep comments: the grammar skips them, and columns stay right
+
+
+_classes: list = []
+
+
 def _make_preprocessor(reporter: Reporter, originals: SourceLines, defines: dict[str, str],
                        included: list[str] | None = None):
-    import pcpp
+    if not _classes:
+        import pcpp
 
-    class Preprocessor(pcpp.Preprocessor):
-        def __init__(self):
-            super().__init__()
-            self.line_directive = "#line"
-            self.compress = 0
-            self.definitions: dict[str, Location] = {}  # macro -> where it was #defined
-            self.redefinitions: list[tuple[str, Location]] = []  # of -D macros
-            self.unreadable: list[str] = []
-            self.opened: list[tuple[str, str]] = []  # (path, text) of each file #included
-            self.missing: list[str] = []  # paths looked for, not there (for the cache)
-
-        def on_error(self, file, line, msg):
-            self.return_code += 1
-            reporter.error(PreprocessError(msg, Location(file or "<stdin>", int(line or 0), 1)))
-
-        def on_include_not_found(self, is_malformed, is_system_include, curdir, includepath):
-            """Report the #include at its place and drop the directive: the run goes on,
-            so that the errors after it are seen too, as an external cpp shows them."""
-            token = self.lastdirective
-            file = getattr(token, "source", None) or "<stdin>"
-            line = getattr(token, "lineno", 0) or 0
-            text = originals.line(file, line)
-            column = 1
-            if text is not None:
-                reporter.source_lines[(file, line)] = text
-                found = text.find(includepath) if includepath else -1
-                column = found if found > 0 else text.find("#") + 1
-            location = Location(file, line, column)
-            if not is_malformed and not includepath.strip():
-                reporter.error(PreprocessError(
-                    "#include names no file; write #include \"file.cas\"", location))
-                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
-            if "\0" in includepath:
-                reporter.error(PreprocessError(
-                    f"include file name '{_printable(includepath)}' holds a NUL byte, which no "
-                    f"file name can hold", location))
-                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
-            if self.unreadable:
-                reporter.error(PreprocessError(
-                    f"cannot read include file '{_printable(includepath)}': {self.unreadable[0]}",
-                    location))
-                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
-            if is_malformed:
-                message = (f"malformed #include {_printable(includepath)}; write "
-                           f"#include \"file.cas\"")
-                reporter.error(PreprocessError(message, location))
-                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
-            searched = []
-            for directory in ([] if is_system_include else self.temp_path) + self.path:
-                name = shown(os.path.abspath(directory)) or "."
-                if name == os.path.abspath("").rstrip(os.sep):
-                    name = "."
-                if name not in searched:
-                    searched.append(name)
-            searched = ", ".join(searched or ["."])
-            reporter.error(PreprocessError(
-                f"cannot find include file '{_printable(includepath)}' (searched: {searched}); "
-                f"give the directory that holds it with -I DIR", location))
-            raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
-
-        def on_file_open(self, is_system_include, includepath):
-            """Open and read an include file whole, as UTF-8 text. Any failure is an
-            OSError for pcpp, which then tries the next directory and at the end
-            calls on_include_not_found; why a file that is there could not be read
-            (a directory, no permission, not UTF-8) is kept for its message."""
-            if len(self.temp_path) > MAX_INCLUDE_DEPTH:
-                raise IncludeTooDeep(includepath)
-            try:
-                text = unsaved_text(includepath)
-                if text is None:
-                    with open(includepath, encoding="utf-8") as handle:
-                        text = handle.read()
-            except FileNotFoundError:
-                self.missing.append(includepath)
-                raise
-            except IsADirectoryError:
-                self.unreadable.append("it is a directory")
-                raise
-            except OSError as exc:
-                self.unreadable.append(exc.strerror or str(exc))
-                raise
-            except ValueError as exc:  # a NUL byte in the name, or not UTF-8 text
-                if isinstance(exc, UnicodeDecodeError):
-                    line = exc.object[:exc.start].count(b"\n") + 1
-                    self.unreadable.append(
-                        f"it is not UTF-8 text (byte 0x{exc.object[exc.start]:02x} on line {line})")
-                raise OSError(str(exc)) from None
-            if included is not None:  # for the live preview, which watches them
-                included.append(includepath)
-            self.opened.append((includepath, text))
-            return io.StringIO(text[1:] if text.startswith("\ufeff") else text)
-
-        def on_directive_handle(self, directive, toks, ifpassthru, precedingtoks):
-            self.lastdirective = directive
-            self.unreadable = []  # why the files this directive names could not be read
-            if directive.value == "define" and toks:
-                self._defining(directive, toks)
-            if directive.value == "pragma" and not any(tok.value.strip() for tok in toks):
-                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)  # as cpp: nothing to do
-            what = _NEEDS.get(directive.value)
-            if what and not any(tok.value.strip() for tok in toks):
-                # pcpp itself would fail on these with an IndexError
-                reporter.error(PreprocessError(
-                    f"#{directive.value} needs {what}",
-                    Location(directive.source or "<stdin>", int(directive.lineno or 0), 1)))
-                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
-            return True
-
-        def on_directive_unknown(self, directive, toks, ifpassthru, precedingtoks):
-            if directive.value == "line" or directive.value.isdigit():
-                return None  # a line marker from an earlier cpp: the reader follows it
-            text = "".join(tok.value for tok in toks).strip()
-            location = Location(directive.source or "<stdin>", int(directive.lineno or 0), 1)
-            if directive.value == "error":
-                self.return_code += 1
-                reporter.error(PreprocessError(f"#error {text}", location))
-            elif directive.value == "warning":
-                reporter.warning(f"#warning {text}", location)
-            elif directive.value != "pragma":  # unknown pragmas are ignored, as cpp does
-                reporter.error(PreprocessError(
-                    f"unknown preprocessor directive '#{directive.value}'", location))
-            return True
-
-        def _defining(self, directive, toks):
-            """Note where each macro is defined; warn when a -D macro is redefined
-            differently (cpp does too), since the file's value then wins."""
-            words = [t.value for t in toks if t.value.strip()]
-            if not words:
-                return
-            name = words[0]
-            location = Location(directive.source or "<stdin>", int(directive.lineno or 0), 1)
-            if name in defines and name not in self.definitions:
-                text = "".join(t.value for t in toks).strip()
-                value = text[len(name):].strip()
-                if _spaced(value) != _spaced(defines[name]):
-                    # said once the pass is over, if the #define was not in a
-                    # skipped #ifndef block (pcpp calls this hook there too)
-                    self.redefinitions.append((name, location))
-            self.definitions[name] = location
-
-        def warn_redefinitions(self):
-            for name, location in self.redefinitions:
-                macro = self.macros.get(name)
-                if macro is None or _spaced("".join(t.value for t in macro.value)) == \
-                        _spaced(defines[name]):
-                    continue
-                original = originals.line(location.file, location.line)
-                if original is not None:
-                    reporter.source_lines[(location.file, location.line)] = original
-                reporter.warning(
-                    f"'{name}' redefined: this #define replaces -D {name}="
-                    f"{defines[name]} of the command line; to let -D choose, write "
-                    f"#ifndef {name} ... #endif around it", location)
-
-        def on_comment(self, tok):
-            return True  # keep comments: the grammar skips them, and columns stay right
-
-    return Preprocessor()
+        _classes.append(type("Preprocessor", (Hooks, pcpp.Preprocessor), {}))
+    return _classes[0](reporter, originals, defines, included)
 
 
 @dataclass
@@ -361,8 +501,12 @@ def expansion_finder(p, originals: SourceLines):
             result = None
         else:
             with lock:
-                mapped = _expansions_of(expanded, original, p) or _difference(expanded, original,
-                                                                               p)
+                p.quiet = True
+                try:
+                    mapped = _expansions_of(expanded, original, p) or _difference(
+                        expanded, original, p)
+                finally:
+                    p.quiet = False
             result = LineExpansions(original, tuple(mapped)) if mapped else None
         if len(found) < 100_000:
             found[key] = result

@@ -1,5 +1,5 @@
-"""A small LALR(1) driver for castor.lark's tables, so that reading a scene need
-not import lark.
+"""A small LALR(1) driver for the tables of the grammar (grammar/castor.lark), so
+that reading a scene need not import lark.
 
 lark makes the tables (castor.language.tables exports them as plain data: the
 parse table, each state's terminals as one regular expression, and for each

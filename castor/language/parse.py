@@ -11,12 +11,12 @@ together; lark's exceptions are translated into messages in the user's words.
 from __future__ import annotations
 
 import math
-import os
 import threading
 from functools import lru_cache
 from typing import Iterator
 
-from castor.diagnostics import CastorError, EvaluationError, LimitError, SceneError
+from castor.diagnostics import (ArgumentCountError, CastorError, EvaluationError, LimitError,
+                                SceneError, UndefinedObject)
 from castor.language.expressions import FUNCTIONS, arity_message, evaluate
 from castor.language.lalr import Failed, Token
 from castor.language.reader import Chunk
@@ -30,9 +30,11 @@ MAX_DEPTH = 100_000
 
 @lru_cache(maxsize=1)
 def grammar_text() -> str:
-    """The grammar, castor.lark, shipped beside this module."""
-    with open(os.path.join(os.path.dirname(os.path.realpath(__file__)), "castor.lark"),
-              encoding="utf-8") as handle:
+    """The grammar: shipped beside this module in an installed package, else the
+    checkout's grammar/castor.lark (castor.language.tables.grammar_path)."""
+    from castor.language.tables import grammar_path
+
+    with open(grammar_path(), encoding="utf-8") as handle:
         return handle.read()
 
 
@@ -142,9 +144,9 @@ class Builder:
             counts, form = TRANSFORMS[kind].counts, TRANSFORMS[kind].form
             if len(args) not in counts:
                 wanted = " or ".join(str(c) for c in counts)
-                self.faults.append(SceneError(
+                self.faults.append(ArgumentCountError(
                     f"'{token}' takes {wanted} argument{'s' if counts[-1] > 1 else ''} ({form}), "
-                    f"but {_given(len(args))}", location))
+                    f"but {_given(len(args))}", location, _names(args)))
         return Step(kind, args, location)
 
     def primitive(self, children):
@@ -164,13 +166,15 @@ class Builder:
             n = len(args)
             if n < low or (high is not None and n > high):
                 wanted = str(low) if low == high else f"at least {low}"
-                self.faults.append(SceneError(
-                    f"'{token}' takes {wanted} arguments ({form}), but {_given(n)}", location))
+                self.faults.append(ArgumentCountError(
+                    f"'{token}' takes {wanted} arguments ({form}), but {_given(n)}", location,
+                    _names(args)))
             elif high is None and (n - 3) % 2:
-                self.faults.append(SceneError(
+                self.faults.append(ArgumentCountError(
                     f"'{token}' takes the colour then pairs of coordinates ({form}), "
-                    f"but {n - 3} coordinates were given, an odd number", location))
-        params = EMPTY.union(*(a.params for a in args))
+                    f"but {n - 3} coordinates were given, an odd number", location,
+                    _names(args)))
+        params = _names(args)
         depth = max((a.depth for a in args), default=0) + 1
         return PrimitiveNode(kind, args, location, params, depth)
 
@@ -208,11 +212,12 @@ class Builder:
         node = self.tables.objects.get(name)
         if node is None:
             if name in self.tables.broken:
-                self.faults.append(SceneError(
-                    f"object '{name}' is not defined (its definition had errors)", location))
+                self.faults.append(UndefinedObject(
+                    f"object '{name}' is not defined (its definition had errors)", location, name))
             else:
                 hint = _suggest(name, self.tables.objects)
-                self.faults.append(SceneError(f"object '{name}' is not defined{hint}", location))
+                self.faults.append(UndefinedObject(f"object '{name}' is not defined{hint}",
+                                                   location, name))
             return PrimitiveNode("cu", (), location)  # placeholder; the statement is dropped
         return node
 
@@ -384,9 +389,12 @@ class Parser:
                 error, head, rest = syntax_error(exc, chunk, self.builder.tables)
                 yield error
                 defined = DEFINED.match(chunk.text)
-                if head is None and defined is not None:
-                    # its uses say why it is missing, as after any faulty definition
-                    self.builder.tables.broken.add(defined.group(1))
+                if head is None:
+                    name = defined.group(1) if defined is not None else None
+                    if name is not None and name[0].islower():
+                        # its uses say why it is missing, as after any faulty definition
+                        self.builder.tables.broken.add(name)
+                    yield SkippedDefinition(name)
                 if head is not None and id(chunk) not in patched:
                     patched.add(id(head))
                     rest = [head] + rest
@@ -400,7 +408,7 @@ class Parser:
             yield from faults
             if isinstance(statement, ObjectDef):
                 self.builder.tables.broken.add(statement.name)
-                yield SkippedDefinition(statement.name)
+            yield SkippedDefinition(getattr(statement, "name", None))
         else:
             yield statement
 
@@ -476,8 +484,15 @@ def _combined(chunks: list[Chunk]) -> Chunk:
     return Chunk("".join(c.text for c in chunks), tuple(origins), chunks[0].first_column)
 
 
+def _names(args) -> frozenset:
+    """The parameter names some argument reads."""
+    return EMPTY.union(*(a.params for a in args))
+
+
 class SkippedDefinition:
-    """Tells the interpreter that the definition of ``name`` was dropped."""
+    """Tells the interpreter, after the errors of a statement, that it was
+    dropped: the definition of ``name`` (an object's or a parameter's), or
+    (None) a '>' command or a statement too broken to name."""
 
     def __init__(self, name: str):
         self.name = name

@@ -124,40 +124,82 @@ def _patched(base: Pass, name: str, new_text: str) -> Pass | None:
     old, new = _lines(base.sources[0][1]), _lines(new_text)
     if not old or not new:
         return None
+    first, tail = _common_ends(old, new)
+    removed, added = old[first:len(old) - tail], new[first:len(new) - tail]
+    if not removed and not added:
+        return None
+    macros = base.macro_names()
+    if not _plain_change(removed, added, macros):
+        return None
+    shift = len(added) - len(removed)
+    if shift and "__LINE__" in new_text:
+        return None
+    around = _around(old, first, len(old) - tail, macros)
+    if around is None:
+        return None
+    lines = base.text.split("\n")
+    found = _main_lines(lines)
+    if found is None:
+        return None
+    marker, where = found
+    before, after, directives = around
+    if not _given_in_order(old, lines, where, before, after, directives):
+        return None
+    # and the change is among lines that are given (not in a block #if leaves out):
+    # next to a plain line, or in place of one that is not blank
+    if not (before not in directives or (after < len(old) and after not in directives)
+            or any(line.strip() for line in removed)):
+        return None
+    if shift and any(location.file == _unescaped(marker) and location.line > first
+                     for location in base.p.definitions.values()):
+        return None  # a #define after the change would have moved
+    out = _spliced(lines, where, old, first, removed, added, directives)
+    if out is None or (shift and not _markers_moved(out, marker, shift,
+                                                    _start(where, old, first, removed,
+                                                           directives) + len(added))):
+        return None
+    sources = ((name, new_text),)
+    finder = expansion_finder(base.p, SourceLines(list(sources)))
+    return Pass("\n".join(out), base.opened, base.missing, base.p, finder, base.given, sources)
+
+
+def _common_ends(old: list[str], new: list[str]) -> tuple[int, int]:
+    """How many lines the two texts share at their start, and then at their end."""
     first = 0
     while first < min(len(old), len(new)) and old[first] == new[first]:
         first += 1
     tail = 0
     while tail < min(len(old), len(new)) - first and old[-1 - tail] == new[-1 - tail]:
         tail += 1
-    removed, added = old[first:len(old) - tail], new[first:len(new) - tail]
-    if not removed and not added:
-        return None
-    macros = base.macro_names()
+    return first, tail
+
+
+def _plain_change(removed: list[str], added: list[str], macros: frozenset) -> bool:
+    """Whether every line removed and added is plain; comments are allowed where
+    they stay as they were (a value changed before its comment)."""
     marks = [_COMMENT_MARKS.findall(line) for line in removed]
-    if any(marks):  # comments kept as they were (a value changed before its comment)
+    if any(marks):
         if len(added) != len(removed) or marks != [_COMMENT_MARKS.findall(line)
                                                    for line in added]:
-            return None
+            return False
         if any(line != line.rstrip() for line in removed + added):
-            return None
-        removed_plain = [_COMMENT_MARKS.sub(" ", line).rstrip() for line in removed]
-        added_plain = [_COMMENT_MARKS.sub(" ", line).rstrip() for line in added]
-    else:
-        removed_plain, added_plain = removed, added
-    if not all(_plain(line, macros) for line in removed_plain + added_plain):
-        return None
-    shift = len(added) - len(removed)
-    if shift and "__LINE__" in new_text:
-        return None
-    # the nearest lines that are not blank on either side: plain lines, or
-    # whole directives (an #include, an #endif) that cannot reach into the change
+            return False
+        removed = [_COMMENT_MARKS.sub(" ", line).rstrip() for line in removed]
+        added = [_COMMENT_MARKS.sub(" ", line).rstrip() for line in added]
+    return all(_plain(line, macros) for line in removed + added)
+
+
+def _around(old: list[str], first: int, end: int, macros: frozenset):
+    """The nearest lines that are not blank on either side of the change (old
+    lines ``first`` to ``end``): plain lines, or whole directives (an #include,
+    an #endif) that cannot reach into the change. (before, after, the indexes
+    that are directives), or None."""
     before = first - 1
     while before >= 0 and not old[before].strip():
         before -= 1
     if before < 0:
         return None  # (pcpp drops the empty lines at a file's start)
-    after = len(old) - tail
+    after = end
     while after < len(old) and not old[after].strip():
         after += 1
     directives = set()
@@ -167,12 +209,13 @@ def _patched(base: Pass, name: str, new_text: str) -> Pass | None:
         if not _whole_directive(old[k]):
             return None
         directives.add(k)
-    lines = base.text.split("\n")
-    found = _main_lines(lines)
-    if found is None:
-        return None
-    marker, where = found
-    # from one side to the other, each line is in the output as it is, in order
+    return before, after, directives
+
+
+def _given_in_order(old: list[str], lines: list[str], where: dict, before: int, after: int,
+                    directives: set) -> bool:
+    """Whether from one side of the change to the other each line is in the
+    output as it is, in order."""
     previous = None
     for k in range(before, min(after, len(old) - 1) + 1):
         if k in directives:
@@ -183,21 +226,26 @@ def _patched(base: Pass, name: str, new_text: str) -> Pass | None:
             previous = None  # an empty line pcpp gave as a #line marker
             continue
         if at is None or lines[at] != old[k] or (previous is not None and at != previous + 1):
-            return None
+            return False
         previous = at
-    # and the change is among lines that are given (not in a block #if leaves out):
-    # next to a plain line, or in place of one that is not blank
-    if not (before not in directives or (after < len(old) and after not in directives)
-            or any(line.strip() for line in removed)):
-        return None
-    if shift and any(location.file == _unescaped(marker) and location.line > first
-                     for location in base.p.definitions.values()):
-        return None  # a #define after the change would have moved
+    return True
+
+
+def _start(where: dict, old: list[str], first: int, removed: list[str],
+           directives: set) -> int | None:
+    """The output line where the change goes."""
     if removed or (first < len(old) and first not in directives and first + 1 in where):
-        start = where[first + 1]
-    elif first - 1 not in directives and first in where:
-        start = where[first] + 1
-    else:
+        return where[first + 1]
+    if first - 1 not in directives and first in where:
+        return where[first] + 1
+    return None
+
+
+def _spliced(lines: list[str], where: dict, old: list[str], first: int, removed: list[str],
+             added: list[str], directives: set) -> list[str] | None:
+    """The output with the removed lines replaced by the added ones, or None."""
+    start = _start(where, old, first, removed, directives)
+    if start is None:
         return None
     rest = lines[start + len(removed):]
     if any(line.strip() for line in rest):
@@ -207,27 +255,30 @@ def _patched(base: Pass, name: str, new_text: str) -> Pass | None:
         if not added and start > 0 and out[start - 1].startswith("#") and \
                 out[start].startswith("#"):
             del out[start - 1]  # a marker for lines no longer there, as pcpp leaves none
-    else:  # the end of the output, whose empty lines pcpp drops
-        if rest != ["", ""]:
-            return None
-        out = lines[:start] + added
-        while out and not out[-1].strip():
-            out.pop()
-        if not out or out[-1].startswith("#"):
-            return None
-        out += rest
-    if shift:
-        for k in range(start + len(added), len(out)):
-            line = out[k]
-            if line.startswith("#"):
-                match = _MAIN_MARKER.match(line)
-                if match is None:
-                    return None
-                if match[2] == marker:
-                    out[k] = f'#line {int(match[1]) + shift} "{marker}"'
-    sources = ((name, new_text),)
-    finder = expansion_finder(base.p, SourceLines(list(sources)))
-    return Pass("\n".join(out), base.opened, base.missing, base.p, finder, base.given, sources)
+        return out
+    # the end of the output, whose empty lines pcpp drops
+    if rest != ["", ""]:
+        return None
+    out = lines[:start] + added
+    while out and not out[-1].strip():
+        out.pop()
+    if not out or out[-1].startswith("#"):
+        return None
+    return out + rest
+
+
+def _markers_moved(out: list[str], marker: str, shift: int, start: int) -> bool:
+    """The main file's #line markers after the change moved by ``shift`` lines,
+    in place; False when another directive stands there."""
+    for k in range(start, len(out)):
+        line = out[k]
+        if line.startswith("#"):
+            match = _MAIN_MARKER.match(line)
+            if match is None:
+                return False
+            if match[2] == marker:
+                out[k] = f'#line {int(match[1]) + shift} "{marker}"'
+    return True
 
 
 _COMMENTS = (re.compile(r"/\*.*?\*/"), re.compile(r"//.*$"), re.compile(r"^.*?\*/"),

@@ -81,7 +81,7 @@ def _describe_found(token: Token) -> str:
 
 _COMMENT = re.compile(r"/\*(?:.|\n)*?\*/|//[^\n]*")
 # an object definition (its name is lower case), after any comments
-DEFINED = re.compile(r"(?:\s|/\*(?:.|\n)*?\*/|//[^\n]*)*([a-z][A-Za-z0-9_]*)\s*=(?!=)")
+DEFINED = re.compile(r"(?:\s|/\*(?:.|\n)*?\*/|//[^\n]*)*([A-Za-z][A-Za-z0-9_]*)\s*=(?!=)")
 
 
 def _code_before(text: str, pos: int) -> str:

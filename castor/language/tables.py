@@ -1,9 +1,15 @@
-"""The LALR tables of castor.lark, made when the package is built and shipped in it.
+"""The LALR tables of the grammar, made when the package is built and shipped in it.
+
+The grammar's one source is grammar/castor.lark at the repository's top.
+setup.py's build step (what ``pip install .`` runs) copies it into the built
+package beside this module, as castor.lark, and makes its tables there: an
+installed castor reads only its package. A checkout has no copy, and reads
+grammar/castor.lark (``grammar_path``).
 
 Building lark's parser from the grammar is the slow part of start-up (about
 0.2 s; loading saved tables about 0.01 s), and importing lark costs about as
-much again. ``pip install .`` runs ``save`` (from setup.py's build step) into
-the built package, beside the grammar:
+much again. The build step runs ``save`` into the built package, beside the
+grammar:
 
 - ``castor.lalr``: the tables as plain data (``export``) for castor's own driver
   (castor.language.lalr), which reads every correct statement without lark;
@@ -30,7 +36,10 @@ import sys
 import zlib
 
 HERE = os.path.dirname(os.path.realpath(__file__))
-GRAMMAR = os.path.join(HERE, "castor.lark")
+# the grammar as an installed package ships it (setup.py's build step puts it
+# there), and as a checkout keeps it: grammar/ at the repository's top
+SHIPPED_GRAMMAR = os.path.join(HERE, "castor.lark")
+CHECKOUT_GRAMMAR = os.path.join(os.path.dirname(os.path.dirname(HERE)), "grammar", "castor.lark")
 TABLES = os.path.join(HERE, "castor.tables")
 PLAIN = os.path.join(HERE, "castor.lalr")
 
@@ -42,6 +51,12 @@ _MAGIC = b"castor-lark-tables "
 # so that tables of another layout are not read (2: the root lexer, and each
 # lexer's terminals)
 PLAIN_LAYOUT = 2
+
+
+def grammar_path() -> str:
+    """The grammar castor reads: the package's own copy when it has one (an
+    installed castor never looks outside its package), else the checkout's."""
+    return SHIPPED_GRAMMAR if os.path.exists(SHIPPED_GRAMMAR) else CHECKOUT_GRAMMAR
 
 
 def _key(grammar: str) -> bytes:
@@ -59,7 +74,7 @@ def save(target: str | os.PathLike, grammar: str | None = None) -> None:
     from lark import Lark
 
     if grammar is None:
-        with open(GRAMMAR, encoding="utf-8") as handle:
+        with open(grammar_path(), encoding="utf-8") as handle:
             grammar = handle.read()
     parser = Lark(grammar, **OPTIONS)
     temporary = f"{target}.{os.getpid()}.tmp"
@@ -100,7 +115,7 @@ def _plain_key(grammar: str) -> bytes:
 
 
 def export(parser) -> dict:
-    """lark's parser for castor.lark as plain data for castor.language.lalr: its
+    """lark's parser for the grammar as plain data for castor.language.lalr: its
     parse table, each state's lexer, and each rule's callback as lark's
     parse-tree builder makes it. Raises ValueError where the parser uses a part of
     lark the driver does not (then castor runs lark itself)."""

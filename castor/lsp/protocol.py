@@ -20,6 +20,7 @@ from pygls.lsp.server import LanguageServer
 from pygls.uris import from_fs_path, to_fs_path
 
 from castor.analysis import knowledge
+from castor.analysis.classes import ANNOTATION_TRIGGERS
 from castor.analysis.documents import Document, Documents
 from castor.analysis.scene import object_figures, shown_name
 from castor.diagnostics import Location
@@ -33,7 +34,11 @@ _COMPLETION_KINDS = {"primitive": types.CompletionItemKind.Function,
                      "boolean": types.CompletionItemKind.Operator,
                      "parameter": types.CompletionItemKind.Variable,
                      "object": types.CompletionItemKind.Class,
-                     "macro": types.CompletionItemKind.Constant}
+                     "macro": types.CompletionItemKind.Constant,
+                     "class": types.CompletionItemKind.Class,
+                     "type": types.CompletionItemKind.EnumMember,
+                     "setting": types.CompletionItemKind.Property,
+                     "value": types.CompletionItemKind.Value}
 _SYMBOL_KINDS = {"parameter": types.SymbolKind.Constant, "object": types.SymbolKind.Object,
                  "frame": types.SymbolKind.Event}
 
@@ -120,7 +125,8 @@ class CastorServer(EditingFeatures, LanguageServer):
                 (types.TEXT_DOCUMENT_RENAME, self.rename,
                  types.RenameOptions(prepare_provider=True)),
                 (types.TEXT_DOCUMENT_COMPLETION, self.completion,
-                 types.CompletionOptions(trigger_characters=["!", "@", "$"])),
+                 types.CompletionOptions(trigger_characters=["!", "@", "$",
+                                                             *ANNOTATION_TRIGGERS])),
                 (types.TEXT_DOCUMENT_DOCUMENT_SYMBOL, self.document_symbol, None),
                 (types.SHUTDOWN, self.on_shutdown, None)]:
             self.feature(method, options)(_function(handler))
@@ -328,8 +334,10 @@ class CastorServer(EditingFeatures, LanguageServer):
         analysis = owner.analysis if owner is not None else None
         file = ("" if analysis is None else analysis.file if owner is document
                 else shown_name(document.path))
+        context = params.context
         items = knowledge.completions(analysis, text, file, params.position.line + 1,
-                                      params.position.character + 1)
+                                      params.position.character + 1,
+                                      context.trigger_character if context else None)
         snippets = self._snippets()
         return types.CompletionList(is_incomplete=False, items=[
             types.CompletionItem(

@@ -71,6 +71,9 @@ def plane_stretch(linear: Linear, i: int = 0, j: int = 1) -> float:
     is r times this."""
     p = linear[i] ** 2 + linear[3 + i] ** 2 + linear[6 + i] ** 2
     q = linear[j] ** 2 + linear[3 + j] ** 2 + linear[6 + j] ** 2
+    if p + q < 1e-280:  # squares near underflow (@h(1e-300)): measured scaled up
+        big = max(abs(linear[k]) for k in (i, 3 + i, 6 + i, j, 3 + j, 6 + j))
+        return big * plane_stretch(tuple(v / big for v in linear), i, j) if big else 0.0
     r = linear[i] * linear[j] + linear[3 + i] * linear[3 + j] + linear[6 + i] * linear[6 + j]
     half = (p - q) / 2
     return math.sqrt((p + q) / 2 + math.sqrt(half * half + r * r))

@@ -104,33 +104,35 @@ def spans(shape, o, d):
     qa = dx * dx + dy * dy
     qb = 2 * (ox * dx + oy * dy)
     qc = ox * ox + oy * oy
-    for index, ((r1, z1), (r2, z2)) in enumerate(zip(a, b)):
-        if r1 == 0 and r2 == 0:
-            continue
-        if z1 == z2:  # a disc or a ring in z = z1
-            with np.errstate(divide="ignore", invalid="ignore"):
+    # a ray parallel to a disc meets its plane nowhere (t infinite, then 0 * inf),
+    # one that misses a cone has no roots: masked below, never a warning
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for index, ((r1, z1), (r2, z2)) in enumerate(zip(a, b)):
+            if r1 == 0 and r2 == 0:
+                continue
+            if z1 == z2:  # a disc or a ring in z = z1
                 t = (z1 - oz) / dz
-            px, py = ox + t * dx, oy + t * dy
-            rho = np.sqrt(px * px + py * py)
-            lo, hi = min(r1, r2), max(r1, r2)
-            # the segment includes its first point, not its last
-            ok = (dz != 0) & (rho > lo) & (rho <= hi) if r1 > r2 else \
-                (dz != 0) & (rho >= lo) & (rho < hi)
-            crossings.append(np.where(ok, t, INF))
-            faces.append(index)
-            continue
-        # r = r1 + m (z - z1), m = (r2 - r1) / (z2 - z1): rho^2 = (c + m t dz)^2
-        m = (r2 - r1) / (z2 - z1)
-        c = r1 + m * (oz - z1)
-        g = m * dz
-        t1, t2 = rays.roots(qa - g * g, qb - 2 * c * g, qc - c * c)
-        for t in (t1, t2):
-            z = oz + t * dz
-            u = (z - z1) / (z2 - z1)
-            r = c + g * t
-            ok = np.isfinite(t) & (u >= 0) & (u < 1) & (r >= 0)
-            crossings.append(np.where(ok, t, INF))
-            faces.append(index)
+                px, py = ox + t * dx, oy + t * dy
+                rho = np.sqrt(px * px + py * py)
+                lo, hi = min(r1, r2), max(r1, r2)
+                # the segment includes its first point, not its last
+                ok = (dz != 0) & (rho > lo) & (rho <= hi) if r1 > r2 else \
+                    (dz != 0) & (rho >= lo) & (rho < hi)
+                crossings.append(np.where(ok, t, INF))
+                faces.append(index)
+                continue
+            # r = r1 + m (z - z1), m = (r2 - r1) / (z2 - z1): rho^2 = (c + m t dz)^2
+            m = (r2 - r1) / (z2 - z1)
+            c = r1 + m * (oz - z1)
+            g = m * dz
+            t1, t2 = rays.roots(qa - g * g, qb - 2 * c * g, qc - c * c)
+            for t in (t1, t2):
+                z = oz + t * dz
+                u = (z - z1) / (z2 - z1)
+                r = c + g * t
+                ok = np.isfinite(t) & (u >= 0) & (u < 1) & (r >= 0)
+                crossings.append(np.where(ok, t, INF))
+                faces.append(index)
     if not crossings:
         return rays.empty_like(len(o), 0)
     crossings = np.column_stack(crossings)

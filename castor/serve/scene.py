@@ -30,12 +30,16 @@ class DrawnFrame:
     origins: tuple[tuple[str, tuple[float, float, float]], ...]  # (path, colour)
     data: bytes = field(repr=False)
     sources: dict = field(default_factory=dict, repr=False, compare=False)  # path -> FILE:LINE:COL
+    # each origin's element and class (castor.serve.layers): (name, short name or None)
+    layers: tuple[tuple[str | None, str | None], ...] = ()
 
     def as_json(self) -> dict:
+        layers = self.layers or ((None, None),) * len(self.origins)
         return {"number": self.number, "where": self.where, "polygons": self.polygons,
                 "triangles": self.triangles, "box": self.box,
-                "origins": [{"path": path, "colour": colour, "source": self.sources.get(path)}
-                            for path, colour in self.origins]}
+                "origins": [{"path": path, "colour": colour, "source": self.sources.get(path),
+                             "element": element, "class": kind}
+                            for (path, colour), (element, kind) in zip(self.origins, layers)]}
 
 
 @dataclass(frozen=True)
@@ -70,9 +74,11 @@ def evaluate(watched: Watched, cancelled: Callable[[], bool] = lambda: False) ->
     """Evaluate the scene files and facetize each frame here, whose facetizer keeps
     the shared subtrees of one save for the next; raises Overtaken as soon as
     ``cancelled()`` says so (between statements and between frames). Each face
-    knows where its primitive is written (FILE:LINE:COL, through macros)."""
+    knows where its primitive is written (FILE:LINE:COL, through macros), and
+    its element and class (castor.serve.layers)."""
     from castor.analysis.scene import primitive_places
     from castor.analysis.reuse import ReusingInterpreter
+    from castor.serve.layers import classified
 
     shown: list[DrawnFrame] = []
     reporter = CollectingReporter(watched.quiet)
@@ -81,7 +87,9 @@ def evaluate(watched: Watched, cancelled: Callable[[], bool] = lambda: False) ->
                      on_mesh=lambda mesh: shown.append(drawn(mesh)), cancelled=cancelled,
                      reporter=reporter, interpreter=ReusingInterpreter)
     trees = {tree.number: tree for tree in checked.trees}
-    placed = tuple(replace(frame, sources=primitive_places(trees[frame.number], reporter))
+    placed = tuple(classified(replace(frame, sources=primitive_places(trees[frame.number],
+                                                                      reporter)),
+                              trees[frame.number])
                    if frame.number in trees else frame for frame in shown)
     return Evaluation(placed, checked.diagnostics, checked.included, checked.seconds,
                       checked.printed)

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
 
 ROOT = Path(__file__).resolve().parents[2]
 HOUSE = ROOT / "examples" / "house.cas"

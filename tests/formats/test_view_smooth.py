@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from meshcheck import run
+from tests.support.cli import run
 
 
 def pictures(scene: str, mode: str, view=(-60.0, 25.0)):

@@ -16,7 +16,7 @@ import pytest
 from hypothesis import HealthCheck, example, given, settings, strategies as st
 
 from castor.pipeline import RECURSION_LIMIT
-from meshcheck import run_here
+from tests.support.cli import OUTSIDE, run_here
 
 # castor raises the recursion limit for deep scenes; raise it before hypothesis
 # looks, so that running castor in-process does not change it under its feet.
@@ -36,7 +36,7 @@ MESSAGE = re.compile(r"^(<stdin>|[^:\s]+):\d+:\d+: (error|warning): ", re.M)
 
 
 def run_inprocess(text: str, *args: str):
-    """castor in this process (meshcheck.run_here), and how long it took."""
+    """castor in this process (tests.support.cli.run_here), and how long it took."""
     started = time.perf_counter()
     status, out, err = run_here("--max-polygons", "20000", *args, stdin=text)
     return status, out, err, time.perf_counter() - started
@@ -172,7 +172,7 @@ def _castor(*args):
 def test_reader_closing_the_pipe_is_quiet():
     scene = "> $U[I = 0, 2000](@t(2 * I, 0, 0) !cu(1, 1, 1));\n" * 3
     castor = subprocess.Popen(_castor("--no-cpp"), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                              stderr=subprocess.PIPE, cwd=tempfile.gettempdir())
+                              stderr=subprocess.PIPE, cwd=OUTSIDE)
     castor.stdin.write(scene.encode())
     castor.stdin.close()
     head = castor.stdout.read(100)
@@ -187,7 +187,7 @@ def test_reader_closing_the_pipe_is_quiet():
 
 def test_statements_run_as_they_arrive_with_no_cpp():
     castor = subprocess.Popen(_castor("--no-cpp"), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                              stderr=subprocess.PIPE, cwd=tempfile.gettempdir())
+                              stderr=subprocess.PIPE, cwd=OUTSIDE)
     castor.stdin.write(b"a = !cu(1, 0, 0);\n> a;\n")
     castor.stdin.flush()
     # the first frame comes out while the pipe is still open
@@ -259,3 +259,81 @@ def test_a_frame_before_an_unterminated_comment_is_written(args):
     assert status == 1
     assert out.count("\npoly ") == 6 and out.endswith("endframe 1 6\n"), out
     assert err.startswith("<stdin>:2:1: error: unterminated comment: '/*' has no matching '*/'")
+
+
+# --- the preprocessor's syntax and the language's brackets together ---------
+#
+# Issue 29, item 2: a macro with a trailing comma in its parameters and a
+# repetition bracket inside an expression were internal errors, found by a
+# fuzzer whose alphabet had the preprocessor's own syntax. The suite runs a few
+# hundred cases; CASTOR_FUZZ_EXAMPLES=100000 runs it long.
+
+FUZZ_EXAMPLES = int(os.environ.get("CASTOR_FUZZ_EXAMPLES", "150"))
+CPP_WORDS = ["#define", "#undef", "#if", "#ifdef", "#ifndef", "#elif", "#else", "#endif",
+             "#include", "#line", "#error", "#warning", "#pragma", "#", "##", "defined",
+             "__VA_ARGS__", "...", "\\\n", "M", "M(", "N(", "X", "Y", "LX", "LY,", '"a.cas"',
+             "<a>", "__LINE__", "__FILE__", "1", "0", "(", ")", ",", "&&", "||", "!", "?", ":",
+             "==", "<", "'", '"']
+SCENE_WORDS = ["[", "]", "(", ")", ",", ";", "=", ">", "[I = 0, 3]", "[T = 0, 1, 0.5]",
+               "$U", "$I", "$D", "$U[I = 0, 3](", ">[T = 0, 1]", "!cu(1,1,1)", "!sp(", "@t(",
+               "@rz(", "a", "b", "E", "I", "T", "X", "round(", "sqrt(16)", "cos(60)", "*",
+               "+", "-", "/", "^", "%", "1e-308", "1e308", "2", "0", "/*", "*/", "//", "\n"]
+
+
+@st.composite
+def cpp_scenes(draw):
+    """Lines of directives and statements drawn from both vocabularies, the
+    macros they define used in the statements."""
+    lines = []
+    for _ in range(draw(st.integers(1, 8))):
+        if draw(st.booleans()):
+            head = draw(st.sampled_from(["#define M(", "#define N(X, Y) ", "#define MUR(LX, LY,) ",
+                                         "#define M ", "#if ", "#ifdef ", "#endif", "#else",
+                                         "#include ", "#undef ", "#line ", "#"]))
+            words = draw(st.lists(st.sampled_from(CPP_WORDS + SCENE_WORDS), max_size=8))
+        else:
+            head = ""
+            words = draw(st.lists(st.sampled_from(SCENE_WORDS + ["M", "M(1)", "N(1, 2)",
+                                                                 "MUR(1, 2,)", "M(1, 2)"]),
+                                  max_size=14))
+        lines.append(head + " ".join(words))
+    return "\n".join(lines) + "\n"
+
+
+@settings(max_examples=FUZZ_EXAMPLES, deadline=None, suppress_health_check=list(HealthCheck))
+@given(cpp_scenes())
+@example("#define MUR(LX, LY,) @t(LX, LY, 0) !cu(1,1,1)\n> MUR(1, 2,);\n")
+@example("E = round(sqrt(16) + cos(60) * 1e-308 [I = 0, 3] 1);\n> !cu(1,1,1);\n")
+@example("#define M(X) @t(X,0,0) !cu(1,1,1)\na = $U(M(1), M(1, 2));\n> a;\n")
+def test_preprocessor_and_brackets_never_crash(text):
+    check(text)
+    # from a file: parsed in batches, and every message names the file, never <stdin>
+    with tempfile.NamedTemporaryFile("w", suffix=".cas", delete=False,
+                                     dir=tempfile.gettempdir()) as f:
+        f.write(text)
+    try:
+        status, _, err, _ = run_inprocess("", f.name)
+    finally:
+        os.unlink(f.name)
+    assert status in (0, 1) and "internal error" not in err, (text, err)
+    assert "<stdin>" not in err or "<stdin>" in text or "#line" in text, (text, err)
+
+
+def test_a_scale_whose_square_underflows_is_no_internal_error():
+    """@h(1e-300): the squares of the stretch underflowed to 0 and every curved
+    primitive's facet count divided by it (found by the random texts above once
+    the failed frame's message named an internal error)."""
+    from castor.primitives import PRIMITIVES
+
+    sizes = {"to": "0.3", "pr": "6", "py": "5"}
+    for name, declared in PRIMITIVES.items():
+        if not declared.curved:
+            continue
+        args = [sizes.get(name, "1")] * len(declared.arguments)
+        if declared.pair_names:
+            args += ["0", "0", "1", "0", "1", "1", "0", "1"]
+        for scale in ("1e-300", "1e-300, 1, 1", "1, 1, 1e-300"):
+            text = f"> @h({scale}) !{name}({', '.join(['1', '1', '1', *args])});\n"
+            status, out, err, _ = run_inprocess(text, "--no-cpp")
+            assert "internal error" not in err and "Traceback" not in err, (text, err)
+            assert status in (0, 1), (text, err)

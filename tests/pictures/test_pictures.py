@@ -10,48 +10,26 @@ import sys
 import numpy as np
 import pytest
 
-from castor.settings import PictureSettings
 from castor.language.vocabulary import PRIMITIVES
 from castor.options import View
-from castor.pictures import picture
 from castor.pictures.camera import make_camera
-from castor.run import evaluated_frames
 from castor.pictures.spans import SPANS
 from castor.pictures.trace import compile_frame
-
-WHITE = 255
-
-
-def scene_frames(text, name="<scene>", defines=()):
-    """The frames' trees; the scene must have no error."""
-    frames, said = evaluated_frames(text, name, defines=defines)
-    assert "error" not in said, said
-    return frames
-
-
-def draw(text: str, **options) -> np.ndarray:
-    spec = PictureSettings(**{"size": (160, 120), "sun": None, **options})
-    return picture(scene_frames(text)[0], spec)
-
-
-def camera_of(text: str, **options):
-    spec = PictureSettings(**{"size": (160, 120), **options})
-    low, high = compile_frame(scene_frames(text)[0]).box
-    return make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)
-
-
-def covered(image: np.ndarray) -> np.ndarray:
-    return np.any(image != WHITE, axis=2)
+from tests.support.pictures import camera_of, covered, draw, scene_frames, WHITE
+from tests.support.vocabulary import arguments_text, example_shape, primitive_names
 
 
 def test_every_primitive_has_its_spans():
     assert set(SPANS) == set(PRIMITIVES) | {"smooth"}  # smooth solids: castor.pictures.mesh_rays
 
 
+# shapes chosen for these; every other primitive with a shape its check accepts
+SHAPES = {"to": ", 0.3", "pr": ", 6", "py": ", 5", "ex": ", 0, 0, 1, 0, 1, 1, 0.5, 0.4, 0, 1",
+          "rv": ", 0, 0, 1, 0, 1, 0.3, 0.4, 0.5, 0.4, 1, 0, 1"}
+
+
 @pytest.mark.parametrize("kind, shape", [
-    ("cu", ""), ("sp", ""), ("cy", ""), ("co", ""), ("to", ", 0.3"), ("pr", ", 6"),
-    ("py", ", 5"), ("ex", ", 0, 0, 1, 0, 1, 1, 0.5, 0.4, 0, 1"),
-    ("rv", ", 0, 0, 1, 0, 1, 0.3, 0.4, 0.5, 0.4, 1, 0, 1"),
+    (kind, SHAPES.get(kind, arguments_text(example_shape(kind)))) for kind in primitive_names()
 ])
 def test_every_primitive_is_drawn_where_its_box_projects(kind, shape):
     """Seen from above, each unit primitive covers pixels, all inside its box."""

@@ -15,11 +15,8 @@ import pytest
 from castor.serve.scene import Watched
 from castor.serve.server import PreviewServer
 from castor.settings import Source
+from tests.support.browser import CHROMIUM, FLAGS, HEIGHT, WIDTH
 
-CHROMIUM = "/usr/bin/chromium"
-FLAGS = ["--headless", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync",
-         "--no-first-run", "--disable-gpu-sandbox"]
 
 if not os.path.exists(CHROMIUM):
     pytest.skip(f"Debian's chromium is not installed ({CHROMIUM} is absent; "
@@ -51,7 +48,7 @@ def scene(tmp_path, monkeypatch):
 
 @pytest.fixture
 def page(browser, scene):
-    opened = browser.new_page(viewport={"width": 900, "height": 650})
+    opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
     problems = []
     opened.on("pageerror", lambda error: problems.append(str(error)))
     opened.goto(scene[1])

@@ -22,10 +22,10 @@ import urllib.request
 from pathlib import Path
 
 import pytest
-from test_lsp import ROOT, Client
 
 from castor.editing.commands import TextEdit
 from castor.editing.text import apply
+from tests.support.lsp import ROOT, Client
 
 SCENE = """/* a slab and a bench */
 L = 4;     // length

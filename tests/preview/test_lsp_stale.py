@@ -12,10 +12,8 @@ from castor.analysis import reuse
 from castor.analysis.scene import analyse_buffers
 from castor.analysis.worker import Job, Worker
 from castor.language.parse import Parser
+from tests.support.scenes import LONG
 
-CUBES = 40_000
-LONG = "big = $U(" + ", ".join(f"@t({k % 200}, {k // 200}, 0) !cu(1, 0, 0)"
-                               for k in range(CUBES)) + ");\n> big;\n"
 SHORT = "small = !cu(0, 1, 0);\n> small;\n"
 
 
@@ -88,7 +86,7 @@ def test_the_last_of_many_quick_edits_is_answered(tmp_path):
     last text's diagnostics are published, for that version."""
     import shutil
 
-    from test_lsp import EXAMPLES, started_client
+    from tests.support.lsp import EXAMPLES, started_client
 
     shutil.copy(EXAMPLES / "bus_shelter.cas", tmp_path / "bus_shelter.cas")
     shutil.copytree(EXAMPLES / "bus_shelter", tmp_path / "bus_shelter")

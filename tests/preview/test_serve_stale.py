@@ -14,7 +14,7 @@ from castor.serve.scene import Watched
 from castor.serve.server import PreviewServer
 from castor.settings import Source
 
-from test_lsp_stale import LONG
+from tests.support.scenes import LONG
 
 
 def test_a_save_stops_the_evaluation_inside_a_long_statement(monkeypatch, tmp_path):

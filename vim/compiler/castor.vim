@@ -10,5 +10,5 @@ if exists(":CompilerSet") != 2
 endif
 
 CompilerSet makeprg=castor\ --check\ %:S
-" FILE:LINE:COL: error: MESSAGE, then the source line and a caret (ignored)
-CompilerSet errorformat=%f:%l:%c:\ %trror:\ %m,%f:%l:%c:\ %tarning:\ %m,%-G\ %.%#,%-Gcastor:\ %.%#
+" FILE:LINE:COL: error|warning|note: MESSAGE, then the source line and a caret (ignored)
+CompilerSet errorformat=%f:%l:%c:\ %trror:\ %m,%f:%l:%c:\ %tarning:\ %m,%f:%l:%c:\ %tote:\ %m,%-G\ %.%#,%-Gcastor:\ %.%#

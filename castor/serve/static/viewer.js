@@ -31,6 +31,7 @@
     cut: Infinity, // the section plane's height
     pointer: null, // where the mouse is over the canvas, in CSS pixels
     drag: null,
+    hidden: new Set(), // the layers (classes, or "unclassed") not drawn
   };
 
   // ---- vectors and matrices (column-major, as WebGL reads them) ----
@@ -163,12 +164,44 @@
   const picking = gl && program(PICK_VERTEX, PICK_FRAGMENT);
   const pickTarget = { framebuffer: null, texture: null, depth: null, width: 0, height: 0 };
 
+  // The layer of a face: its element's class (LANGUAGE.md §11), or "unclassed".
+  const UNCLASSED = "unclassed";
+  const layerOf = (origin) => (origin && origin.class) || UNCLASSED;
+  const byLayer = (a, b) => (a === UNCLASSED) - (b === UNCLASSED) || (a < b ? -1 : a > b ? 1 : 0);
+
+  // The triangles of the layers shown, one range each.
+  function drawLayers(mesh) {
+    for (const layer of mesh.layers)
+      if (layer.count && !state.hidden.has(layer.name)) gl.drawArrays(gl.TRIANGLES, layer.first, layer.count);
+  }
+
   // A frame's triangles, each with its own three corners so that it is shaded
-  // flat and carries its own number for picking.
+  // flat and carries its own number for picking; put in order of their layers,
+  // so that a layer is one range of them, drawn or left out at once.
   function buildMesh(meta, bytes) {
     const n = meta.triangles;
-    const corners = new Float32Array(bytes, 0, n * 9);
-    const origins = new Uint32Array(bytes, n * 36, n);
+    const given = new Float32Array(bytes, 0, n * 9);
+    const givenOrigins = new Uint32Array(bytes, n * 36, n);
+    const names = [...new Set(meta.origins.map(layerOf))].sort(byLayer);
+    const rank = new Map(names.map((name, i) => [name, i]));
+    const counts = new Array(names.length).fill(0);
+    const layerOfOrigin = meta.origins.map((o) => rank.get(layerOf(o)));
+    for (let t = 0; t < n; t++) counts[layerOfOrigin[givenOrigins[t]] || 0]++;
+    const starts = [];
+    let first = 0;
+    const layers = names.map((name, i) => {
+      starts.push(first);
+      const layer = { name, first: first * 3, count: counts[i] * 3 };
+      first += counts[i];
+      return layer;
+    });
+    const corners = new Float32Array(n * 9);
+    const origins = new Uint32Array(n);
+    for (let t = 0; t < n; t++) {
+      const to = starts[layerOfOrigin[givenOrigins[t]] || 0]++;
+      corners.set(given.subarray(t * 9, t * 9 + 9), to * 9);
+      origins[to] = givenOrigins[t];
+    }
     const normals = new Float32Array(n * 9);
     const colours = new Float32Array(n * 9);
     const picks = new Uint8Array(n * 12);
@@ -197,7 +230,7 @@
       return b;
     };
     return {
-      count: n * 3, origins,
+      count: n * 3, origins, layers,
       position: upload(corners), normal: upload(normals), colour: upload(colours), pick: upload(picks),
     };
   }
@@ -252,8 +285,9 @@
     attribute(w, "position", frame.mesh.position, 3, gl.FLOAT, false);
     attribute(w, "normal", frame.mesh.normal, 3, gl.FLOAT, false);
     attribute(w, "colour", frame.mesh.colour, 3, gl.FLOAT, false);
-    gl.drawArrays(gl.TRIANGLES, 0, frame.mesh.count);
+    drawLayers(frame.mesh);
     disableAttributes(w);
+    document.body.dataset.hidden = [...state.hidden].sort(byLayer).join(" ");
   }
 
   let drawPending = false;
@@ -305,7 +339,7 @@
     gl.uniform1f(w.cut, Number.isFinite(state.cut) ? state.cut : 3.0e38);
     attribute(w, "position", frame.mesh.position, 3, gl.FLOAT, false);
     attribute(w, "pick", frame.mesh.pick, 4, gl.UNSIGNED_BYTE, true);
-    gl.drawArrays(gl.TRIANGLES, 0, frame.mesh.count);
+    drawLayers(frame.mesh);
     disableAttributes(w);
     const ratio = width / canvas.clientWidth;
     const pixel = new Uint8Array(4);
@@ -317,8 +351,8 @@
     return pixel[0] + pixel[1] * 256 + pixel[2] * 65536 + pixel[3] * 16777216 - 1;
   }
 
-  // Say what is under the pointer: the path of its primitive, its colour and
-  // the FILE:LINE of the frame's '>' command.
+  // Say what is under the pointer: the path of its primitive, its element and
+  // class, its colour and the FILE:LINE of the frame's '>' command.
   function pointAt() {
     const box = $("pointed");
     const frame = shown();
@@ -334,6 +368,7 @@
     const origin = frame.meta.origins[frame.mesh.origins[t]];
     const c = origin.colour;
     $("pointed-path").textContent = origin.path;
+    $("pointed-element").textContent = `${origin.element || frame.meta.where} · ${layerOf(origin)}`;
     $("pointed-colour").textContent = c.map((v) => +v.toFixed(3)).join(" ");
     $("pointed-swatch").style.background =
       `rgb(${c.map((v) => Math.round(Math.min(1, Math.max(0, v)) * 255)).join(",")})`;
@@ -504,6 +539,41 @@
     $("diagnostics").hidden = !scene.diagnostics.length;
   }
 
+  // A check box for each layer of the frames (their classes, and "unclassed"):
+  // unticked, its faces are neither drawn nor pointed at. Only a scene with
+  // classes has layers to show.
+  function showLayers(scene) {
+    const names = [...new Set(scene.frames.flatMap((f) => f.origins.map(layerOf)))].sort(byLayer);
+    const list = $("layers-list");
+    const key = names.join(" ");
+    if (list.dataset.names !== key) {
+      list.dataset.names = key;
+      list.replaceChildren();
+      for (const name of names) {
+        const label = document.createElement("label");
+        const box = document.createElement("input");
+        box.type = "checkbox";
+        box.id = `layer-${name}`;
+        box.dataset.layer = name;
+        box.checked = !state.hidden.has(name);
+        box.addEventListener("change", () => {
+          if (box.checked) state.hidden.delete(name);
+          else state.hidden.add(name);
+          redraw();
+        });
+        label.append(box, ` ${name}`);
+        list.append(label);
+      }
+    }
+    const classed = names.some((name) => name !== UNCLASSED);
+    $("layers-toggle").hidden = !classed;
+    if (!classed) $("layers").hidden = true;
+  }
+  $("layers-toggle").addEventListener("click", () => {
+    $("layers").hidden = !$("layers").hidden;
+    $("layers-toggle").classList.toggle("active", !$("layers").hidden);
+  });
+
   function showStatus(scene, evaluating) {
     const status = $("status");
     if (!scene) {
@@ -572,6 +642,7 @@
     $("frame").max = String(Math.max(0, frames.length - 1));
     $("animation").classList.toggle("single", frames.length <= 1);
     showDiagnostics(scene);
+    showLayers(scene);
     showStatus(scene, scene.evaluating);
     updateSection();
     if (!state.fitted && state.box) {
