@@ -118,6 +118,9 @@ class EditingFeatures:
         from castor.serve.gestures import Gestures
         from castor.serve.server import PreviewServer
 
+        from castor.serve.buffers import warm
+
+        warm()
         path = os.path.abspath(path) if path else None
         preview = BufferPreview(reading, path)
         self.editing_cache.reading = reading

@@ -41,10 +41,23 @@ class BufferPreview(Preview):
             self.buffers = dict(buffers)
             self._wanted += 1
             self.state.notify_all()
-        self._stop_stale()
+
+    def _stop_stale(self) -> None:
+        """A newer text stops the evaluation under way between statements only,
+        never mid-statement: the language server's worker evaluates on another
+        thread at the same time, and a stop raised inside an import (a module
+        imported on first use) leaves importlib's lock of that module held, so
+        that the other thread waits for it forever."""
 
     def evaluation(self, job: Watched, stale) -> Evaluation:
         from castor.language.preprocess import unsaved
 
         with unsaved(self.buffers):
             return evaluate(job, stale)
+
+
+def warm() -> None:
+    """Import what an evaluation imports on first use, here, before the
+    preview's thread and the language server's worker both do at once."""
+    evaluate(Watched(Source(text="> @t(1, 0, 0) $U(!cu(1, 1, 1), !cy(1, 1, 1));\n",
+                            name="<warm>"), quiet=True))

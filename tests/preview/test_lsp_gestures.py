@@ -265,3 +265,18 @@ def test_lsp_serve_previews_the_buffer_and_sends_the_pages_gestures(workspace: P
         wait_for_scene(url, lambda s: "(bloc1)!cu" not in paths(s))
         assert path.read_text() == SCENE  # nothing was saved
         assert editor.stop() == 0
+
+
+def test_a_newer_buffer_never_stops_the_preview_mid_statement(monkeypatch, tmp_path: Path):
+    """The language server's worker imports and evaluates on its own thread: a
+    stop raised inside an import of the preview's thread left importlib's lock
+    held, and both threads waited for ever (a preview stuck on "evaluating")."""
+    from castor.analysis.worker import Stopper
+    from castor.serve.buffers import BufferPreview
+
+    stops = []
+    monkeypatch.setattr(Stopper, "stop", lambda self, stale: stops.append(stale) or False)
+    preview = BufferPreview()
+    preview.follow(str(tmp_path / "scene.cas"), SCENE, {})
+    preview.follow(str(tmp_path / "scene.cas"), SCENE + "> dalle;\n", {})
+    assert preview._wanted == 3 and stops == []
