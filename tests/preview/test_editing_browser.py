@@ -153,3 +153,27 @@ def test_an_edit_begun_on_an_older_text_is_refused(page, scene):
     page.wait_for_selector("body[data-edit-error]", timeout=30000)
     assert "the text changed since this gesture began" in page.inner_text("#edit-error")
     assert path.read_text() == changed  # nothing lost
+
+
+def test_place_into_an_object_with_a_chosen_name(page, scene):
+    path, _ = scene
+    path.write_text(SCENE.replace("bloc = @h(2, 2, 1) !cu(0.7, 0.7, 0.7);",
+                                  "bloc = $U(@h(2, 2, 1) !cu(0.7, 0.7, 0.7));"))
+    page.wait_for_function("() => window.castorViewer.frame().origins[0].path === '(bloc).U1!cu'",
+                           timeout=30000)
+    page.get_by_role("button", name="Place").click()
+    page.get_by_label("name").fill("borne")
+    page.get_by_label("into").fill("bloc")
+    click(page, [2.5, 0, 0])
+    click(page, [3, 0.5, 0])
+    page.get_by_label("value").press("Enter")
+    assert "borne = @t(2.5, 0, 0) @h(0.5, 0.5, 1) !cu(0.8, 0.8, 0.8); bloc = $U(" \
+        in written(page, 1)
+    assert "!cu(0.7, 0.7, 0.7), borne);" in path.read_text()
+    page.get_by_label("name").fill("")
+    page.get_by_label("into").fill("borne")  # not a $U: refused with the reason
+    click(page, [2.5, 1, 0])
+    click(page, [3, 1.5, 0])
+    page.get_by_label("value").press("Enter")
+    page.wait_for_selector("body[data-edit-error]", timeout=30000)
+    assert "not a $U" in page.inner_text("#edit-error")

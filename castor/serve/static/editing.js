@@ -57,7 +57,11 @@
   const undo = element("button", { id: "edit-undo", title: "undo the last edit made from this page", disabled: "" }, "Undo");
   const value = element("input", { id: "edit-value", "aria-label": "value", inputmode: "decimal",
     placeholder: "length", size: "8", title: "type a distance or a height, then Enter" });
-  bar.append(primitive, colour, undo, value);
+  const named = element("input", { id: "edit-name", "aria-label": "name", placeholder: "name", size: "7",
+    title: "the new object's name (else one from its primitive: bloc1, poteau2…)" });
+  const into = element("input", { id: "edit-into", "aria-label": "into", placeholder: "into", size: "7",
+    title: "an object $U(...) to add it to (else the list of the frame's '>')" });
+  bar.append(primitive, colour, named, into, undo, value);
   $("bar").append(bar);
 
   const panel = element("section", { id: "edit-panel", "aria-live": "polite", hidden: "" });
@@ -268,8 +272,11 @@
     let flat = 2;
     for (const k of [0, 1, 2]) if (Math.abs(size[k]) < Math.abs(size[flat]) - 1e-9) flat = k;
     size[flat] = height;
-    await edit("castor.place", { frame: frameNumber(), primitive: primitive.value,
-      colour: hexColour(), at: first.point.map(round), size, version: first.version });
+    const args = { frame: frameNumber(), primitive: primitive.value, colour: hexColour(),
+      at: first.point.map(round), size, version: first.version };
+    if (named.value.trim()) args.name = named.value.trim();
+    if (into.value.trim()) args.into = into.value.trim();
+    await edit("castor.place", args);
     state.points = [];
     state.height = false;
     prompted();
