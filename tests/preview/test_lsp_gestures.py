@@ -280,3 +280,15 @@ def test_a_newer_buffer_never_stops_the_preview_mid_statement(monkeypatch, tmp_p
     preview.follow(str(tmp_path / "scene.cas"), SCENE, {})
     preview.follow(str(tmp_path / "scene.cas"), SCENE + "> dalle;\n", {})
     assert preview._wanted == 3 and stops == []
+
+
+@pytest.mark.parametrize("options, message", [
+    (["--bind", "203.0.113.5"], "castor: error: cannot listen on 203.0.113.5 port 8000"),
+    (["a.cas", "b.cas"], "castor: error: --lsp --serve previews one scene"),
+])
+def test_lsp_serve_usage_errors(workspace: Path, options, message):
+    done = subprocess.run([sys.executable, "-m", "castor", "--lsp", "--serve", *options],
+                          stdin=subprocess.DEVNULL, capture_output=True, text=True,
+                          cwd=workspace, env=dict(os.environ, PYTHONPATH=str(ROOT)), timeout=60)
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.startswith(message)
