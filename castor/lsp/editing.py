@@ -118,9 +118,6 @@ class EditingFeatures:
         from castor.serve.gestures import Gestures
         from castor.serve.server import PreviewServer
 
-        from castor.serve.buffers import warm
-
-        warm()
         path = os.path.abspath(path) if path else None
         preview = BufferPreview(reading, path)
         self.editing_cache.reading = reading
@@ -129,7 +126,9 @@ class EditingFeatures:
         self.preview_server = PreviewServer(preview.job, bind, port, preview=preview,
                                             gestures=self.gestures)
         from castor.pipeline import STACK_BYTES
+        from castor.serve.buffers import warm
 
+        warm()  # before the preview's thread starts: see BufferPreview._stop_stale
         self.preview_server.start(STACK_BYTES)
         return self.preview_server.url
 
