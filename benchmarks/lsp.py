@@ -99,7 +99,7 @@ def slider_times(runs: int) -> tuple[list[float], list[float]]:
     except ImportError:
         return [], []
     sys.path.insert(0, str(HERE.parent))
-    from castor.serve.scene import Watched
+    from castor.serve.evaluation import Watched
     from castor.settings import Source
     from castor.serve.server import PreviewServer
     from tests.support.browser import FLAGS

@@ -510,7 +510,7 @@ def scene_frames(text):
 
 
 def test_a_smoothed_box_seen_from_above_is_rounded():
-    from castor.options import View
+    from castor.settings import View
     from castor.pictures import picture
     from castor.settings import PictureSettings
 
@@ -534,7 +534,7 @@ def test_a_smoothed_box_seen_from_above_is_rounded():
 def test_its_front_elevation_has_no_facet_lines():
     from castor.drawings import draw
     from castor.mesh.facetize import Facetizer
-    from castor.options import View
+    from castor.settings import View
 
     frame = scene_frames("> @s(120) @h(2, 1, 1) !cu(0.8, 0.6, 0.4);")[0]
     meshes = Facetizer().frame(frame)
@@ -590,7 +590,7 @@ def test_the_oracle_allows_a_thin_smooth_intersection_its_tolerance():
 
 
 def test_its_picture_with_edges_has_no_facet_lines():
-    from castor.options import View
+    from castor.settings import View
     from castor.pictures import picture
     from castor.settings import PictureSettings
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from castor.options import View
+from castor.settings import View
 from tests.support.checks import check_closed, check_convex_planar
 from tests.support.cli import frames_of, run
 from tests.support.drawings import Drawn, draw_svg
@@ -67,7 +67,7 @@ def test_the_wedge_in_a_front_elevation_is_a_triangle(tmp_path):
 
 
 def test_the_wedge_in_the_live_preview(tmp_path, monkeypatch):
-    from castor.serve.scene import Watched
+    from castor.serve.evaluation import Watched
     from castor.settings import Source
     from castor.serve.server import PreviewServer
     from tests.support.serve import get, triangles, volume, wait_for
@@ -81,7 +81,8 @@ def test_the_wedge_in_the_live_preview(tmp_path, monkeypatch):
         _, _, scene = get(port, "/scene.json")
         [frame] = scene["frames"]
         assert frame["origins"] == [{"path": "(rampe)!we", "colour": [0.8, 0.4, 0.2],
-                                     "source": "scene.cas:1:21: !we"}]
+                                     "source": "scene.cas:1:21: !we", "element": "rampe",
+                                     "class": None}]
         assert frame["box"] == [[0, 0, 0], [2, 1, 1]]
         assert frame["triangles"] == 8
         _, _, data = get(port, frame["url"])

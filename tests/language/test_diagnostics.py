@@ -8,7 +8,7 @@ import pytest
 from tests.support.cli import run, write
 from tests.support.stream import parse_stream
 from tests.support.vocabulary import primitive_names
-from castor.language.vocabulary import TRANSFORMS
+from castor.transformations import TRANSFORMS
 
 CUBE = "!cu(0.5, 0.5, 0.5)"
 

@@ -10,8 +10,8 @@ import sys
 import numpy as np
 import pytest
 
-from castor.language.vocabulary import PRIMITIVES
-from castor.options import View
+from castor.primitives import PRIMITIVES
+from castor.settings import View
 from castor.pictures.camera import make_camera
 from castor.pictures.spans import SPANS
 from castor.pictures.trace import compile_frame
@@ -127,7 +127,7 @@ def test_castor_and_castor_view_cover_the_same_pixels():
     from scipy import ndimage
 
     from castor.view.render import render
-    from castor.view.scene import read_stream
+    from castor.formats.cps import load
 
     text = ("> $U($D(@h(3, 2, 1.5) !cu(0.8, 0.7, 0.5), @t(1.5, 1, 1.5) @h(0.8) !sp(0.2, 0.3, 0.9)),"
             " @t(4, 1, 0) @h(0.7, 0.7, 2) !cy(0.3, 0.6, 0.3));")
@@ -136,7 +136,7 @@ def test_castor_and_castor_view_cover_the_same_pixels():
         exact = covered(draw(text, **options, size=(320, 240)))
         stream = subprocess.run([sys.executable, "-m", "castor", "-t", "0.002"],
                                 input=text.encode(), capture_output=True, check=True).stdout
-        frame = next(read_stream(iter(io.StringIO(stream.decode()).readline, "")))
+        frame = next(load(iter(io.StringIO(stream.decode()).readline, "")))
         camera = camera_of(text, **options, size=(320, 240))
         facets = covered(render(frame, camera, 320, 240))
         differ = exact ^ facets
@@ -188,11 +188,11 @@ FRAME_WITH_A_HOLE = ("> $D(@h(4, 4, 1) !cu(0.8, 0.8, 0.8),"
 
 def _view(text: str, mode: str, view: View, size=(200, 200)) -> tuple[np.ndarray, object]:
     from castor.view.render import render
-    from castor.view.scene import read_stream
+    from castor.formats.cps import load
 
     stream = subprocess.run([sys.executable, "-m", "castor"], input=text.encode(),
                             capture_output=True, check=True).stdout
-    frame = next(read_stream(iter(io.StringIO(stream.decode()).readline, "")))
+    frame = next(load(iter(io.StringIO(stream.decode()).readline, "")))
     low, high = frame.points.min(axis=0), frame.points.max(axis=0)
     camera = make_camera(low, high, size, view)
     return render(frame, camera, size[0], size[1], mode), camera

@@ -196,7 +196,9 @@ def test_completion_lists(client: Client, scene: Path):
     text = path.read_text()
     uri = client.open(path)
     client.diagnostics(uri, 1)
-    from castor.language.vocabulary import BOOLEANS, PRIMITIVES, TRANSFORMS
+    from castor.booleans import BOOLEANS
+    from castor.primitives import PRIMITIVES
+    from castor.transformations import TRANSFORMS
 
     edited = text + "\nx = !"
     client.change(uri, edited, 2)

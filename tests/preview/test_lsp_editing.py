@@ -13,7 +13,9 @@ from pathlib import Path
 import pytest
 from tests.support.lsp import EXAMPLES, Client, line_of, started_client
 
-from castor.language.vocabulary import BOOLEANS, PRIMITIVES, TRANSFORMS
+from castor.booleans import BOOLEANS
+from castor.primitives import PRIMITIVES
+from castor.transformations import TRANSFORMS
 
 
 @pytest.fixture

@@ -13,7 +13,7 @@ import sys
 
 import pytest
 
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.serve.server import PreviewServer
 from castor.settings import Source
 

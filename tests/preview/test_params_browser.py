@@ -15,7 +15,7 @@ import time
 import numpy as np
 import pytest
 
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.settings import Source
 from castor.serve.server import PreviewServer
 

@@ -19,7 +19,7 @@ import pytest
 
 from castor.settings import Source
 from castor.serve import server as server_module
-from castor.serve.scene import Overtaken, Watched, evaluate
+from castor.serve.evaluation import Overtaken, Watched, evaluate
 from castor.serve.server import PreviewServer
 from tests.support.cli import hear_ctrl_c
 from tests.support.serve import get, raw, triangles, volume, wait_for

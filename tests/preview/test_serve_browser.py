@@ -12,49 +12,16 @@ import shutil
 import numpy as np
 import pytest
 
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.settings import Source
 from castor.serve.server import PreviewServer
+from tests.support.preview_page import browser, house, page, skip_without_chromium  # noqa: F401
 from tests.support.browser import (CHROMIUM, FLAGS, GREEN, HEIGHT, REVEAL, ROOF, WIDTH, drawn,
                                    inside_reveal, near, next_version, outline, painted, picture)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"Debian's chromium is not installed ({CHROMIUM} is absent; "
-                "apt-get install chromium): the live preview is not tried in a browser",
-                allow_module_level=True)
-playwright = pytest.importorskip("playwright.sync_api",
-                                 reason="the playwright package is not installed")
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with playwright.sync_playwright() as driver:
-        launched = driver.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
-        yield launched
-        launched.close()
-
-
-@pytest.fixture
-def house(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    shutil.copy(os.path.join(ROOT, "examples", "house.cas"), tmp_path / "house.cas")
-    server = PreviewServer(Watched(Source(("house.cas",))), "127.0.0.1", 0).start()
-    yield tmp_path / "house.cas", server.url
-    server.close()
-
-
-@pytest.fixture
-def page(browser, house):
-    opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
-    problems = []
-    opened.on("pageerror", lambda error: problems.append(str(error)))
-    opened.goto(house[1])
-    opened.wait_for_selector("body[data-version]", timeout=15000)
-    yield opened
-    opened.close()
-    assert problems == []
+playwright = skip_without_chromium()
 
 
 def save(path, old: str, new: str) -> None:

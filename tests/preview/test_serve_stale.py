@@ -10,7 +10,7 @@ import time
 
 from castor.analysis import reuse
 from castor.language.parse import Parser
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.serve.server import PreviewServer
 from castor.settings import Source
 

@@ -8,7 +8,8 @@ from __future__ import annotations
 from itertools import product
 
 from castor.diagnostics import CastorError, Location
-from castor.language.vocabulary import PRIMITIVES, TRANSFORMS
+from castor.primitives import PRIMITIVES
+from castor.transformations import TRANSFORMS
 
 # tried in order for each argument after the colour, and for the coordinate pairs
 VALUES = (0.3, 5.0, 6.0, 0.5, 2.0)
