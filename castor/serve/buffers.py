@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from castor.serve.scene import Evaluation, Watched, evaluate
+from castor.serve.evaluation import Evaluation, Watched, evaluate
 from castor.serve.server import Preview
 from castor.settings import ReadSettings, Source
 

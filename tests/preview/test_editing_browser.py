@@ -12,7 +12,7 @@ import os
 
 import pytest
 
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.serve.server import PreviewServer
 from castor.settings import Source
 from tests.support.browser import CHROMIUM, FLAGS, HEIGHT, WIDTH

@@ -14,7 +14,7 @@ import time
 
 import pytest
 
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.serve.server import PreviewServer
 from castor.settings import Source
 
