@@ -177,3 +177,16 @@ def test_place_into_an_object_with_a_chosen_name(page, scene):
     page.get_by_label("value").press("Enter")
     page.wait_for_selector("body[data-edit-error]", timeout=30000)
     assert "not a $U" in page.inner_text("#edit-error")
+
+
+def test_a_typed_distance_moves_exactly(page, scene):
+    path, _ = scene
+    page.get_by_role("button", name="Move").click()
+    click(page, [1, 1, 1])
+    x, y = at(page, [1.63, 1, 1])  # towards +x, along the x axis from the first point
+    page.mouse.move(x, y)
+    page.wait_for_selector("body[data-snapped='axis x']", timeout=15000)
+    page.get_by_label("value").fill("0.25")
+    page.get_by_label("value").press("Enter")
+    assert "bloc = @t(0.25, 0, 0) @h(2, 2, 1)" in written(page, 1)
+    assert path.read_text() == SCENE.replace("bloc = @h", "bloc = @t(0.25, 0, 0) @h")
