@@ -190,3 +190,16 @@ def test_a_typed_distance_moves_exactly(page, scene):
     page.get_by_label("value").press("Enter")
     assert "bloc = @t(0.25, 0, 0) @h(2, 2, 1)" in written(page, 1)
     assert path.read_text() == SCENE.replace("bloc = @h", "bloc = @t(0.25, 0, 0) @h")
+
+
+def test_place_with_sides_and_height_typed(page, scene):
+    path, _ = scene
+    page.get_by_role("button", name="Place").click()
+    click(page, [2.5, 0, 0])
+    page.get_by_label("value").fill("0.5, 0.25")
+    page.get_by_label("value").press("Enter")
+    page.get_by_label("value").fill("2.8")
+    page.get_by_label("value").press("Enter")
+    line = "bloc1 = @t(2.5, 0, 0) @h(0.5, 0.25, 2.8) !cu(0.8, 0.8, 0.8); > bloc, bloc1;"
+    assert written(page, 1).endswith(line)
+    assert path.read_text() == SCENE.replace("> bloc;", line)

@@ -174,7 +174,7 @@
   }
 
   const PROMPTS = {
-    place: ["Place: click a corner of its box", "the opposite corner (or type a length, Enter)",
+    place: ["Place: click a corner of its box", "the opposite corner (or type its sides x, y, Enter)",
       "its height: type it and press Enter (1 m)"],
     move: ["Move: click the face to take", "where to put it (or type a distance, Enter)"],
     measure: ["Measure: click a point, a face or an object", "the second point (or type a distance, Enter)"],
@@ -319,6 +319,12 @@
       if (state.height) {
         if (typed !== "" && !(Number.isFinite(number) && number !== 0)) throw new Error(`'${typed}' is not a height`);
         await place(typed === "" ? 1 : number);
+      } else if (state.tool === "place" && state.points.length === 1 && /^[^,]+,[^,]+$/.test(typed)) {
+        // "x, y": the box's sides along x and y, on the first corner's level
+        const sides = typed.split(",").map((v) => Number(v.trim()));
+        if (!sides.every((v) => Number.isFinite(v) && v !== 0)) throw new Error(`'${typed}' is not two sides`);
+        const first = state.points[0];
+        await take(Object.assign({}, first, { point: add(first.point, [sides[0], sides[1], 0]) }));
       } else if (state.points.length) {
         if (!Number.isFinite(number) || number <= 0) throw new Error(`'${typed}' is not a distance`);
         const at = state.pointer || [canvas.clientWidth / 2, canvas.clientHeight / 2];
