@@ -75,7 +75,10 @@ def click(page, point, offset=(0, 0)) -> None:
 
 
 def written(page, count: int) -> str:
-    page.wait_for_selector(f"body[data-written='{count}']", timeout=30000)
+    page.wait_for_function("(count) => document.body.dataset.written === String(count) || "
+                           "document.body.dataset.editError", arg=count, timeout=30000)
+    assert page.evaluate("document.body.dataset.editError") is None, \
+        page.evaluate("document.body.dataset.editError")
     return page.inner_text("#edit-result")
 
 
@@ -201,5 +204,22 @@ def test_place_with_sides_and_height_typed(page, scene):
     page.get_by_label("value").fill("2.8")
     page.get_by_label("value").press("Enter")
     line = "bloc1 = @t(2.5, 0, 0) @h(0.5, 0.25, 2.8) !cu(0.8, 0.8, 0.8); > bloc, bloc1;"
+    assert written(page, 1).endswith(line)
+    assert path.read_text() == SCENE.replace("> bloc;", line)
+
+
+def test_place_with_its_height_dragged(page, scene):
+    path, _ = scene
+    page.get_by_role("button", name="Place").click()
+    click(page, [2.5, 0, 0])
+    click(page, [3, 0.5, 0])
+    page.get_by_role("button", name="front").click()  # z rises on the screen
+    x, y = at(page, [3, 0.5, 1.5])
+    page.mouse.move(x, y + 1)
+    page.wait_for_selector("body[data-height='1.5']", timeout=15000)
+    assert page.inner_text("#edit-feature") == "height 1.5"
+    page.mouse.down()
+    page.mouse.up()
+    line = "bloc1 = @t(2.5, 0, 0) @h(0.5, 0.5, 1.5) !cu(0.8, 0.8, 0.8); > bloc, bloc1;"
     assert written(page, 1).endswith(line)
     assert path.read_text() == SCENE.replace("> bloc;", line)

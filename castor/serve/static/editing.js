@@ -175,7 +175,7 @@
 
   const PROMPTS = {
     place: ["Place: click a corner of its box", "the opposite corner (or type its sides x, y, Enter)",
-      "its height: type it and press Enter (1 m)"],
+      "its height: drag it and click, or type it and press Enter (1 m)"],
     move: ["Move: click the face to take", "where to put it (or type a distance, Enter)"],
     measure: ["Measure: click a point, a face or an object", "the second point (or type a distance, Enter)"],
   };
@@ -315,7 +315,7 @@
     const typed = value.value.trim();
     const number = typed === "" ? NaN : Number(typed);
     value.value = "";
-    try {
+    then(async () => {
       if (state.height) {
         if (typed !== "" && !(Number.isFinite(number) && number !== 0)) throw new Error(`'${typed}' is not a height`);
         await place(typed === "" ? 1 : number);
@@ -330,9 +330,7 @@
         const at = state.pointer || [canvas.clientWidth / 2, canvas.clientHeight / 2];
         await take(await snapAt(at[0], at[1], number));
       }
-    } catch (err) {
-      fail(err.message);
-    }
+    });
   });
 
   document.addEventListener("keydown", (e) => {
@@ -352,7 +350,7 @@
     state.inFlight = true;
     try {
       const snap = await snapAt(x, y);
-      if (state.tool) showSnap(snap);
+      if (state.tool && !state.height) showSnap(snap);
     } catch (e) {
       showSnap(null);
     } finally {
@@ -361,39 +359,78 @@
     }
   }
 
+  // Place's height dragged: the height above the second corner whose point is
+  // drawn nearest the pointer, on a 0.05 m grid (none where z is not seen rise)
+  function draggedHeight(pointer) {
+    const corner = state.points[1].point;
+    const base = project(corner), top = project(add(corner, [0, 0, 1]));
+    if (!base || !top) return null;
+    const d = [top[0] - base[0], top[1] - base[1]];
+    const length = d[0] * d[0] + d[1] * d[1];
+    if (length < 1) return null;
+    const h = ((pointer[0] - base[0]) * d[0] + (pointer[1] - base[1]) * d[1]) / length;
+    const rounded = Math.round(h / 0.05) * 0.05;
+    return Math.abs(rounded) < 0.05 ? null : round(rounded);
+  }
+
+  function showHeight(pointer) {
+    state.dragged = draggedHeight(pointer);
+    if (state.dragged === null) return;
+    say(`its height: ${state.dragged} m — click, or type it and press Enter`);
+    showSnap({ point: add(state.points[1].point, [0, 0, state.dragged]), feature: `height ${state.dragged}` });
+    document.body.dataset.height = String(state.dragged);
+  }
+
   const own = (e) => state.tool && e.button === 0 && !e.shiftKey;
   const area = canvas.parentElement;
   area.addEventListener("pointermove", (e) => {
     if (!state.tool || e.target !== canvas) return;
     state.pointer = where(e);
+    if (state.height) {
+      showHeight(state.pointer);
+      return;
+    }
     state.wanted = state.pointer;
     follow();
   }, true);
-  area.addEventListener("pointerdown", async (e) => {
-    if (!own(e) || e.target !== canvas || state.height) return;
-    e.stopImmediatePropagation();
-    state.down = where(e);
-    const down = state.down;
-    state.taking = (async () => {
+  // Each point is taken after the one before it (its snap starts from it),
+  // however quickly the clicks and the keys come.
+  function then(step) {
+    state.taking = state.taking.then(async () => {
       try {
-        await take(await snapAt(...down));
+        await step();
       } catch (err) {
         fail(err.message);
       }
-    })();
+    });
+    return state.taking;
+  }
+  state.taking = Promise.resolve();
+
+  area.addEventListener("pointerdown", (e) => {
+    if (!own(e) || e.target !== canvas) return;
+    e.stopImmediatePropagation();
+    const down = where(e);
+    state.down = down;
+    then(async () => {
+      if (!state.height) {
+        await take(await snapAt(...down));
+        return;
+      }
+      const height = draggedHeight(down);
+      if (height !== null) await place(height);
+    });
   }, true);
-  area.addEventListener("pointerup", async (e) => {
+  area.addEventListener("pointerup", (e) => {
     if (!own(e) || !state.down) return;
     e.stopImmediatePropagation();
     const down = state.down, up = where(e);
     state.down = null;
-    await state.taking;
-    if (Math.abs(up[0] - down[0]) + Math.abs(up[1] - down[1]) < CLICK || !state.points.length) return;
-    try {
-      await take(await snapAt(...up)); // a drag: its end is the second point
-    } catch (err) {
-      fail(err.message);
-    }
+    if (Math.abs(up[0] - down[0]) + Math.abs(up[1] - down[1]) < CLICK) return;
+    then(async () => {
+      // a drag: its end is the next point
+      if (state.points.length && !state.height) await take(await snapAt(...up));
+    });
   }, true);
 
   // ---- what the server offers ----
