@@ -149,6 +149,7 @@ def test_an_edit_begun_on_an_older_text_is_refused(page, scene):
     path, _ = scene
     page.get_by_role("button", name="Place").click()
     click(page, [2.5, 0, 0])
+    page.wait_for_selector("body[data-points='1']")  # the first corner taken, on this text
     changed = SCENE.replace("/* a block */", "/* a block, changed in the editor */")
     path.write_text(changed)
     click(page, [3, 0.5, 0])

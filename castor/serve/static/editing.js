@@ -32,7 +32,10 @@
   const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
   const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
   const scale = (a, s) => [a[0] * s, a[1] * s, a[2] * s];
-  const round = (v) => +v.toFixed(4);
+  const round = (v) => +v.toFixed(4); // as shown
+  // as sent in an edit: to a micrometre, so that a difference of two points
+  // is written 0.3, not 0.30000000000000004
+  const micro = (v) => +v.toFixed(6);
 
   // ---- the page's parts ----
   function element(tag, attributes, text) {
@@ -181,6 +184,7 @@
   };
 
   function prompted() {
+    document.body.dataset.points = String(state.points.length);
     if (!state.tool) {
       panel.hidden = !result.textContent;
       prompt.textContent = "";
@@ -217,6 +221,10 @@
       return;
     }
     state.points.push(snap);
+    if (state.pointer) {  // snapped again from the new point (axes, parallels)
+      state.wanted = state.pointer;
+      follow();
+    }
     if (state.points.length === 1) {
       if (state.tool === "measure") await measureFirst(snap);
       prompted();
@@ -231,7 +239,7 @@
     }
     if (state.tool === "move") {
       await edit("castor.move", { frame: frameNumber(), source: first.source, path: first.path,
-        by: sub(second.point, first.point).map(round), version: first.version });
+        by: sub(second.point, first.point).map(micro), version: first.version });
     } else {
       const m = (await gesture("castor.measure", { from: first.point, to: second.point })).result;
       result.textContent = `distance ${round(m.distance)} m · dx ${round(m.dx)} · dy ${round(m.dy)} · dz ${round(m.dz)}`;
@@ -267,13 +275,13 @@
 
   async function place(height) {
     const [first, second] = state.points;
-    const size = sub(second.point, first.point).map(round);
+    const size = sub(second.point, first.point).map(micro);
     // the side the two corners leave flat takes the height
     let flat = 2;
     for (const k of [0, 1, 2]) if (Math.abs(size[k]) < Math.abs(size[flat]) - 1e-9) flat = k;
     size[flat] = height;
     const args = { frame: frameNumber(), primitive: primitive.value, colour: hexColour(),
-      at: first.point.map(round), size, version: first.version };
+      at: first.point.map(micro), size, version: first.version };
     if (named.value.trim()) args.name = named.value.trim();
     if (into.value.trim()) args.into = into.value.trim();
     await edit("castor.place", args);
