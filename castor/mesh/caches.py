@@ -83,12 +83,22 @@ class Caches:
         # one object merged once (merge.Merger); weighed in triangles, emptied
         # at each frame
         self.patterns = Bounded(max_entries=10_000, max_weight=2_000_000)
+        # digest of a part's vertices, triangles and faces -> its polygons
+        # (merge.Merger): a part that did not change since the last frame is
+        # not merged again; weighed in triangles
+        self.merged = Bounded(max_entries=10_000, max_weight=2_000_000)
+        # digest of one face's group of triangles, on its own vertices -> its
+        # polygons (merge._group_polygons): the faces a change did not touch,
+        # inside a part that did change; weighed in triangles
+        self.groups = Bounded(max_entries=200_000, max_weight=2_000_000)
 
     def new_facetizer(self) -> None:
         """A new facetizer starts from nothing built (what benchmarks measure)."""
         self.solids.clear()
         self.templates.clear()
         self.regular.clear()
+        self.merged.clear()
+        self.groups.clear()
 
 
 PROCESS = Caches()

@@ -71,7 +71,7 @@ class Facetizer:
                              "scene or raise TOLERANCE", scene.location)
         total = 0
         self.caches.patterns.clear()  # patterns of this frame's parts only
-        merger = merge.Merger(self.caches.patterns)
+        merger = merge.Merger(self.caches.patterns, self.caches.merged, self.caches.groups)
         frame = Frame(scene.number, scene.where)
         for obj in scene.objects:
             solid = self.solid(obj.root) if obj.root is not None else EMPTY
