@@ -67,6 +67,10 @@ class Caches:
         self.templates = Bounded(max_entries=4096)
         # engine ID -> template, for every ID a template's runs carry (checks.off_faces)
         self.engine_ids: "weakref.WeakValueDictionary[int, object]" = weakref.WeakValueDictionary()
+        # content key of a boolean (castor.mesh.keys) -> the engine's result,
+        # regularized: the same operands met again (the next frame, a slider's
+        # next value) go to the engine no more; weighed in triangles
+        self.booleans = Bounded(max_entries=10_000, max_weight=4_000_000)
         # id() of a union's result no two of whose primitives' planes meet -> that
         # result (held, so that its id is not reused): no sheet can be in it
         self.plain = Bounded(max_entries=1000)
@@ -97,6 +101,7 @@ class Caches:
         self.solids.clear()
         self.templates.clear()
         self.regular.clear()
+        self.booleans.clear()
         self.merged.clear()
         self.groups.clear()
 
