@@ -83,6 +83,10 @@ class Caches:
         # regularized again (the live preview, the language server); weighed
         # in triangles
         self.regular = Bounded(max_entries=10_000, max_weight=4_000_000)
+        # digest of one plane's triangles where a sheet is cut out -> what
+        # cutting it did (castor.mesh.sheets): the planes a change did not
+        # touch, inside a part that did change; weighed in triangles
+        self.planes = Bounded(max_entries=20_000, max_weight=1_000_000)
         # a part's triangles and faces -> (its polygons, its vertices): copies of
         # one object merged once (merge.Merger); weighed in triangles, emptied
         # at each frame
@@ -102,6 +106,7 @@ class Caches:
         self.templates.clear()
         self.regular.clear()
         self.booleans.clear()
+        self.planes.clear()
         self.merged.clear()
         self.groups.clear()
 
