@@ -15,8 +15,8 @@ import threading
 
 from castor import __version__
 from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
-from castor.options import (DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE,
-                            OUTPUT_OPTIONS, negative_values, option_value, parse_count)
+from castor.options import OUTPUT_OPTIONS, negative_values, option_value, parse_count
+from castor.settings import DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE
 
 
 class _NotGiven(list):
@@ -475,7 +475,7 @@ def _serve(args, source, reading, evaluation) -> int:
     if args.output or args.check:
         return usage("--serve shows the frames in a web browser; it writes nothing "
                      f"({'-o' if args.output else '--check'} goes without --serve)")
-    from castor.serve.scene import Watched
+    from castor.serve.evaluation import Watched
     from castor.serve.server import serve
 
     try:

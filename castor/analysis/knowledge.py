@@ -17,7 +17,9 @@ from dataclasses import dataclass
 
 from castor.analysis.scene import Analysis, macro_definitions, object_figures, parameters
 from castor.diagnostics import Location
-from castor.language.vocabulary import BOOLEANS, PRIMITIVES, TRANSFORMS
+from castor.booleans import BOOLEANS
+from castor.primitives import PRIMITIVES
+from castor.transformations import TRANSFORMS
 
 _WORD = re.compile(r"[!@$]?[A-Za-z_]\w*")
 # a name as written (not the name of the vocabulary after '!', '@', '$', not a

@@ -14,16 +14,16 @@ from __future__ import annotations
 import os
 import unicodedata
 
-from castor.drawings.model import Drawing, Layer, ViewBasis, view_for
+from castor.drawings.model import Drawing, Layer, view_for
 from castor.drawings.cut import cut_loops, section_area
 from castor.drawings.hidden import seen_lines
 
-__all__ = ["Drawing", "Layer", "ViewBasis", "draw", "section_area", "sheet_of", "title_of"]
+__all__ = ["Drawing", "Layer", "draw", "section_area", "sheet_of", "title_of"]
 
 
 def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
-    """The drawing of a mesh frame: cut by ``section`` (castor.options.Section)
-    if given, seen from ``view`` (castor.options.View) otherwise."""
+    """The drawing of a mesh frame: cut by ``section`` (castor.settings.Section)
+    if given, seen from ``view`` (castor.settings.View) otherwise."""
     seen = view_for(section, view)
     depth = seen.plane_depth(section)
     objects = [o for o in frame.objects if o.polygon_count]
@@ -34,18 +34,18 @@ def draw(frame, section=None, view=None, scale: float = 100.0) -> Drawing:
     return Drawing(layers, seen, scale, section)
 
 
-def title_of(scene, title: str | None) -> str:
+def title_of(tree, title: str | None) -> str:
     """The sheet's title: --title, else the name of the '>' object, else the file's."""
     if title:
         # control characters have no place on a sheet (and XML refuses most)
         title = "".join(" " if unicodedata.category(c) in ("Cc", "Cs") else c for c in title)
         return title.strip() or "castor"
-    if len(scene.objects) == 1 and scene.objects[0].name:
-        return scene.objects[0].name
-    return os.path.basename(scene.location.file) or "castor"
+    if len(tree.objects) == 1 and tree.objects[0].name:
+        return tree.objects[0].name
+    return os.path.basename(tree.location.file) or "castor"
 
 
-def sheet_of(scene, frame, settings, title: str | None = None, warn=None):
+def sheet_of(tree, frame, settings, title: str | None = None, warn=None):
     """The frame drawn and laid on its sheet (castor.drawings.sheet.Sheet), as
     ``settings`` (castor.settings.DrawingSettings) ask, titled ``title``
     (--title); what a drawing format writes. ``warn(message)`` hears of
@@ -56,6 +56,6 @@ def sheet_of(scene, frame, settings, title: str | None = None, warn=None):
 
     result = draw(frame, settings.section, settings.view, settings.scale)
     try:
-        return layout(result, settings.sheet, title_of(scene, title), scene.where, warn)
+        return layout(result, settings.sheet, title_of(tree, title), tree.where, warn)
     except DoesNotFit as exc:
-        raise CastorError(str(exc), scene.location) from None
+        raise CastorError(str(exc), tree.location) from None

@@ -1,51 +1,26 @@
-"""What a drawing is made of, and the six directions it can be seen from."""
+"""What a drawing is made of, and which named view (castor.settings.ORTHOGRAPHIC)
+it is seen from."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import NamedTuple
 
 import numpy as np
 
-from castor.options import ORTHOGRAPHIC
-
-
-class ViewBasis(NamedTuple):
-    """An orthographic direction: the page's right and up, and the direction
-    towards the viewer (right x up = towards), all unit vectors of the scene."""
-
-    name: str
-    right: tuple[float, float, float]
-    up: tuple[float, float, float]
-    towards: tuple[float, float, float]
-
-    def basis(self) -> np.ndarray:
-        """(3, 3): rows right, up, towards; a point p is seen at basis @ p."""
-        return np.array([self.right, self.up, self.towards], dtype=np.float64)
-
-    def plane_depth(self, section) -> float | None:
-        """The depth (along ``towards``) of the section plane, or None."""
-        if section is None:
-            return None
-        axis = "xyz".index(section.axis)
-        return float(self.towards[axis]) * section.value
-
-
-# the named views of castor.options, each with its name
-VIEWS = {name: ViewBasis(name, *axes) for name, axes in ORTHOGRAPHIC.items()}
+from castor.settings import ORTHOGRAPHIC, Orthographic
 
 # a section is seen from above (z, a plan) or looking towards +x or +y
 SECTION_VIEWS = {"z": "top", "x": "left", "y": "front"}
 
 
-def view_for(section, view) -> ViewBasis:
+def view_for(section, view) -> Orthographic:
     """The direction a drawing is seen from: the section's own, else the
     orthographic --view, else the front (a perspective --view, the default
     included, gives the front elevation: a drawing is never in perspective)."""
     if section is not None:
-        return VIEWS[SECTION_VIEWS[section.axis]]
+        return ORTHOGRAPHIC[SECTION_VIEWS[section.axis]]
     name = getattr(view, "name", None)
-    return VIEWS[name] if name in VIEWS else VIEWS["front"]
+    return ORTHOGRAPHIC[name] if name in ORTHOGRAPHIC else ORTHOGRAPHIC["front"]
 
 
 @dataclass
@@ -64,9 +39,9 @@ class Layer:
 @dataclass
 class Drawing:
     layers: list[Layer]
-    view: ViewBasis
+    view: Orthographic
     scale: float  # the N of 1:N
-    section: object = None  # castor.options.Section, None for an elevation
+    section: object = None  # castor.settings.Section, None for an elevation
 
     @property
     def is_plan(self) -> bool:

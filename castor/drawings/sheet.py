@@ -406,7 +406,7 @@ def _refusal(drawing, paper, room: _Room) -> DoesNotFit:
 
 
 def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> Sheet:
-    """The drawing on its sheet (``paper``: castor.options.Paper, or None for a
+    """The drawing on its sheet (``paper``: castor.settings.Paper, or None for a
     sheet as large as the drawing needs). Raises DoesNotFit when the drawing
     is larger than the paper at its scale."""
     mm = 1000.0 / drawing.scale

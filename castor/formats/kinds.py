@@ -27,13 +27,11 @@ class Framing(NamedTuple):
 
 
 class BuildingModel(NamedTuple):
-    """What a building model's formats write: the frame's tree (its parameters,
-    each object's source), its polygons, the title and each object's class."""
+    """What a building model's formats write: the frame's storeys, elements,
+    openings and spaces (castor.bim.Building), made from its tree and polygons
+    with the title and each object's class (--ifc-class)."""
 
-    tree: object  # castor.csg.tree.FrameTree
-    frame: object  # castor.mesh.frame.Frame
-    title: str | None  # --title (None: the format's default)
-    classes: dict  # object name -> its class (--ifc-class)
+    building: object  # castor.bim.Building
 
 
 class Kind:
@@ -196,25 +194,36 @@ class Drawings(Kind):
 
 
 class BuildingModels(Kind):
-    """A building model: one element per object, of the class --ifc-class gives."""
+    """A building model (castor.bim): storeys, the elements of the classes the
+    annotations (or --ifc-class) give, openings filled by doors and windows, spaces."""
 
     name, plural = "bim", "building models"
     options = ("--title", "--ifc-class")
 
     def make(self, tree, settings, chosen, made):
+        from castor.bim import build
+
         frame, facetizer = _polygons(tree, settings, made)
-        model = BuildingModel(tree, frame, settings.output.title, dict(settings.bim.classes))
+        building = build(tree, frame, facetizer, settings.output.title,
+                         dict(settings.bim.classes),
+                         lambda message: made.warnings.append((message, tree.location)))
         _figures(settings, made, frame, facetizer, tree)
-        return model
+        return BuildingModel(building)
 
     def after_run(self, settings, objects: set[str]) -> list[str]:
         """An --ifc-class NAME=CLASS whose NAME is no object of the scene gives no
-        element its class: most likely a typo."""
+        element its class: most likely a typo; a CLASS the Reference View leaves
+        out is written as the class it has instead."""
+        from castor.bim.model import OUTSIDE_REFERENCE_VIEW
         from castor.language.parse import suggestion
 
-        return [f"--ifc-class {name}: the scene has no object '{name}', so nothing is made "
+        said = [f"--ifc-class {name}: the scene has no object '{name}', so nothing is made "
                 f"an {cls}{suggestion(name, objects)}"
                 for name, cls in settings.bim.classes if name not in objects]
+        return said + [f"--ifc-class {name}={cls}: buildingSMART's IFC4 Reference View has no "
+                       f"{cls} (it implies material layers or a parametric shape); '{name}' is "
+                       f"written as an {OUTSIDE_REFERENCE_VIEW[cls]}"
+                       for name, cls in settings.bim.classes if cls in OUTSIDE_REFERENCE_VIEW]
 
 
 STREAM = Polygons("stream", "the polygon stream", streamed=True)

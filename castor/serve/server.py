@@ -29,7 +29,7 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
 
 from castor.diagnostics import UsageError
-from castor.serve.scene import Diagnostic, DrawnFrame, Evaluation, Overtaken, Watched, evaluate
+from castor.serve.evaluation import Diagnostic, DrawnFrame, Evaluation, Overtaken, Watched, evaluate
 from castor.serve.watch import Watcher
 
 POLL_SECONDS = 0.05  # how often the files are looked at
