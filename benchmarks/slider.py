@@ -1,7 +1,7 @@
 """The live preview's step on the bus shelter: a slider's value and a save.
 
 Evaluates examples/bus_shelter.cas as ``castor --serve`` does at each change
-(castor.serve.scene.evaluate, in this process, its caches kept from one
+(castor.serve.evaluation.evaluate, in this process, its caches kept from one
 evaluation to the next), after a first evaluation that fills them:
 
 - a slider step: the shelter's length ``LA`` changed through the panel's
@@ -59,7 +59,7 @@ def _timed(stage: str, function):
 def instrument() -> None:
     from castor.analysis import scene as analysis_scene
     from castor.mesh import booleans, facetize, merge, provenance
-    from castor.serve import layers, scene
+    from castor.serve import evaluation, layers
 
     for name in ("union", "intersection", "difference"):
         setattr(booleans, name, _timed("booleans", getattr(booleans, name)))
@@ -69,7 +69,7 @@ def instrument() -> None:
     merge.Merger.merge = _timed("merge", merge.Merger.merge)
     facetize.compact = _timed("compact", facetize.compact)
     facetize.polygon_surfaces = _timed("compact", facetize.polygon_surfaces)
-    scene.drawn = _timed("drawn", scene.drawn)
+    evaluation.drawn = _timed("drawn", evaluation.drawn)
     layers.classified = _timed("layers", layers.classified)
     analysis_scene.primitive_places = _timed("layers", analysis_scene.primitive_places)
     facetize.Facetizer.frame = _timed("facetize", facetize.Facetizer.frame)
@@ -113,7 +113,7 @@ def caches_line() -> str:
 
 def main() -> None:
     runs = runs_from_env(5)
-    from castor.serve.scene import Watched, evaluate
+    from castor.serve.evaluation import Watched, evaluate
     from castor.settings import EvaluationSettings, Source
 
     instrument()

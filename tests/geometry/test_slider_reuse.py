@@ -1,4 +1,4 @@
-"""The live preview's slider on the bus shelter (castor.serve.scene.evaluate,
+"""The live preview's slider on the bus shelter (castor.serve.evaluation.evaluate,
 its caches kept from one value to the next): a step reuses what the new
 value did not change — the engine's booleans of unchanged operands
 (caches.PROCESS.booleans), the sheets cut out of unchanged planes (.planes),
@@ -16,7 +16,7 @@ SHELTER = ROOT / "examples" / "bus_shelter.cas"
 
 
 def _evaluate(value: float, name: str = "LA"):
-    from castor.serve.scene import Watched, evaluate
+    from castor.serve.evaluation import Watched, evaluate
 
     result = evaluate(Watched(Source((str(SHELTER),)),
                               evaluation=EvaluationSettings(overrides={name: value}), quiet=True))
