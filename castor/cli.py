@@ -186,6 +186,8 @@ def _check_values(p: _Parser, args) -> None:
         p.error("--eye and --look go together")
     if args.eye is not None and args.eye == args.look:
         p.error("--eye and --look must be different points")
+    if args.pixel_error is not None and not {"--view", "--eye"} & set(args.given):
+        p.error("--pixel-error needs a camera: --view, or --eye and --look")
     if args.summary is not None and args.check:
         p.error("--summary needs the frames made; leave out --check")
 
@@ -295,7 +297,7 @@ def settings_of(args, overrides: dict[str, float]):
         output=OutputSettings(format=args.format, target=args.output, stats=args.stats,
                               summary=args.summary is not None, title=args.title,
                               options=options),
-        mesh=MeshSettings(max_polygons=args.max_polygons),
+        mesh=MeshSettings(max_polygons=args.max_polygons, pixel_error=args.pixel_error),
         picture=PictureSettings(size=args.size, view=args.view, eye=args.eye, look=args.look,
                                 sun=args.sun, samples=args.samples, edges=args.edges),
         drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale,

@@ -135,6 +135,14 @@ def parse_samples(text: str) -> int:
     return parse_count(text, "--samples", 1, 256)
 
 
+def parse_pixel_error(text: str) -> float:
+    value = _number(text, "--pixel-error")
+    if value <= 0:
+        raise ValueError(f"--pixel-error takes a number of pixels above 0, such as 0.5, not "
+                         f"'{text}'")
+    return value
+
+
 def parse_eye(text: str) -> tuple[float, float, float]:
     return parse_point(text, "--eye")
 
@@ -158,6 +166,8 @@ class OutputOption(NamedTuple):
     absent: object = None  # the value when it is neither given nor has a default text
     repeat: bool = False  # given several times, its values a list
     signed: bool = False  # its value may start with '-' (--view -30,20)
+    # given, it makes these options act on its outputs too (--pixel-error: the camera's)
+    brings: tuple[str, ...] = ()
 
     @property
     def dest(self) -> str:
@@ -197,6 +207,10 @@ OUTPUT_OPTIONS = (
     # one title for every document that has one: a drawing's, an IFC project's
     OutputOption("--title", "TEXT", "the title of a drawing or an IFC project (default: the "
                  "'>' object's name, or the file's)", PICTURES_AND_DRAWINGS),
+    OutputOption("--pixel-error", "E", "facets sized to the screen: each curved surface "
+                 "within E pixels of its facets seen from the camera (--view or --eye/--look, "
+                 "--size)", PICTURES_AND_DRAWINGS, parse=parse_pixel_error,
+                 brings=("--size", "--view", "--eye", "--look")),
     OutputOption("--ifc-class", "NAME=CLASS", "IFC class of the object NAME, such as "
                  "maison=IfcWall (repeatable; default IfcBuildingElementProxy)", BUILDING_MODELS,
                  parse="castor.formats.ifc:parse_classes_option", absent=(), repeat=True),

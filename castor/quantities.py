@@ -326,7 +326,7 @@ class Takeoff:
     solids out are new work). What the take-off, the drawings and the IFC
     handover read of a frame's classes."""
 
-    def __init__(self, scene, facetizer, polygons: bool = False):
+    def __init__(self, frame_tree, facetizer, polygons: bool = False):
         from castor.csg.elements import Boxes, find
 
         self.boxes = Boxes()
@@ -334,7 +334,7 @@ class Takeoff:
         self.facetizer = facetizer
         # the solids as polygons (the BIM model's bodies), else as triangles
         self.polygons = polygons
-        self.elements, self.openings = find(scene)
+        self.elements, self.openings = find(frame_tree)
         self._solids: dict = {}
         self._storeys: list[tuple[str, float]] | None = None
         self._placed: list[Placed] | None = None

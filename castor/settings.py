@@ -150,10 +150,13 @@ class EvaluationSettings(Record):
 class MeshSettings(Record):
     """Facetizing a frame into polygons."""
 
-    __slots__ = ("max_polygons",)
+    __slots__ = ("max_polygons", "pixel_error")
 
-    def __init__(self, max_polygons: int = DEFAULT_MAX_POLYGONS):
+    def __init__(self, max_polygons: int = DEFAULT_MAX_POLYGONS, pixel_error: float | None = None):
         self.max_polygons = max_polygons
+        # --pixel-error: facets sized to the screen of the picture settings' camera
+        # (castor.csg.screen); None: the tolerance alone
+        self.pixel_error = pixel_error
 
 
 class PictureSettings(Record):

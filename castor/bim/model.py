@@ -86,20 +86,20 @@ def default_title(frame) -> str:
     return stem if stem and stem != "<stdin>" else "castor"
 
 
-def build(scene, frame, facetizer, title: str | None = None, classes: dict | None = None,
+def build(tree, frame, facetizer, title: str | None = None, classes: dict | None = None,
           warn: Callable[[str], None] = lambda message: None) -> Building:
     """The frame's building model: ``scene`` its evaluated tree, ``frame`` its
     polygons, made by ``facetizer`` (whose caches serve the elements' solids);
     ``classes`` the --ifc-class choices, {object name: IFC class}."""
     from castor.quantities import Takeoff
 
-    takeoff = Takeoff(scene, facetizer, polygons=True)
-    maker = _Maker(scene, frame, takeoff, classes or {}, warn)
+    takeoff = Takeoff(tree, facetizer, polygons=True)
+    maker = _Maker(tree, frame, takeoff, classes or {}, warn)
     storeys = maker.storeys()
     elements, placed = maker.elements()
     openings = maker.openings(elements, placed)
     spaces = maker.spaces()
-    return Building(title or default_title(frame), frame.number, frame.where, scene.parameters,
+    return Building(title or default_title(frame), frame.number, frame.where, tree.parameters,
                     storeys, tuple(elements), tuple(openings), tuple(spaces))
 
 

@@ -209,10 +209,16 @@ def acts_on(option: str, chosen: Format) -> bool:
 
 def without_effect(given: list[str], chosen: Format) -> list[str]:
     """A warning for each output option of ``given`` that has no effect on the
-    format ``chosen``, naming the outputs it acts on (CLI.md)."""
+    format ``chosen``, naming the outputs it acts on (CLI.md): neither its own
+    nor brought by another option given that acts on it (--pixel-error brings
+    the camera's options)."""
+    from castor.options import OUTPUT_OPTIONS
+
+    brought = {flag for option in OUTPUT_OPTIONS
+               if option.flag in given and acts_on(option.flag, chosen) for flag in option.brings}
     return [f"{option} has no effect on {chosen.name} output (it acts on "
             f"{' and '.join(outputs_of(option))}); it is ignored"
-            for option in given if not acts_on(option, chosen)]
+            for option in given if not acts_on(option, chosen) and option not in brought]
 
 
 def outputs_of(option: str) -> list[str]:

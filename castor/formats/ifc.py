@@ -149,9 +149,9 @@ _QUANTITY = {"length": "IfcQuantityLength", "area": "IfcQuantityArea",
              "volume": "IfcQuantityVolume"}
 
 
-def export(scene, frame, title: str | None = None, classes: dict[str, str] | None = None,
+def export(tree, frame, title: str | None = None, classes: dict[str, str] | None = None,
            facetizer=None, warn=lambda message: None) -> bytes:
-    """The frame as an IFC4 file (STEP physical file text): ``scene`` is its
+    """The frame as an IFC4 file (STEP physical file text): ``frame_tree`` is its
     evaluated CSG tree, ``frame`` its polygons (made by ``facetizer``, or a new
     one). ``classes`` maps an object's name to its IFC class (--ifc-class)."""
     from castor.bim import build
@@ -160,7 +160,7 @@ def export(scene, frame, title: str | None = None, classes: dict[str, str] | Non
         from castor.mesh.facetize import Facetizer
 
         facetizer = Facetizer()
-    building = build(scene, frame, facetizer, title, classes, warn)
+    building = build(tree, frame, facetizer, title, classes, warn)
     return model(building).to_string().encode("utf-8")
 
 

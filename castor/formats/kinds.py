@@ -121,10 +121,16 @@ class Polygons(Kind):
     def __init__(self, name: str, plural: str, streamed: bool = False):
         self.name, self.plural, self.streamed = name, plural, streamed
 
+    options = ("--pixel-error",)
+
     def make(self, tree, settings, chosen, made):
         # a file of triangles skips merging them into polygons, unless the take-off
         # counts the frame's polygons
         merge = chosen is None or not chosen.triangles_only or settings.output.summary
+        if settings.mesh.pixel_error is not None:  # facets sized to the screen
+            from castor.csg.screen import sized_to_screen
+
+            tree = sized_to_screen(tree, settings.picture, settings.mesh.pixel_error)
         frame, facetizer = _polygons(tree, settings, made, merge)
         _figures(settings, made, frame, facetizer, tree)
         return frame
