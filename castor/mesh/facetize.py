@@ -71,7 +71,7 @@ class Facetizer:
                              "scene or raise TOLERANCE", frame_tree.location)
         total = 0
         self.caches.patterns.clear()  # patterns of this frame's parts only
-        merger = merge.Merger(self.caches.patterns)
+        merger = merge.Merger(self.caches.patterns, self.caches.merged, self.caches.groups)
         frame = Frame(frame_tree.number, frame_tree.where)
         for obj in frame_tree.objects:
             solid = self.solid(obj.root) if obj.root is not None else EMPTY
