@@ -11,7 +11,7 @@ name, its description the annotation's followed by its ``FILE:LINE``. An
 opening is an ``IfcOpeningElement`` voiding its element and filled by its door
 or window; the element's body keeps the hole, as the Reference View wants (no
 boolean for a reader to do). Each body is one closed face set
-(castor.formats.ifc_body). Quantities are buildingSMART's base quantity sets,
+(castor.formats._ifc_body). Quantities are buildingSMART's base quantity sets,
 properties each class's common set with its ``Reference``; the frame's
 parameters are ``Castor_Parameters`` on the project.
 
@@ -30,8 +30,8 @@ import uuid
 from typing import Iterator
 
 from castor.formats import WriteInfo
-from castor.formats import ifc_body
-from castor.formats.ifc_body import Styles, face_set, true_corner_first  # noqa: F401
+from castor.formats import _ifc_body as ifc_body
+from castor.formats._ifc_body import Styles, face_set, true_corner_first  # noqa: F401
 from castor.formats.kinds import BuildingModel
 
 INSTALL = "pip install 'castor[ifc]'"

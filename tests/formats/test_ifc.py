@@ -401,7 +401,7 @@ def test_each_face_starts_at_a_true_corner():
 def test_the_quick_entities_are_create_entitys(tmp_path, monkeypatch):
     """The writer's quick entities (ifc_body.entity_maker) give the bytes that
     ifcopenshell's create_entity gives."""
-    from castor.formats import ifc, ifc_body
+    from castor.formats import _ifc_body as ifc_body, ifc
     from castor.mesh.facetize import Facetizer
     from castor.pipeline import evaluated_frames
 
