@@ -18,6 +18,7 @@ every example, and random edits of them, alike.
 from __future__ import annotations
 
 import re
+from operator import itemgetter
 
 
 class Failed(Exception):
@@ -40,11 +41,39 @@ def _callback(method, expand_single: bool, include, append_none: int):
     """The transformer's ``method`` given a rule's children as lark gives them:
     tokens of punctuation left out, children of inlined rules (``_name``) spliced
     in, None for each missing ``[optional]``, a single child passed up as is where
-    the rule is ``?rule``."""
+    the rule is ``?rule``. The shapes every statement meets (some children kept;
+    a list, an inlined ``(...)*``'s, a child appended to) have a function of
+    their own; the others, lark's child filter as it is."""
     if include is None:
         if expand_single:
             return lambda children: children[0] if len(children) == 1 else method(children)
         return method
+    indices = tuple(index for index, _, _ in include)
+    splices = tuple(splice for _, splice, _ in include)
+    if not expand_single and not any(nones for _, _, nones in include):
+        tail = [None] * append_none
+        if not any(splices):
+            if len(indices) == 1:
+                only = indices[0]
+                if tail:
+                    return lambda children: method([children[only]] + tail)
+                return lambda children: method([children[only]])
+            picked = itemgetter(*indices)
+            if tail:
+                return lambda children: method([*picked(children), *tail])
+            return lambda children: method([*picked(children)])
+        if splices == (False, True) and not tail:  # a child, then an inlined list
+            first, rest = indices
+            return lambda children: method([children[first], *children[rest]])
+        if splices == (True, False) and not tail:  # a list, one more child appended
+            first, then = indices
+
+            def appended(children):
+                kept = children[first]  # the inlined rule's list, given up to this one
+                kept.append(children[then])
+                return method(kept)
+
+            return appended
 
     def filtered(children):
         kept = []
@@ -82,6 +111,24 @@ def _tree(name: str):
     return refused
 
 
+# what a rule does with the values it pops (castor.language.tables.export's rules)
+_KEEP = 0  # a ``?rule`` of one child passes it up: the value stays, only the state changes
+_PICK = 1  # a ``?rule`` that keeps one of its children, always: that child, no call
+_CALL = 2  # the transformer's method (through lark's child filter), given the children
+
+
+def _action(expand_single: bool, size: int, include, append_none: int) -> tuple:
+    """How the driver reduces a rule: (_KEEP, None), (_PICK, the child's index from
+    the top of the stack, negative) or (_CALL, None)."""
+    if expand_single and not append_none:
+        if include is None and size == 1:
+            return _KEEP, None
+        if include is not None and len(include) == 1 and not include[0][1] \
+                and not include[0][2]:
+            return _PICK, include[0][0] - size
+    return _CALL, None
+
+
 class Parser:
     """Parses text with the exported tables (castor.language.tables.export, which
     checks their layout), calling ``transformer`` as it reduces."""
@@ -97,11 +144,19 @@ class Parser:
         # hold newlines, its terminals; and the root lexer's, of every terminal
         self._lexers = tables["lexers"]
         self._compiled: list = [None] * len(self._lexers)
-        self._terminals = [frozenset(lexer[3]) for lexer in self._lexers]
         self._root = tables["root"]
         self._root_compiled = None
-        self._rules = []  # per rule: (its symbol, how many children it pops, its callback)
+        # the terminals some rule hands its callback: the others (punctuation) are
+        # shifted without a Token made for them
+        self._kept = frozenset(tables["kept"])
+        # per rule: (its symbol, how many children it pops, _KEEP/_PICK/_CALL, the
+        # picked child's index or the callback)
+        self._rules = []
         for origin, size, name, expand_single, include, append_none in tables["rules"]:
+            how, pick = _action(expand_single, size, include, append_none)
+            if how != _CALL:
+                self._rules.append((origin, size, how, pick))
+                continue
             method = getattr(transformer, name, None)
             if name.startswith("_"):
                 if method is not None:
@@ -109,8 +164,9 @@ class Parser:
                 method = _inlined
             elif method is None:
                 method = _tree(name)
-            self._rules.append((origin, size, _callback(method, expand_single, include,
-                                                        append_none)))
+            self._rules.append((origin, size, _CALL, _callback(method, expand_single, include,
+                                                               append_none)))
+        self._chains: dict = {}  # per start: (below, state, kind) -> where _chain ends
 
     @staticmethod
     def _compile(lexer) -> tuple:
@@ -133,69 +189,132 @@ class Parser:
                 return found
         return None
 
-    def _tokens(self, text: str, state_stack: list):
-        """The text's tokens, each read by the lexer of the state the parser is in
-        when it asks (lark's contextual lexer), then the end ("$END", None).
+    def _read(self, text: str, pos: int, state: int):
+        """The token at ``pos`` as the lexer of ``state`` reads it (lark's contextual
+        lexer): where the root lexer's token is not one the state accepts."""
+        found = self._match(self._lexer(state)[0], text, pos)
+        if found is None:
+            raise Failed(pos)
+        return found
 
-        Each token is first read by the root lexer, whose one expression (every
-        terminal, in lark's order of them) is compiled once: where the terminal it
-        finds is one of the state's, the state's own lexer would find the same (its
+    def _root_lexer(self):
+        """The root lexer's match (one compiled expression of every terminal, in
+        lark's order of them), the types it skips and those that may hold newlines.
+
+        Each token is first read by it: where the terminal it finds is one the
+        parser's state accepts, the state's own lexer would find the same (its
         terminals are a part of the root's, in the same order, and none before
         that one matched), and compiling each state's expression (some 30 of
         them, about 0.7 ms each) is spared. Where it is not, the state's lexer
-        reads the token."""
+        reads the token (``_read``)."""
         if self._root_compiled is None:
-            self._root_compiled = self._compile(self._root)
-        root, ignored, newlines = self._root_compiled
-        lexer_of, terminals = self._lexer_of, self._terminals
-        end = len(text)
-        pos, line, line_start = 0, 1, 0  # where the next token begins; its line's start
-        while pos < end:
-            state = state_stack[-1]
-            found = self._match(root, text, pos)
-            if found is None or found.lastgroup not in terminals[lexer_of[state]]:
-                found = self._match(self._lexer(state)[0], text, pos)
-                if found is None:
-                    raise Failed(pos)
-            value, kind = found.group(0), found.lastgroup
-            token = None
-            if kind not in ignored:
-                token = Token(value)
-                token.type, token.line, token.column = kind, line, pos - line_start + 1
-            if kind in newlines:
-                count = value.count("\n")
-                if count:
-                    line += count
-                    line_start = pos + value.rindex("\n") + 1
-            pos += len(value)
-            if token is not None:
-                yield kind, token
-        yield "$END", None
+            matchers, ignored, newlines = self._compile(self._root)
+            if len(matchers) == 1:
+                match = matchers[0]
+            else:  # lark cuts an expression of more than 100 groups in several
+                def match(text, pos, matchers=matchers):
+                    return self._match(matchers, text, pos)
+            self._root_compiled = match, ignored, newlines
+        return self._root_compiled
+
+    def _chain(self, below: int, state: int, kind: str, end_state: int) -> int:
+        """The state a chain of ``?rule``s of one child ends in (``expr: term``,
+        ``term: unary``, ...: four of them after each number), reduced one after
+        the other from ``state`` above ``below`` with ``kind`` next: each changes
+        the top state only, so that where the chain ends depends on these three
+        alone, and ``parse`` keeps it (``_chains``)."""
+        states, rules = self._states, self._rules
+        while True:
+            action = states[state].get(kind)
+            if action is None or action >= 0:
+                return state
+            origin, _, how, _ = rules[-1 - action]
+            if how != _KEEP:
+                return state
+            state = states[below][origin]
+            if kind == "$END" and state == end_state:
+                return state
 
     def parse(self, text: str, start: str):
-        """The value the transformer gives the start rule; raises Failed."""
-        states, rules = self._states, self._rules
-        state_stack = [self._starts[start]]
-        value_stack: list = []
+        """The value the transformer gives the start rule; raises Failed.
+
+        One loop reads the tokens and runs the table: each token is read by the
+        lexer of the state the parser is in when it is read, then reduces as far
+        as it allows and is shifted. Only the tokens a callback is handed are made
+        (``Token``, with their line and column); the line is counted in the
+        tokens that may hold a newline. Nothing it does depends on what came
+        before but the stacks: its time is linear in the text's length."""
+        match, ignored, newlines = self._root_lexer()
+        states, rules, kept = self._states, self._rules, self._kept
+        chains = self._chains.setdefault(start, {})
+        state = self._starts[start]
         end_state = self._ends[start]
-        for kind, token in self._tokens(text, state_stack):
+        state_stack = [state]
+        value_stack: list = []
+        push_state, push_value = state_stack.append, value_stack.append
+        end = len(text)
+        pos, line, line_start = 0, 1, 0  # where the next token begins; its line's start
+        while True:
+            row = states[state]
+            if pos < end:
+                found = match(text, pos)
+                kind = None if found is None else found.lastgroup
+                if kind not in row and kind not in ignored:
+                    found = self._read(text, pos, state)
+                    kind = found.lastgroup
+                stop = found.end()
+                if kind in ignored:
+                    if kind in newlines:
+                        count = text.count("\n", pos, stop)
+                        if count:
+                            line += count
+                            line_start = text.rindex("\n", pos, stop) + 1
+                    pos = stop
+                    continue
+                token = None
+                if kind in kept:
+                    token = Token(text[pos:stop])
+                    token.type, token.line, token.column = kind, line, pos - line_start + 1
+                if kind in newlines:
+                    count = text.count("\n", pos, stop)
+                    if count:
+                        line += count
+                        line_start = text.rindex("\n", pos, stop) + 1
+                pos = stop
+            else:
+                kind = "$END"
             while True:  # reduce as far as the token allows, then shift it
-                action = states[state_stack[-1]].get(kind)
-                if action is None or (action >= 0 and token is None):
+                action = row.get(kind)
+                if action is None:
                     raise Failed(kind)
                 if action >= 0:
-                    state_stack.append(action)
-                    value_stack.append(token)
+                    if kind == "$END":
+                        raise Failed(kind)
+                    push_state(action)
+                    push_value(token)
+                    state = action
                     break
-                origin, size, callback = rules[-1 - action]
-                if size:
-                    children = value_stack[-size:]
-                    del state_stack[-size:]
-                    del value_stack[-size:]
+                origin, size, how, callback = rules[-1 - action]
+                if how == _KEEP:  # one child passed up: only the state changes
+                    below = state_stack[-2]  # the same all along a chain of them
+                    key = (below, state, kind)
+                    state = chains.get(key)
+                    if state is None:
+                        state = chains[key] = self._chain(below, key[1], kind, end_state)
+                    state_stack[-1] = state
                 else:
-                    children = []
-                value_stack.append(callback(children))
-                state_stack.append(states[state_stack[-1]][origin])
-                if token is None and state_stack[-1] == end_state:
+                    if how == _PICK:
+                        value = value_stack[callback]
+                    elif size:
+                        value = callback(value_stack[-size:])
+                    else:
+                        value = callback([])
+                    if size:
+                        del state_stack[-size:]
+                        del value_stack[-size:]
+                    push_value(value)
+                    state = states[state_stack[-1]][origin]
+                    push_state(state)
+                if kind == "$END" and state == end_state:
                     return value_stack[-1]
-        raise Failed("the end")  # not reached: "$END" either reduces to the start or fails
+                row = states[state]

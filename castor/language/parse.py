@@ -125,10 +125,11 @@ class Builder:
             return atom
         steps = items[:-1]
         params = atom.params
-        for s in steps:
-            for a in s.args:
-                if a.params and not a.params <= params:
-                    params = params | a.params
+        # the names the steps read that the atom does not: gathered, then one union
+        # (a union per step would copy the set each time: quadratic in a long run)
+        more = [a.params for s in steps for a in s.args if a.params and not a.params <= params]
+        if more:
+            params = params.union(*more)
         return TransformedNode(tuple(steps), atom, steps[0].location, params, atom.depth + 1)
 
     def transform(self, children):
@@ -154,29 +155,26 @@ class Builder:
         args = args or ()
         location = self._at(token)
         kind = token[1:]
-        if kind not in PRIMITIVES:
+        declared = PRIMITIVES.get(kind)
+        n = len(args)
+        if declared is None:
             self.faults.append(SceneError(
                 f"unknown primitive '{token}'{_known('!', kind, PRIMITIVES)}", location))
-        else:
-            declared = PRIMITIVES[kind]
-            low, form = declared.count, declared.form
-            high = None if declared.pairs else low
-            if declared.pairs:
-                low += 6  # at least three coordinate pairs
-            n = len(args)
-            if n < low or (high is not None and n > high):
-                wanted = str(low) if low == high else f"at least {low}"
+        elif declared.pair_names is None:
+            if n != declared.count:
                 self.faults.append(ArgumentCountError(
-                    f"'{token}' takes {wanted} arguments ({form}), but {_given(n)}", location,
-                    _names(args)))
-            elif high is None and (n - 3) % 2:
-                self.faults.append(ArgumentCountError(
-                    f"'{token}' takes the colour then pairs of coordinates ({form}), "
-                    f"but {n - 3} coordinates were given, an odd number", location,
-                    _names(args)))
-        params = _names(args)
-        depth = max((a.depth for a in args), default=0) + 1
-        return PrimitiveNode(kind, args, location, params, depth)
+                    f"'{token}' takes {declared.count} arguments ({declared.form}), "
+                    f"but {_given(n)}", location, _names(args)))
+        elif n < declared.count + 6:  # at least three coordinate pairs
+            self.faults.append(ArgumentCountError(
+                f"'{token}' takes at least {declared.count + 6} arguments ({declared.form}), "
+                f"but {_given(n)}", location, _names(args)))
+        elif (n - 3) % 2:
+            self.faults.append(ArgumentCountError(
+                f"'{token}' takes the colour then pairs of coordinates ({declared.form}), "
+                f"but {n - 3} coordinates were given, an odd number", location, _names(args)))
+        depth = max([a.depth for a in args], default=0) + 1
+        return PrimitiveNode(kind, args, location, _names(args), depth)
 
     def boolean(self, children):
         token, rest = children[0], children[1:]
@@ -485,8 +483,11 @@ def _combined(chunks: list[Chunk]) -> Chunk:
 
 
 def _names(args) -> frozenset:
-    """The parameter names some argument reads."""
-    return EMPTY.union(*(a.params for a in args))
+    """The parameter names some argument reads (most read none: then no union)."""
+    names = [a.params for a in args if a.params]
+    if not names:
+        return EMPTY
+    return names[0] if len(names) == 1 else EMPTY.union(*names)
 
 
 class SkippedDefinition:
