@@ -18,6 +18,7 @@ every example, and random edits of them, alike.
 from __future__ import annotations
 
 import re
+from itertools import chain
 from operator import itemgetter
 
 
@@ -111,22 +112,29 @@ def _tree(name: str):
     return refused
 
 
-# what a rule does with the values it pops (castor.language.tables.export's rules)
+# the root lexer's groups that are no terminal (lark's terminals are upper case)
+_STRAY, _END = "stray", "end_of_text"
+
+# How the driver reduces a rule (the second field of its entry in Parser._rules),
+# written as these numbers in Parser.parse:
 _KEEP = 0  # a ``?rule`` of one child passes it up: the value stays, only the state changes
-_PICK = 1  # a ``?rule`` that keeps one of its children, always: that child, no call
-_CALL = 2  # the transformer's method (through lark's child filter), given the children
+_ONE = 1  # the callback, given the one child the rule pops (number, parameter)
+_PICK = 2  # a ``?rule`` that keeps one of its children, always: that child, no call
+_CALL = 3  # the callback (the transformer's method through lark's child filter)
 
 
 def _action(expand_single: bool, size: int, include, append_none: int) -> tuple:
     """How the driver reduces a rule: (_KEEP, None), (_PICK, the child's index from
-    the top of the stack, negative) or (_CALL, None)."""
+    the top of the stack, negative) or (_ONE or _CALL, None)."""
     if expand_single and not append_none:
-        if include is None and size == 1:
-            return _KEEP, None
-        if include is not None and len(include) == 1 and not include[0][1] \
-                and not include[0][2]:
-            return _PICK, include[0][0] - size
-    return _CALL, None
+        if include is None:
+            if size == 1:
+                return _KEEP, None
+        elif len(include) == 1:
+            index, splice, nones = include[0]
+            if not splice and not nones:
+                return (_KEEP, None) if size == 1 else (_PICK, index - size)
+    return (_ONE if size == 1 else _CALL), None
 
 
 class Parser:
@@ -136,7 +144,11 @@ class Parser:
     def __init__(self, tables: dict, transformer):
         if any(hasattr(transformer, name) for name in tables["terminals"]):
             raise ValueError("the transformer handles terminals")  # lark would call it on tokens
-        self._states = tables["states"]  # per state: symbol -> shift target (>= 0) or -1 - rule
+        # per state: symbol -> shift target (>= 0) or -1 - rule (~rule); lark never
+        # shifts the end, which ends where a reduction reaches the start's end state
+        self._states = tables["states"]
+        if any(row.get("$END", -1) >= 0 for row in self._states):
+            raise ValueError("the tables shift the end")
         self._starts = tables["starts"]
         self._ends = tables["ends"]
         self._lexer_of = tables["lexer_of"]  # per state: its lexer's number
@@ -146,16 +158,17 @@ class Parser:
         self._compiled: list = [None] * len(self._lexers)
         self._root = tables["root"]
         self._root_compiled = None
+        self._root_lexer()  # (ValueError where the driver cannot run it: lark does)
         # the terminals some rule hands its callback: the others (punctuation) are
         # shifted without a Token made for them
         self._kept = frozenset(tables["kept"])
-        # per rule: (its symbol, how many children it pops, _KEEP/_PICK/_CALL, the
-        # picked child's index or the callback)
+        # per rule: (its symbol, _KEEP/_ONE/_PICK/_CALL, how many children it pops,
+        # the picked child's index or the callback)
         self._rules = []
         for origin, size, name, expand_single, include, append_none in tables["rules"]:
             how, pick = _action(expand_single, size, include, append_none)
-            if how != _CALL:
-                self._rules.append((origin, size, how, pick))
+            if how in (_KEEP, _PICK):
+                self._rules.append((origin, how, size, pick))
                 continue
             method = getattr(transformer, name, None)
             if name.startswith("_"):
@@ -164,8 +177,8 @@ class Parser:
                 method = _inlined
             elif method is None:
                 method = _tree(name)
-            self._rules.append((origin, size, _CALL, _callback(method, expand_single, include,
-                                                               append_none)))
+            self._rules.append((origin, how, size, _callback(method, expand_single, include,
+                                                             append_none)))
         self._chains: dict = {}  # per start: (below, state, kind) -> where _chain ends
 
     @staticmethod
@@ -198,23 +211,27 @@ class Parser:
         return found
 
     def _root_lexer(self):
-        """The root lexer's match (one compiled expression of every terminal, in
-        lark's order of them), the types it skips and those that may hold newlines.
+        """The root lexer's scan (an iterator of its matches from a position on:
+        one expression of every terminal, in lark's order of them, then any
+        character, then the end of the text), the types it skips and those that
+        may hold newlines.
 
         Each token is first read by it: where the terminal it finds is one the
         parser's state accepts, the state's own lexer would find the same (its
         terminals are a part of the root's, in the same order, and none before
         that one matched), and compiling each state's expression (some 30 of
-        them, about 0.7 ms each) is spared. Where it is not, the state's lexer
-        reads the token (``_read``)."""
+        them, about 0.7 ms each) is spared. Where it is not (or is no terminal:
+        ``_STRAY``), the state's lexer reads the token (``_read``). The matches
+        follow one another with nothing between them, each where the one before
+        ends (any character matches), as the lexer reads tokens one after the
+        other; the last is the empty one at the end (``_END``)."""
         if self._root_compiled is None:
-            matchers, ignored, newlines = self._compile(self._root)
-            if len(matchers) == 1:
-                match = matchers[0]
-            else:  # lark cuts an expression of more than 100 groups in several
-                def match(text, pos, matchers=matchers):
-                    return self._match(matchers, text, pos)
-            self._root_compiled = match, ignored, newlines
+            patterns, ignored, newlines, _ = self._root
+            if len({flags for _, flags in patterns}) != 1:
+                raise ValueError("root lexer's expressions of several flags")
+            scan = re.compile("|".join(pattern for pattern, _ in patterns)
+                              + f"|(?P<{_STRAY}>(?s:.))|(?P<{_END}>\\Z)", patterns[0][1]).finditer
+            self._root_compiled = scan, frozenset(ignored), frozenset(newlines)
         return self._root_compiled
 
     def _chain(self, below: int, state: int, kind: str, end_state: int) -> int:
@@ -228,7 +245,7 @@ class Parser:
             action = states[state].get(kind)
             if action is None or action >= 0:
                 return state
-            origin, _, how, _ = rules[-1 - action]
+            origin, how, _, _ = rules[~action]
             if how != _KEEP:
                 return state
             state = states[below][origin]
@@ -244,7 +261,7 @@ class Parser:
         (``Token``, with their line and column); the line is counted in the
         tokens that may hold a newline. Nothing it does depends on what came
         before but the stacks: its time is linear in the text's length."""
-        match, ignored, newlines = self._root_lexer()
+        scan, ignored, newlines = self._root_lexer()
         states, rules, kept = self._states, self._rules, self._kept
         chains = self._chains.setdefault(start, {})
         state = self._starts[start]
@@ -252,69 +269,73 @@ class Parser:
         state_stack = [state]
         value_stack: list = []
         push_state, push_value = state_stack.append, value_stack.append
-        end = len(text)
-        pos, line, line_start = 0, 1, 0  # where the next token begins; its line's start
+        next_found = scan(text).__next__
+        line, line_start = 1, 0  # the line of the next token; where it starts
+        relexed = -1  # where the state's lexer last read the token
         while True:
-            row = states[state]
-            if pos < end:
-                found = match(text, pos)
-                kind = None if found is None else found.lastgroup
-                if kind not in row and kind not in ignored:
-                    found = self._read(text, pos, state)
-                    kind = found.lastgroup
-                stop = found.end()
-                if kind in ignored:
-                    if kind in newlines:
-                        count = text.count("\n", pos, stop)
-                        if count:
-                            line += count
-                            line_start = text.rindex("\n", pos, stop) + 1
-                    pos = stop
-                    continue
-                token = None
-                if kind in kept:
-                    token = Token(text[pos:stop])
-                    token.type, token.line, token.column = kind, line, pos - line_start + 1
+            found = next_found()
+            kind = found.lastgroup
+            if kind in ignored:
                 if kind in newlines:
-                    count = text.count("\n", pos, stop)
+                    value = found.group()
+                    count = value.count("\n")
                     if count:
                         line += count
-                        line_start = text.rindex("\n", pos, stop) + 1
-                pos = stop
-            else:
-                kind = "$END"
+                        line_start = found.start() + value.rindex("\n") + 1
+                continue
+            row = states[state]
+            if kind not in row:
+                if kind == _END:
+                    kind = "$END"
+                else:  # not a token this state accepts: the state's own lexer reads it
+                    pos = found.start()
+                    if pos == relexed:
+                        raise Failed(kind)
+                    relexed = pos
+                    found = self._read(text, pos, state)
+                    next_found = chain((found,), scan(text, found.end())).__next__
+                    continue
+            token = None
+            if kind in kept:
+                token = Token(found.group())
+                token.type, token.line, token.column = kind, line, found.start() - line_start + 1
+            if kind in newlines:
+                value = found.group()
+                count = value.count("\n")
+                if count:
+                    line += count
+                    line_start = found.start() + value.rindex("\n") + 1
             while True:  # reduce as far as the token allows, then shift it
                 action = row.get(kind)
                 if action is None:
                     raise Failed(kind)
-                if action >= 0:
-                    if kind == "$END":
-                        raise Failed(kind)
+                if action >= 0:  # (never on "$END": the tables have no such shift)
                     push_state(action)
                     push_value(token)
                     state = action
                     break
-                origin, size, how, callback = rules[-1 - action]
-                if how == _KEEP:  # one child passed up: only the state changes
+                origin, how, size, callback = rules[~action]
+                if how == 0:  # _KEEP: one child passed up, only the state changes
                     below = state_stack[-2]  # the same all along a chain of them
                     key = (below, state, kind)
                     state = chains.get(key)
                     if state is None:
                         state = chains[key] = self._chain(below, key[1], kind, end_state)
                     state_stack[-1] = state
+                elif how == 1:  # _ONE: the value replaced, the state too
+                    value_stack[-1] = callback(value_stack[-1:])
+                    state = state_stack[-1] = states[state_stack[-2]][origin]
                 else:
-                    if how == _PICK:
+                    if how == 2:  # _PICK
                         value = value_stack[callback]
-                    elif size:
-                        value = callback(value_stack[-size:])
                     else:
-                        value = callback([])
+                        value = callback(value_stack[-size:] if size else [])
                     if size:
                         del state_stack[-size:]
                         del value_stack[-size:]
                     push_value(value)
                     state = states[state_stack[-1]][origin]
                     push_state(state)
-                if kind == "$END" and state == end_state:
+                if state == end_state and kind == "$END":
                     return value_stack[-1]
                 row = states[state]
