@@ -16,13 +16,17 @@ from functools import lru_cache
 from typing import Iterator
 
 from castor.diagnostics import (ArgumentCountError, CastorError, EvaluationError, LimitError,
-                                SceneError, UndefinedObject)
+                                Location, SceneError, UndefinedObject)
 from castor.language.expressions import FUNCTIONS, arity_message, evaluate
 from castor.language.lalr import Failed, Token
 from castor.language.reader import Chunk
 from castor.language.vocabulary import PRIMITIVES, TRANSFORMS
 from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, Facetize, NamedNode, Number, ObjectDef, Param,
                     ParamDef, PrimitiveNode, Repeat, Step, Tables, TransformedNode, Unary)
+
+# how many arguments each primitive takes (without coordinate pairs)
+_COUNTS = {name: declared.count for name, declared in PRIMITIVES.items()}
+_new_tuple = tuple.__new__  # a Location made without the Python call of its __new__
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
 MAX_DEPTH = 100_000
@@ -73,13 +77,30 @@ class Builder:
 
     def __init__(self, tables: Tables):
         self.tables = tables
-        self.chunk: Chunk | None = None
+        self.chunk = None
         self.faults: list[CastorError] = []
         self._param_sets: dict[str, frozenset[str]] = {}
         self.on_statement = None
 
+    @property
+    def chunk(self) -> Chunk | None:
+        """The statement being read."""
+        return self._chunk
+
+    @chunk.setter
+    def chunk(self, chunk: Chunk | None) -> None:
+        self._chunk = chunk
+        # where its first line is: (file, line, columns before it), for _at
+        self._first = (*chunk.origins[0], chunk.first_column) \
+            if chunk is not None and chunk.origins else None
+
     def _at(self, token: Token):
-        return self.chunk.location(token.line, token.column)
+        """Where a token is in the original file: Chunk.location, with the first
+        line's case inline (a long statement asks it of every number and name)."""
+        if token.line == 1 and self._first is not None:
+            file, line, before = self._first
+            return _new_tuple(Location, (file, line, token.column + before))
+        return self._chunk.location(token.line, token.column)
 
     def _depth(self, depth: int, location) -> int:
         if depth > MAX_DEPTH:
@@ -161,7 +182,7 @@ class Builder:
             self.faults.append(SceneError(
                 f"unknown primitive '{token}'{_known('!', kind, PRIMITIVES)}", location))
         elif declared.pair_names is None:
-            if n != declared.count:
+            if n != _COUNTS[kind]:
                 self.faults.append(ArgumentCountError(
                     f"'{token}' takes {declared.count} arguments ({declared.form}), "
                     f"but {_given(n)}", location, _names(args)))
@@ -173,8 +194,9 @@ class Builder:
             self.faults.append(ArgumentCountError(
                 f"'{token}' takes the colour then pairs of coordinates ({declared.form}), "
                 f"but {n - 3} coordinates were given, an odd number", location, _names(args)))
-        depth = max([a.depth for a in args], default=0) + 1
-        return PrimitiveNode(kind, args, location, _names(args), depth)
+        depth = max([a.depth for a in args], default=0)
+        params = _names(args)
+        return PrimitiveNode(kind, args, location, params, depth + 1)
 
     def boolean(self, children):
         token, rest = children[0], children[1:]
@@ -234,7 +256,11 @@ class Builder:
     def number(self, children):
         token = children[0]
         value = float(token)
-        location = self.chunk.location(token.line, token.column)
+        if token.line == 1 and self._first is not None:  # _at, inline: the most made node
+            file, line, before = self._first
+            location = _new_tuple(Location, (file, line, token.column + before))
+        else:
+            location = self._chunk.location(token.line, token.column)
         if value == math.inf:
             self.faults.append(EvaluationError(f"number '{token}' is too large", location))
             value = 0.0
@@ -246,7 +272,7 @@ class Builder:
         params = self._param_sets.get(name)
         if params is None:
             params = self._param_sets[name] = frozenset((name,))
-        return Param(name, self.chunk.location(token.line, token.column), params)
+        return Param(name, self._at(token), params)
 
     def binary(self, children):
         left, op, right = children
