@@ -4,7 +4,11 @@ front elevation and plan, and a generated plan of 200 rooms, as SVG, DXF and
 PDF; whole processes (start-up, parsing and facetization included).
 
 Targets: the house's plan with its dimensions and sheet <= 1 s; the bus
-shelter's elevation <= 5 s; the 200-room plan <= 10 s.
+shelter's elevation <= 5 s; the 200-room plan <= 10 s. With the classes
+(issue 31): the house's plan with every symbol its classes give (door,
+windows, eaves dashed, hatches by class, legend) <= 1 s, the pavilion's plan
+(door, windows, stair, rooms, hatches) likewise; the pavilion's set of five
+sheets (two plans, a section, two elevations) as one PDF <= 5 s.
 """
 
 import os
@@ -41,7 +45,64 @@ CASES = [
     ("bus shelter front elevation", "bus_shelter.cas", ["-D", "ONE_FRAME", "--view", "front"]),
     ("bus shelter plan z=1.2", "bus_shelter.cas", ["-D", "ONE_FRAME", "--section", "z=1.2"]),
     ("200-room plan z=1.2", "ROOMS", ["--section", "z=1.2", "--scale", "1:200"]),
+    ("pavilion plan z=1.2 (every symbol), A3", "pavilion.cas",
+     ["--section", "z=1.2", "--sheet", "A3", "--scale", "1:50"]),
 ]
+
+# the pavilion's set: five sheets
+REGISTER = """
+[project]
+title = "Pavillon"
+number = "2026-014"
+drawn = "MB"
+checked = "PM"
+revision = "B"
+sheet = "A3"
+scale = "1:50"
+
+[[sheet]]
+number = "A-101"
+title = "Plan du rez-de-chaussée"
+drawing = "plan z=1.2"
+
+[[sheet]]
+number = "A-102"
+title = "Plan de l'étage"
+drawing = "plan z=4.2"
+
+[[sheet]]
+number = "A-201"
+title = "Coupe AA"
+drawing = "section x=3"
+
+[[sheet]]
+number = "A-301"
+title = "Façade sud"
+drawing = "elevation front"
+
+[[sheet]]
+number = "A-302"
+title = "Façade est"
+drawing = "elevation right"
+"""
+
+
+def sets(tmp: str) -> list:
+    """The pavilion's five sheets as one PDF and as one DXF."""
+    register = os.path.join(tmp, "register.toml")
+    with open(register, "w") as handle:
+        handle.write(REGISTER)
+    row = ["pavilion set of five sheets"]
+    for suffix in (".pdf", ".dxf"):
+        out = os.path.join(tmp, "set" + suffix)
+        before = os.times()
+        seconds = timed([*castor_command(), "-q", "--sheets", register, "-o", out,
+                         "pavilion.cas"], runs=RUNS, cwd=EXAMPLES)
+        after = os.times()
+        cpu = (after.children_user + after.children_system
+               - before.children_user - before.children_system) / RUNS
+        row.append(f"{seconds:.2f} s ({cpu:.2f} s CPU)")
+    return row
 
 
 def main() -> None:
@@ -65,8 +126,12 @@ def main() -> None:
                 row.append(f"{seconds:.2f} s ({cpu:.2f} s CPU)")
             row.append(f"{os.path.getsize(os.path.join(tmp, 'd.svg')) / 1000:.0f} kB")
             rows.append(row)
+        set_row = sets(tmp)
     print(table(rows, ["drawing", "SVG, whole process", "DXF, whole process",
                        "PDF, whole process", "SVG size"]))
+    print()
+    print(table([set_row], ["drawing set (--sheets)", "one PDF, whole process",
+                            "one DXF, whole process"]))
 
 
 if __name__ == "__main__":

@@ -1,20 +1,22 @@
 """IFC4 (-o model.ifc): what writing it costs, and what ifcopenshell's part of
 that is against castor's own work.
 
-Scenes: the house (examples/house.cas), the bus shelter (one frame:
--D ONE_FRAME), and 1,024 houses (benchmarks/houses.py's house in a 32 x 32
-block) twice: as the union of them all, one element of about 600,000
-triangles, and as 1,024 objects of one '>' command, 1,024 elements (what a
-site model is).
+Scenes: the house (examples/house.cas), the two-storey pavilion
+(examples/pavilion.cas), the bus shelter (one frame: -D ONE_FRAME), and
+1,024 houses (benchmarks/houses.py's house in a 32 x 32 block) three times: as
+the union of them all, one element of about 600,000 triangles; as 1,024
+objects of one '>' command, 1,024 elements (what a site model is); and as
+1,024 houses annotated (LANGUAGE.md §11: walls, windows, a door, a roof,
+columns), each with its 13 openings filled by its doors and windows.
 
 For each: the whole process (`castor -o x.ifc`, median wall-clock and CPU
 seconds, peak memory), the same with `-o x.glb` for reference, and in one
 process the stages (CPU seconds, as the machine may be shared): evaluate +
-facetize (castor), the IFC model built with ifcopenshell's entity API
-(castor's loop and ifcopenshell's entities), the STEP text written by
-ifcopenshell; and the import of ifcopenshell itself.
+facetize (castor), the building model (castor.bim: the elements' own solids,
+openings, quantities), the IFC entities made with ifcopenshell's entity API,
+the STEP text written by ifcopenshell; and the import of ifcopenshell itself.
 
-Targets: house <= 2 s, bus shelter <= 10 s; 1,024 houses measured.
+Targets: house and pavilion <= 1 s, bus shelter <= 10 s; 1,024 houses measured.
 """
 
 import os
@@ -38,6 +40,26 @@ SITE += "".join(f"maison_{i:02d}_{j:02d} = @t({15 * i}, {15 * j}, 0) maison;\n"
                 for i in range(32) for j in range(32))
 SITE += "> " + ", ".join(f"maison_{i:02d}_{j:02d}" for i in range(32) for j in range(32)) + ";\n"
 
+# the same house, saying what it is: each of its openings an IfcOpeningElement
+# filled by a window or the door
+CLASSED = """
+L = 10; P = 8; H = 3; E = 0.3;
+murs = $D(@h(L, P, H) !cu(0.9, 0.9, 0.8), @t(E, E, -1) @h(L - 2 * E, P - 2 * E, H + 2) !cu(0.9, 0.9, 0.8));  // [wall]
+fen_s = @t(1 + K * 1.8, -1, 1) @h(1, 3, 1.2) !cu(0.2, 0.4, 0.9);  // [window]
+fen_n = @t(1 + K * 1.8, P - 2, 1) @h(1, 3, 1.2) !cu(0.2, 0.4, 0.9);  // [window]
+fen_o = @t(-1, 3, 1) @h(3, 1, 1.2) !cu(0.2, 0.4, 0.9);  // [window]
+fen_e = @t(L - 2, 3, 1) @h(3, 1, 1.2) !cu(0.2, 0.4, 0.9);  // [window]
+porte = @t(4.5, -1, -0.5) @h(1, 3, 2.6) !cu(0.2, 0.4, 0.9);  // [door]
+ouvertures = $U($U[K = 0, 4](fen_s), $U[K = 0, 4](fen_n), fen_o, fen_e, porte);
+toit = @t(L / 2, P / 2, H) @rz(45) @h(7.5, 7.5, 2.5) !py(0.7, 0.2, 0.1, 4);  // [roof]
+colonne = @t(1 + C * 2.6, -1.5, 0) @h(0.2, 0.2, H) !pr(0.8, 0.8, 0.8, 16);  // [column]
+maison = $U($D(murs, ouvertures), toit, $U[C = 0, 3](colonne));
+"""
+CLASSED_SITE = CLASSED + "".join(f"maison_{i:02d}_{j:02d} = @t({15 * i}, {15 * j}, 0) maison;\n"
+                                 for i in range(32) for j in range(32))
+CLASSED_SITE += "> " + ", ".join(f"maison_{i:02d}_{j:02d}" for i in range(32)
+                                 for j in range(32)) + ";\n"
+
 
 def _whole(args: list[str], cwd: str) -> tuple[float, float, float]:
     """Median wall-clock and CPU seconds, and the largest peak memory (MB), of a
@@ -60,23 +82,29 @@ def _whole(args: list[str], cwd: str) -> tuple[float, float, float]:
 
 
 def _stages(text: str, name: str, defines=()) -> dict[str, float]:
+    from castor.bim import build
     from castor.formats import ifc
     from castor.mesh.facetize import Facetizer
     from castor.pipeline import evaluated_frames
 
     started = time.process_time()
     [scene], said = evaluated_frames(text, name, defines=defines)
-    frame = Facetizer().frame(scene)
+    facetizer = Facetizer()
+    frame = facetizer.frame(scene)
     castor_seconds = time.process_time() - started
     started = time.process_time()
-    model = ifc.model(scene, frame)
+    building = build(scene, frame, facetizer)
+    bim = time.process_time() - started
+    started = time.process_time()
+    model = ifc.model(building)
     built = time.process_time() - started
     started = time.process_time()
     data = model.to_string().encode("utf-8")
     written = time.process_time() - started
     faces = len(model.by_type("IfcIndexedPolygonalFace"))
-    return {"castor": castor_seconds, "build": built, "write": written, "faces": faces,
-            "elements": len(model.by_type("IfcElement")), "megabytes": len(data) / 1e6}
+    return {"castor": castor_seconds, "bim": bim, "build": built, "write": written,
+            "faces": faces, "elements": len(model.by_type("IfcElement")),
+            "openings": len(building.openings), "megabytes": len(data) / 1e6}
 
 
 def main() -> None:
@@ -85,10 +113,15 @@ def main() -> None:
 
     imported = time.process_time() - started
     work = tempfile.mkdtemp()
-    scenes = [("house", ROOT / "examples" / "house.cas", None, (), "2"),
+    scenes = [("house", ROOT / "examples" / "house.cas", None, (), "1"),
+              ("pavilion (two storeys)", ROOT / "examples" / "pavilion.cas", None, (), "1"),
               ("bus shelter", ROOT / "examples" / "bus_shelter.cas", None, ("ONE_FRAME",), "10"),
               ("1,024 houses, one element", Path(work) / "block.cas", BLOCK, (), "-"),
-              ("1,024 houses, 1,024 elements", Path(work) / "site.cas", SITE, (), "-")]
+              ("1,024 houses, 1,024 elements", Path(work) / "site.cas", SITE, (), "-"),
+              ("1,024 houses with openings", Path(work) / "classed.cas", CLASSED_SITE, (), "-")]
+    chosen = os.environ.get("CASTOR_IFC_SCENES")  # e.g. "house,pavilion": some of them
+    if chosen:
+        scenes = [s for s in scenes if any(s[0].startswith(c) for c in chosen.split(","))]
     rows = []
     for label, path, text, defines, target in scenes:
         if text is not None:
@@ -99,17 +132,20 @@ def main() -> None:
         glb_time, glb_cpu, glb_peak = _whole([*flags, "-o", os.path.join(work, "x.glb"),
                                               str(path)], work)
         stages = _stages(path.read_text(), str(path), defines)
-        rows.append([label, f"{stages['elements']:,}", f"{stages['faces']:,}",
+        rows.append([label, f"{stages['elements']:,}", f"{stages['openings']:,}",
+                     f"{stages['faces']:,}",
                      f"{stages['megabytes']:.1f}", f"{ifc_time:.2f}", f"{ifc_cpu:.2f}",
                      f"{ifc_peak:.0f}", target, f"{glb_time:.2f}", f"{glb_cpu:.2f}",
                      f"{glb_peak:.0f}", f"{stages['castor']:.2f}",
-                     f"{stages['build']:.2f}", f"{stages['write']:.2f}"])
+                     f"{stages['bim']:.2f}", f"{stages['build']:.2f}",
+                     f"{stages['write']:.2f}"])
         print(f"{label}: done", file=sys.stderr)
     print(f"import ifcopenshell: {imported:.2f} s CPU; {os.getloadavg()[0]:.1f} load average "
           f"on {os.cpu_count()} cores")
-    print(table(rows, ["scene", "elements", "faces", "MB", "ifc s", "ifc CPU s", "ifc MB peak",
-                       "target s", "glb s", "glb CPU s", "glb MB peak", "castor CPU s",
-                       "IFC model CPU s", "STEP text CPU s"]))
+    print(table(rows, ["scene", "elements", "openings", "faces", "MB", "ifc s", "ifc CPU s",
+                       "ifc MB peak", "target s", "glb s", "glb CPU s", "glb MB peak",
+                       "castor CPU s", "building model CPU s", "IFC entities CPU s",
+                       "STEP text CPU s"]))
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
 """castor --lsp: diagnostics after an edit of the bus shelter, and hovers.
 
 Spawns the language server as an editor does and speaks the protocol to it
-(the test suite's client, tests/preview/test_lsp.py). Two figures, median and worst of
+(the test suite's client, tests/support/lsp.py). Two figures, median and worst of
 BENCH_RUNS edits: edit -> the diagnostics of that version published, for
 examples/bus_shelter.cas (seven files, #included); and the hover on a
 parameter and on an object (its box and volume, made once per analysis).
@@ -28,8 +28,8 @@ from pathlib import Path
 from _common import runs_from_env, table
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent / "tests" / "preview"))
-from test_lsp import Client  # noqa: E402
+sys.path.insert(0, str(HERE.parent))  # the checkout: castor and the tests' support package
+from tests.support.lsp import Client  # noqa: E402
 
 
 def main() -> None:
@@ -99,10 +99,10 @@ def slider_times(runs: int) -> tuple[list[float], list[float]]:
     except ImportError:
         return [], []
     sys.path.insert(0, str(HERE.parent))
-    from castor.serve.scene import Watched
+    from castor.serve.evaluation import Watched
     from castor.settings import Source
     from castor.serve.server import PreviewServer
-    from test_serve_browser import FLAGS
+    from tests.support.browser import FLAGS
 
     work = Path(tempfile.mkdtemp(prefix="castor-panel-"))
     here = os.getcwd()

@@ -37,7 +37,7 @@ def main() -> None:
     evaluated = time.perf_counter()
     prepared = document.prepared(1)
     ready = time.perf_counter()
-    low, high = prepared.solids.scene.box
+    low, high = prepared.solids.traced.box
     eye = np.array([low[0] - 8.0, low[1] - 10.0, 6.0])
     target = (low + high) / 2
     forward = (target - eye) / np.linalg.norm(target - eye)
@@ -65,7 +65,7 @@ def main() -> None:
     times.sort()
     cpus.sort()
     print(f"bus shelter: evaluated in {evaluated - started:.3f} s, prepared for snapping in "
-          f"{ready - evaluated:.3f} s ({len(prepared.solids.scene.leaves)} primitives)")
+          f"{ready - evaluated:.3f} s ({len(prepared.solids.traced.leaves)} primitives)")
     print(f"{len(times)} snaps: median {statistics.median(times) * 1000:.1f} ms, "
           f"90% {times[int(len(times) * 0.9)] * 1000:.1f} ms, "
           f"worst {times[-1] * 1000:.1f} ms (target <= 50 ms); CPU time: median "

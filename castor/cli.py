@@ -15,8 +15,8 @@ import threading
 
 from castor import __version__
 from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
-from castor.options import (DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE,
-                            OUTPUT_OPTIONS, negative_values, option_value, parse_count)
+from castor.options import OUTPUT_OPTIONS, TITLE_FIELDS, negative_values, option_value, parse_count
+from castor.settings import DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE
 
 
 class _NotGiven(list):
@@ -186,6 +186,8 @@ def _check_values(p: _Parser, args) -> None:
         p.error("--eye and --look go together")
     if args.eye is not None and args.eye == args.look:
         p.error("--eye and --look must be different points")
+    if args.pixel_error is not None and not {"--view", "--eye"} & set(args.given):
+        p.error("--pixel-error needs a camera: --view, or --eye and --look")
     if args.summary is not None and args.check:
         p.error("--summary needs the frames made; leave out --check")
 
@@ -219,6 +221,10 @@ def _choose_format(p: _Parser, args) -> None:
     problem = unavailable() if unavailable is not None else None
     if problem is not None:
         p.error(problem)
+    if args.sheets is not None and args.format == "svg" and not (
+            args.output and "%" in args.output):
+        p.error("an SVG holds one sheet: give --sheets a pattern such as -o sheet-%d.svg, or "
+                "write one .pdf or .dxf")
 
 
 def _check_destinations(p: _Parser, args) -> None:
@@ -295,11 +301,14 @@ def settings_of(args, overrides: dict[str, float]):
         output=OutputSettings(format=args.format, target=args.output, stats=args.stats,
                               summary=args.summary is not None, title=args.title,
                               options=options),
-        mesh=MeshSettings(max_polygons=args.max_polygons),
+        mesh=MeshSettings(max_polygons=args.max_polygons, pixel_error=args.pixel_error),
         picture=PictureSettings(size=args.size, view=args.view, eye=args.eye, look=args.look,
                                 sun=args.sun, samples=args.samples, edges=args.edges),
         drawing=DrawingSettings(section=args.section, view=args.view, scale=args.scale,
-                                sheet=args.sheet),
+                                sheet=args.sheet, fields=tuple(
+                                    (name, getattr(args, name)) for name in TITLE_FIELDS
+                                    if getattr(args, name) is not None),
+                                register=args.sheets),
         bim=BimSettings(classes=args.ifc_class))
     how = RunSettings(check=args.check, jobs=args.jobs, scheduler=args.scheduler,
                       summary=args.summary)
@@ -426,7 +435,8 @@ def _warn_without_effect(args, reporter) -> None:
     """Each option given that has no effect on the chosen output, once (CLI.md)."""
     from castor.formats import FORMATS, without_effect
 
-    for message in without_effect(args.given, FORMATS[args.format]):
+    brings = {option.flag: option.brings for option in OUTPUT_OPTIONS}
+    for message in without_effect(args.given, FORMATS[args.format], brings):
         reporter.warning(message)
 
 
@@ -476,7 +486,7 @@ def _serve(args, source, reading, evaluation) -> int:
     if args.output or args.check:
         return usage("--serve shows the frames in a web browser; it writes nothing "
                      f"({'-o' if args.output else '--check'} goes without --serve)")
-    from castor.serve.scene import Watched
+    from castor.serve.evaluation import Watched
     from castor.serve.server import serve
 
     try:

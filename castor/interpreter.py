@@ -19,8 +19,8 @@ from castor.diagnostics import (ArgumentCountError, CastorError, Reporter, TooMa
 from castor.language.expressions import UndefinedParameter, evaluate
 from castor.language.parse import Parser, SkippedDefinition
 from castor.language.reader import Chunk
-from castor.language.scene import Facetize, ObjectDef, ParamDef, Tables
-from castor.options import DEFAULT_TOLERANCE
+from castor.language.scene import FrameCommand, ObjectDef, ParamDef, Tables
+from castor.settings import DEFAULT_TOLERANCE
 from castor.settings import EvaluationSettings
 
 
@@ -103,8 +103,8 @@ class Interpreter:
                 self._define_parameter(item)
             elif isinstance(item, ObjectDef):
                 self._define_object(item)
-            elif isinstance(item, Facetize):
-                self._facetize(item)
+            elif isinstance(item, FrameCommand):
+                self._run_frame_command(item)
         except CastorError as exc:
             if not self._explained(exc):
                 self.reporter.error(exc)
@@ -207,7 +207,7 @@ class Interpreter:
         where = statement.location
         if not self._may_be_annotated(where):
             return
-        from castor.language.classes import object_classes
+        from castor.language.annotations import object_classes
 
         lines = self.reporter.source_lines
         for _, _, classification, problem in object_classes(
@@ -218,7 +218,7 @@ class Interpreter:
                 self.classified[(where.file, where.line, where.column)] = classification
                 self.declared_changed = True
 
-    def _stray_annotation(self, statement: Facetize) -> None:
+    def _stray_annotation(self, statement: FrameCommand) -> None:
         """An annotation on a '>' command says nothing of anything: a warning."""
         found = self._comment(statement.location)
         if found is None or not found[0].lstrip().startswith("["):
@@ -248,7 +248,7 @@ class Interpreter:
         self._classify(statement)
         self.unsaid.discard(name)
 
-    def _facetize(self, statement: Facetize) -> None:
+    def _run_frame_command(self, statement: FrameCommand) -> None:
         """One frame, or one for each value of ``>[T = ...]``; an error found in
         several of its frames is reported once, with the frames it concerns."""
         from castor.csg.evaluate import FrameErrors, repeat_values
@@ -268,7 +268,7 @@ class Interpreter:
             self.frames_attempted += 1
             number = self.frames_attempted
             try:
-                scene = self.evaluator.frame(statement.objects, env, number, where,
+                tree = self.evaluator.frame(statement.objects, env, number, where,
                                              statement.location)
             except FrameErrors as group:
                 for error in group.errors:
@@ -278,7 +278,7 @@ class Interpreter:
                 failures.setdefault((error.message, error.location), (error, []))[1].append(number)
                 continue
             if self.submit is not None:
-                self.submit(scene)
+                self.submit(tree)
         for error, numbers in failures.values():
             if self._explained(error):
                 continue

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from castor.csg import tree
+from castor.csg.tree import FrameTree
 from castor.diagnostics import CastorError, Location
 from castor.settings import FrameSettings, OutputSettings
 
@@ -26,7 +26,7 @@ from castor.settings import FrameSettings, OutputSettings
 class Job:
     """One frame's work: its evaluated CSG tree and what to make of it, by stage."""
 
-    scene: tree.FrameTree
+    tree: FrameTree
     settings: FrameSettings
 
 
@@ -55,10 +55,10 @@ SPOOL_POLYGONS = 100_000
 def make(job: Job) -> Result:
     """The frame's output, and what is to be said about it; never raises for
     an error of the scene (it is in the result)."""
-    scene = job.scene
-    result = Result(scene.number, scene.location)
+    tree = job.tree
+    result = Result(tree.number, tree.location)
     try:
-        _make(scene, job.settings, result)
+        _make(tree, job.settings, result)
     except CastorError as exc:
         result.errors.append(exc)
         result.data = None
@@ -67,12 +67,12 @@ def make(job: Job) -> Result:
 
         result.errors.append(LimitError("out of memory for this frame; simplify the scene, "
                                         "raise the tolerance or lower --max-polygons",
-                                        scene.location))
+                                        tree.location))
         result.data = None
     return result
 
 
-def _make(scene: tree.FrameTree, settings: FrameSettings, result: Result) -> None:
+def _make(tree: FrameTree, settings: FrameSettings, result: Result) -> None:
     """The frame's product, made by its output's kind (castor.formats.kinds), then
     written by its format's writer: its bytes, or the part it gives to a file made
     from every frame at once (an animation)."""
@@ -82,13 +82,13 @@ def _make(scene: tree.FrameTree, settings: FrameSettings, result: Result) -> Non
     output = settings.output
     chosen = FORMATS.get(output.format) if output.format is not None else None
     kind = chosen.kind if chosen is not None else MESH  # no format: the mesh frame only
-    product = kind.make(scene, settings, chosen, result)
+    product = kind.make(tree, settings, chosen, result)
     if chosen is None or product is None:
         return
     if chosen.gathers:
         result.gathered = product
         return
-    result.data, result.companions = _encoded(product, kind, output, scene.number)
+    result.data, result.companions = _encoded(product, kind, output, tree.number)
 
 
 def _encoded(product, kind, output: OutputSettings, number: int):

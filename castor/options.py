@@ -1,8 +1,11 @@
-"""Option values shared by ``castor`` and ``castor-view``: their defaults and parsers.
+"""The command line's options shared by ``castor`` and ``castor-view``: their
+parsers, and the declarations of the options that act on some outputs only.
 
 Each parser takes the option's text and returns its value or raises
 ``ValueError`` with the message a usage error shows; the commands turn that
-into ``PROG: error: MESSAGE`` and exit status 2. Defaults live here only.
+into ``PROG: error: MESSAGE`` and exit status 2. The values they make (View,
+Section, Paper) and every default are castor.settings': the library's stages
+read those and never import this module.
 """
 
 from __future__ import annotations
@@ -11,61 +14,10 @@ import math
 import re
 from typing import NamedTuple
 
-class CameraSun(NamedTuple):
-    """The default sun: ``turn`` degrees beside the camera's azimuth and
-    ``elevation`` high, so that every face the camera sees is lit
-    (castor.pictures.shade.sun_light turns it into a direction)."""
+from castor.settings import (DEFAULT_SAMPLES, DEFAULT_SCALE, DEFAULT_SIZE, DEFAULT_SUN,
+                             DEFAULT_VIEW, PAPER_SIZES, VIEW_NAMES, Paper, Section, View)
 
-    turn: float
-    elevation: float
-
-
-DEFAULT_FORMAT = "cps"  # the polygon stream: standard output's, and a device's (-o /dev/null)
-DEFAULT_TOLERANCE = 0.01
-DEFAULT_MAX_POLYGONS = 20_000_000
-DEFAULT_SIZE = (800, 600)
-DEFAULT_VIEW = (-60.0, 25.0)
-DEFAULT_SUN = CameraSun(20.0, 45.0)  # the camera's azimuth + 20, 45 high (CLI.md)
-DEFAULT_SAMPLES = 4
-DEFAULT_SCALE = 100  # 1:100
-DEFAULT_PORT = 8000
-MAX_PIXELS = 16384
-
-class Orthographic(NamedTuple):
-    """A named orthographic view: the page's right and up, and the direction
-    towards the viewer (right x up = towards), unit vectors of the scene. A
-    picture looks along -towards with this up; a drawing projects on the three."""
-
-    right: tuple[int, int, int]
-    up: tuple[int, int, int]
-    towards: tuple[int, int, int]
-
-
-# the six named views, declared here only (CLI.md --view NAME)
-ORTHOGRAPHIC = {
-    "top": Orthographic((1, 0, 0), (0, 1, 0), (0, 0, 1)),
-    "bottom": Orthographic((1, 0, 0), (0, -1, 0), (0, 0, -1)),
-    "front": Orthographic((1, 0, 0), (0, 0, 1), (0, -1, 0)),
-    "back": Orthographic((-1, 0, 0), (0, 0, 1), (0, 1, 0)),
-    "left": Orthographic((0, -1, 0), (0, 0, 1), (-1, 0, 0)),
-    "right": Orthographic((0, 1, 0), (0, 0, 1), (1, 0, 0)),
-}
-VIEW_NAMES = tuple(ORTHOGRAPHIC)
-
-
-class View(NamedTuple):
-    """A camera: a direction (azimuth, elevation in degrees) for a perspective
-    view framing the scene, or a name for an orthographic one."""
-
-    name: str | None  # "top", "front", ... (orthographic) or None (perspective)
-    azimuth: float
-    elevation: float
-
-
-class Section(NamedTuple):
-    axis: str  # "x", "y" or "z"
-    value: float
-
+MAX_PIXELS = 16384  # the largest --size, each way
 
 def _number(text: str, what: str) -> float:
     try:
@@ -145,19 +97,6 @@ def parse_scale(text: str) -> float:
     return denominator
 
 
-class Paper(NamedTuple):
-    """A sheet of the ISO 216 A series as a drawing is laid on it (millimetres)."""
-
-    name: str  # "A3", "A3-portrait"
-    width: float
-    height: float
-
-
-# ISO 216, landscape: width x height in millimetres
-PAPER_SIZES = {"A4": (297, 210), "A3": (420, 297), "A2": (594, 420), "A1": (841, 594),
-               "A0": (1189, 841)}
-
-
 def parse_sheet(text: str) -> Paper:
     match = re.fullmatch(r"\s*(A[0-4])(-portrait)?\s*", text, re.IGNORECASE)
     if not match:
@@ -196,6 +135,14 @@ def parse_samples(text: str) -> int:
     return parse_count(text, "--samples", 1, 256)
 
 
+def parse_pixel_error(text: str) -> float:
+    value = _number(text, "--pixel-error")
+    if value <= 0:
+        raise ValueError(f"--pixel-error takes a number of pixels above 0, such as 0.5, not "
+                         f"'{text}'")
+    return value
+
+
 def parse_eye(text: str) -> tuple[float, float, float]:
     return parse_point(text, "--eye")
 
@@ -219,6 +166,8 @@ class OutputOption(NamedTuple):
     absent: object = None  # the value when it is neither given nor has a default text
     repeat: bool = False  # given several times, its values a list
     signed: bool = False  # its value may start with '-' (--view -30,20)
+    # given, it makes these options act on its outputs too (--pixel-error: the camera's)
+    brings: tuple[str, ...] = ()
 
     @property
     def dest(self) -> str:
@@ -258,10 +207,33 @@ OUTPUT_OPTIONS = (
     # one title for every document that has one: a drawing's, an IFC project's
     OutputOption("--title", "TEXT", "the title of a drawing or an IFC project (default: the "
                  "'>' object's name, or the file's)", PICTURES_AND_DRAWINGS),
+    # the title block's project fields (CLI.md; also a register's [project])
+    OutputOption("--project", "TEXT", "a drawing's project title, in its title block",
+                 PICTURES_AND_DRAWINGS),
+    OutputOption("--number", "TEXT", "the project's number, in a drawing's title block",
+                 PICTURES_AND_DRAWINGS),
+    OutputOption("--revision", "TEXT", "the revision, in a drawing's title block",
+                 PICTURES_AND_DRAWINGS),
+    OutputOption("--drawn", "TEXT", "who drew it, in a drawing's title block",
+                 PICTURES_AND_DRAWINGS),
+    OutputOption("--checked", "TEXT", "who checked it, in a drawing's title block",
+                 PICTURES_AND_DRAWINGS),
+    OutputOption("--sheets", "FILE", "a drawing set: FILE is the drawing register (TOML); "
+                 "every sheet in one .pdf (an index, then a page each), one .dxf (a layout "
+                 "each) or a file each for a %%d pattern", PICTURES_AND_DRAWINGS,
+                 parse="castor.drawings.register:parse_register"),
+    OutputOption("--pixel-error", "E", "facets sized to the screen: each curved surface "
+                 "within E pixels of its facets seen from the camera (--view or --eye/--look, "
+                 "--size)", PICTURES_AND_DRAWINGS, parse=parse_pixel_error,
+                 brings=("--size", "--view", "--eye", "--look")),
     OutputOption("--ifc-class", "NAME=CLASS", "IFC class of the object NAME, such as "
                  "maison=IfcWall (repeatable; default IfcBuildingElementProxy)", BUILDING_MODELS,
                  parse="castor.formats.ifc:parse_classes_option", absent=(), repeat=True),
 )
+
+
+# the title block's fields the command line gives (their options' names)
+TITLE_FIELDS = ("project", "number", "revision", "drawn", "checked")
 
 
 def option_value(option: OutputOption, value):

@@ -4,7 +4,7 @@ One function, ``evaluate``, runs the stages in order: read the source (files
 or a text in memory), preprocess it (castor.language.preprocess), cut it into
 statements (castor.language.reader) and interpret them (castor.interpreter),
 which hands each frame's evaluated CSG tree on as its '>' command runs. The
-command line (castor.run), the live preview (castor.serve.scene) and an
+command line (castor.run), the live preview (castor.serve.evaluation) and an
 editor's language server (``check``) all call it, each with the settings of
 the stages (castor.settings) and what to do with a frame; none of it imports
 the command line.

@@ -126,7 +126,7 @@ def _number(x: float) -> float | int:
     return int(x) if x.is_integer() and abs(x) < 1e15 else x
 
 
-def summary_record(frame: Frame, scene=None, facetizer=None) -> dict:
+def summary_record(frame: Frame, frame_tree=None, facetizer=None) -> dict:
     """One frame of the --summary document (OUTPUT.md, "Quantities"); with the
     frame's tree and the facetizer that made it, and classes in the scene, the
     totals per class and storey, the openings and the spaces too."""
@@ -143,8 +143,8 @@ def summary_record(frame: Frame, scene=None, facetizer=None) -> dict:
                         for rgb, area in f.colours],
         })
     record = {"number": frame.number, "where": frame.where, "objects": objects}
-    if scene is not None and facetizer is not None and scene.classes is not None:
-        record.update(Takeoff(scene, facetizer).record())
+    if frame_tree is not None and facetizer is not None and frame_tree.classes is not None:
+        record.update(Takeoff(frame_tree, facetizer).record())
     return record
 
 
@@ -326,13 +326,15 @@ class Takeoff:
     solids out are new work). What the take-off, the drawings and the IFC
     handover read of a frame's classes."""
 
-    def __init__(self, scene, facetizer):
+    def __init__(self, frame_tree, facetizer, polygons: bool = False):
         from castor.csg.elements import Boxes, find
 
         self.boxes = Boxes()
-        self.scene = scene
+        self.frame_tree = frame_tree
         self.facetizer = facetizer
-        self.elements, self.openings = find(scene)
+        # the solids as polygons (the BIM model's bodies), else as triangles
+        self.polygons = polygons
+        self.elements, self.openings = find(frame_tree)
         self._solids: dict = {}
         self._storeys: list[tuple[str, float]] | None = None
         self._placed: list[Placed] | None = None
@@ -345,23 +347,28 @@ class Takeoff:
                 self._solids[key] = FrameObject(np.zeros((0, 3)), np.zeros(1, np.int64),
                                                 np.zeros(0, np.int64), np.zeros(0, np.int64), [])
             else:
-                scene = tree.FrameTree(self.scene.number, self.scene.where, self.scene.location,
-                                       (tree.Object(str(key), node),))
+                whole = self.frame_tree
+                frame_tree = tree.FrameTree(whole.number, whole.where, whole.location,
+                                            (tree.Object(str(key), node),))
                 # triangles: the figures are the same, and no polygons are written
                 merging = self.facetizer.merge_polygons
-                self.facetizer.merge_polygons = False
+                self.facetizer.merge_polygons = self.polygons
                 try:
-                    self._solids[key] = self.facetizer.frame(scene).objects[0]
+                    self._solids[key] = self.facetizer.frame(frame_tree).objects[0]
                 finally:
                     self.facetizer.merge_polygons = merging
         return self._solids[key]
+
+    def known(self, element, solid: FrameObject) -> None:
+        """Take ``solid`` as the element's own (made already: a whole '>' object's)."""
+        self._solids[("element", element.number)] = solid
 
     def solid(self, element) -> FrameObject:
         """The element's own solid, as polygons."""
         from castor.csg.elements import element_tree
 
         return self._made(("element", element.number),
-                          element_tree(self.scene, element, self.boxes))
+                          element_tree(self.frame_tree, element, self.boxes))
 
     def figures(self, element) -> Figures:
         return object_figures(self.solid(element), element.name)
@@ -369,7 +376,7 @@ class Takeoff:
     def space_solid(self, index: int) -> FrameObject:
         from castor.csg import tree
 
-        space = self.scene.spaces[index]
+        space = self.frame_tree.spaces[index]
         return self._made(("space", index), tree.Use(space.matrix, "", space.shared))
 
     def storeys(self) -> list[tuple[str, float]]:
@@ -379,8 +386,8 @@ class Takeoff:
         return self._storeys
 
     def _find_storeys(self) -> list[tuple[str, float]]:
-        declared = self.scene.classes.storeys if self.scene.classes is not None else ()
-        values = dict(self.scene.parameters)
+        declared = self.frame_tree.classes.storeys if self.frame_tree.classes is not None else ()
+        values = dict(self.frame_tree.parameters)
         found = [(m.name, float(values[m.parameter])) for m in declared if m.parameter in values]
         if found:
             return sorted(found, key=lambda s: s[1])
@@ -422,20 +429,26 @@ class Takeoff:
         from castor.csg.elements import opening_tree
 
         out = []
+        # an opening's host is an element of its own '>' object: looked for there
+        # only (1,024 houses, 13,000 openings: not each against every element)
+        of_object: dict[int, list[Placed]] = {}
+        for p in self.placed():
+            of_object.setdefault(p.element.object, []).append(p)
         for opening in self.openings:
-            whole = self._made(("opening", opening.number), opening_tree(self.scene, opening))
+            whole = self._made(("opening", opening.number), opening_tree(self.frame_tree, opening))
             for k, piece in enumerate(shells(whole)):
                 f = object_figures(piece, opening.name)
                 (_, _, z0), (_, _, z1) = f.bbox
                 width, thickness, direction = footprint(piece.vertices)
-                out.append(Block(opening, k, piece, f, _host(self.placed(), f.bbox),
+                out.append(Block(opening, k, piece, f,
+                                 _host(of_object.get(opening.object, []), f.bbox),
                                  self.storey_at(z0), width, thickness, z1 - z0, z0, z1,
                                  direction))
         return out
 
     def rooms(self) -> list[Room]:
         out = []
-        for index, space in enumerate(self.scene.spaces):
+        for index, space in enumerate(self.frame_tree.spaces):
             solid = self.space_solid(index)
             f = object_figures(solid, space.name)
             if f.bbox is None:

@@ -66,24 +66,24 @@ class Sequencer:
                 self.stderr.flush()
 
     # --- frames
-    def submit(self, scene) -> None:
+    def submit(self, tree) -> None:
         if self.failure is not None:
             raise self.failure
         if self.stopped:
             raise TooManyErrors()
         self.submitted += 1
-        refusal = self.output.refusal(self.submitted, scene.number, scene.location) \
+        refusal = self.output.refusal(self.submitted, tree.number, tree.location) \
             if self.output is not None else None
         if refusal is not None:
             if not self.refused:  # said once; the frames after it are not made
                 self.refused = True
                 self.reporter.error(refusal)
             return
-        job = Job(scene, self.settings)
+        job = Job(tree, self.settings)
         if self.executor is None:
             from castor.progress import Progress
 
-            with Progress(f"frame {scene.number} {scene.where}", self.stderr):
+            with Progress(f"frame {tree.number} {tree.where}", self.stderr):
                 result = make(job)
             with self.lock:
                 self._handle(result)
@@ -96,7 +96,7 @@ class Sequencer:
                 future = self.executor.submit(make, job)
             else:  # this process's thread: a long frame shows its progress
                 future = self.executor.submit(_make_showing_progress, job, self.stderr)
-            future.castor_scene = scene
+            future.castor_tree = tree
             self.pending.append(future)
         future.add_done_callback(self._done)
 
@@ -225,7 +225,7 @@ class Sequencer:
 def _make_showing_progress(job: Job, stream) -> Result:
     from castor.progress import Progress
 
-    with Progress(f"frame {job.scene.number} {job.scene.where}", stream):
+    with Progress(f"frame {job.tree.number} {job.tree.where}", stream):
         return make(job)
 
 
@@ -238,14 +238,14 @@ def _discard(data) -> None:
 
 def _outcome(future) -> Result:
     """A future's result; a frame whose process failed is reported, not raised."""
-    scene = future.castor_scene
+    tree = future.castor_tree
     try:
         return future.result()
     except BrokenPipeError:
         raise
     except Exception as exc:  # a worker that died, a cluster that went away
-        result = Result(scene.number, scene.location)
-        result.errors.append(FrameFailure((scene.number,), failure_reason(exc), scene.location))
+        result = Result(tree.number, tree.location)
+        result.errors.append(FrameFailure((tree.number,), failure_reason(exc), tree.location))
         return result
 
 

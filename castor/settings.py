@@ -14,9 +14,96 @@ copy with some fields changed, as ``dataclasses.replace`` did.
 
 from __future__ import annotations
 
-from castor.options import (DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_SAMPLES, DEFAULT_SCALE,
-                            DEFAULT_SIZE, DEFAULT_SUN)
+from typing import NamedTuple
+
 from castor.records import Record
+
+# --- every default, and the records the options' values are made of (castor.options
+# parses the command line's text into them; the stages read them from here)
+
+
+class CameraSun(NamedTuple):
+    """The default sun: ``turn`` degrees beside the camera's azimuth and
+    ``elevation`` high, so that every face the camera sees is lit
+    (castor.pictures.shade.sun_light turns it into a direction)."""
+
+    turn: float
+    elevation: float
+
+
+DEFAULT_FORMAT = "cps"  # the polygon stream: standard output's, and a device's (-o /dev/null)
+DEFAULT_TOLERANCE = 0.01
+DEFAULT_MAX_POLYGONS = 20_000_000
+DEFAULT_SIZE = (800, 600)
+DEFAULT_VIEW = (-60.0, 25.0)
+DEFAULT_SUN = CameraSun(20.0, 45.0)  # the camera's azimuth + 20, 45 high (CLI.md)
+DEFAULT_SAMPLES = 4
+DEFAULT_SCALE = 100  # 1:100
+DEFAULT_PORT = 8000
+
+
+class Orthographic(NamedTuple):
+    """A named orthographic view (CLI.md --view NAME): the page's right and up,
+    and the direction towards the viewer (right x up = towards), unit vectors
+    of the scene. A picture looks along -towards with this up; a drawing
+    projects on the three."""
+
+    name: str
+    right: tuple[int, int, int]
+    up: tuple[int, int, int]
+    towards: tuple[int, int, int]
+
+    def basis(self):
+        """(3, 3) numpy array: rows right, up, towards; a point p is seen at basis @ p."""
+        import numpy as np
+
+        return np.array([self.right, self.up, self.towards], dtype=np.float64)
+
+    def plane_depth(self, section) -> float | None:
+        """The depth (along ``towards``) of a Section's plane, or None."""
+        if section is None:
+            return None
+        axis = "xyz".index(section.axis)
+        return float(self.towards[axis]) * section.value
+
+
+# the six named views, declared here only
+ORTHOGRAPHIC = {view.name: view for view in (
+    Orthographic("top", (1, 0, 0), (0, 1, 0), (0, 0, 1)),
+    Orthographic("bottom", (1, 0, 0), (0, -1, 0), (0, 0, -1)),
+    Orthographic("front", (1, 0, 0), (0, 0, 1), (0, -1, 0)),
+    Orthographic("back", (-1, 0, 0), (0, 0, 1), (0, 1, 0)),
+    Orthographic("left", (0, -1, 0), (0, 0, 1), (-1, 0, 0)),
+    Orthographic("right", (0, 1, 0), (0, 0, 1), (1, 0, 0)),
+)}
+VIEW_NAMES = tuple(ORTHOGRAPHIC)
+
+
+class View(NamedTuple):
+    """A camera: a direction (azimuth, elevation in degrees) for a perspective
+    view framing the scene, or a name for an orthographic one."""
+
+    name: str | None  # "top", "front", ... (orthographic) or None (perspective)
+    azimuth: float
+    elevation: float
+
+
+class Section(NamedTuple):
+    axis: str  # "x", "y" or "z"
+    value: float
+
+
+class Paper(NamedTuple):
+    """A sheet of the ISO 216 A series as a drawing is laid on it (millimetres)."""
+
+    name: str  # "A3", "A3-portrait"
+    width: float
+    height: float
+
+
+# ISO 216, landscape: width x height in millimetres
+PAPER_SIZES = {"A4": (297, 210), "A3": (420, 297), "A2": (594, 420), "A1": (841, 594),
+               "A0": (1189, 841)}
 
 
 class Source(Record):
@@ -63,10 +150,13 @@ class EvaluationSettings(Record):
 class MeshSettings(Record):
     """Facetizing a frame into polygons."""
 
-    __slots__ = ("max_polygons",)
+    __slots__ = ("max_polygons", "pixel_error")
 
-    def __init__(self, max_polygons: int = DEFAULT_MAX_POLYGONS):
+    def __init__(self, max_polygons: int = DEFAULT_MAX_POLYGONS, pixel_error: float | None = None):
         self.max_polygons = max_polygons
+        # --pixel-error: facets sized to the screen of the picture settings' camera
+        # (castor.mesh.screen); None: the tolerance alone
+        self.pixel_error = pixel_error
 
 
 class PictureSettings(Record):
@@ -79,10 +169,10 @@ class PictureSettings(Record):
                  sun: tuple | None = DEFAULT_SUN, samples: int = DEFAULT_SAMPLES,
                  edges: bool = False):
         self.size = size
-        self.view = view  # castor.options.View
+        self.view = view  # castor.settings.View
         self.eye = eye
         self.look = look
-        self.sun = sun  # (az, el), None, or castor.options.CameraSun
+        self.sun = sun  # (az, el), None, or castor.settings.CameraSun
         self.samples = samples
         self.edges = edges
 
@@ -90,14 +180,19 @@ class PictureSettings(Record):
 class DrawingSettings(Record):
     """Drawing a plan, section or elevation (castor.drawings)."""
 
-    __slots__ = ("section", "view", "scale", "sheet")
+    __slots__ = ("section", "view", "scale", "sheet", "fields", "register")
 
     def __init__(self, section: object = None, view: object = None, scale: float = DEFAULT_SCALE,
-                 sheet: object = None):
-        self.section = section  # castor.options.Section: cut by this plane
-        self.view = view  # castor.options.View: seen from this side
+                 sheet: object = None, fields: tuple[tuple[str, str], ...] = (),
+                 register: object = None):
+        self.section = section  # castor.settings.Section: cut by this plane
+        self.view = view  # castor.settings.View: seen from this side
         self.scale = scale  # 1:scale on paper
-        self.sheet = sheet  # castor.options.Paper (--sheet); None: paper as large as the drawing
+        self.sheet = sheet  # castor.settings.Paper (--sheet); None: paper as large as the drawing
+        # the title block's fields given ("project", "number", "revision", "drawn",
+        # "checked", and a register's "sheet_number", "sheet_title"), as (name, text)
+        self.fields = fields
+        self.register = register  # castor.drawings.register.Register (--sheets), or None
 
 
 class BimSettings(Record):

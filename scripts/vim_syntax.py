@@ -5,14 +5,21 @@ castor knows: the lines that start with ``syn match castorPrimitive`` and
 
 from pathlib import Path
 
-from castor.language.vocabulary import vim_syntax
+from castor.primitives import PRIMITIVES
+from castor.transformations import TRANSFORMS
 
 SYNTAX = Path(__file__).resolve().parent.parent / "vim" / "syntax" / "castor.vim"
 
 
+def syntax_lines() -> list[str]:
+    """The lines of the syntax file that name the primitives and the transformations."""
+    return ['syn match castorPrimitive "!\\(' + "\\|".join(PRIMITIVES) + '\\)\\>"',
+            'syn match castorTransform "@\\(' + "\\|".join(TRANSFORMS) + '\\)\\>"']
+
+
 def main() -> None:
     lines = SYNTAX.read_text().splitlines()
-    for new in vim_syntax():
+    for new in syntax_lines():
         start = new.split('"')[0]
         lines = [new if line.startswith(start) else line for line in lines]
     SYNTAX.write_text("\n".join(lines) + "\n")

@@ -4,7 +4,7 @@ outline), and the words that may come next in an annotation being written
 (for completion).
 
 The table of classes and the reading of an annotation are
-castor.language.classes' (``CLASSES``, ``object_classes``); this module only
+castor.language.classes' (``CLASSES``) and castor.language.annotations' ``object_classes``; this module only
 asks them, with the text as the editor holds it. Positions are castor's
 (1-based lines and columns), as in castor.analysis.knowledge.
 """

@@ -18,7 +18,7 @@ import os
 from dataclasses import dataclass, field
 from typing import Callable
 
-from castor.analysis.worker import Job, Worker
+from castor.analysis.worker import Submission, Worker
 
 # a buffer larger than this is not analysed while typing (castor --check reads it)
 MAX_BUFFER = 4_000_000
@@ -57,9 +57,10 @@ class Documents:
         self.key_of = key_of  # the key of a file's path (its URI)
         self.documents: dict[str, Document] = {}
         self.roots: list[str] = []
-        self.worker = Worker(lambda job, cancelled: analyse_buffers(
-            job.text, job.name, job.unsaved, cancelled),
-            lambda job, analysis, problem: finished(job.payload, analysis, problem, job.version),
+        self.worker = Worker(lambda submission, cancelled: analyse_buffers(
+            submission.text, submission.name, submission.unsaved, cancelled),
+            lambda submission, analysis, problem: finished(submission.payload, analysis, problem,
+                                                           submission.version),
             STACK_BYTES)
 
     # --- which documents
@@ -197,7 +198,7 @@ class Documents:
         unsaved = {other.path: other.text for other in self.documents.values()
                    if other.path is not None and other is not document and other.open
                    and len(other.text) <= MAX_BUFFER}
-        self.worker.submit(Job(document.key, text, document.path, document.version, unsaved,
+        self.worker.submit(Submission(document.key, text, document.path, document.version, unsaved,
                                payload=document))
 
     def stop(self) -> None:

@@ -18,7 +18,9 @@ from functools import lru_cache
 
 from castor.analysis.scene import Analysis, macro_definitions, object_figures, parameters
 from castor.diagnostics import Location
-from castor.language.vocabulary import BOOLEANS, PRIMITIVES, TRANSFORMS
+from castor.booleans import BOOLEANS
+from castor.primitives import PRIMITIVES
+from castor.transformations import TRANSFORMS
 
 _WORD = re.compile(r"[!@$]?[A-Za-z_]\w*")
 # a token, for a diagnostic's range; an annotation's bracket (LANGUAGE.md §11) is one: [wal]

@@ -35,7 +35,7 @@ MAX_STATEMENTS = 50_000
 
 @dataclass(frozen=True, slots=True)
 class _Parsed:
-    items: tuple  # what the parser gave: ParamDef, ObjectDef, Facetize
+    items: tuple  # what the parser gave: ParamDef, ObjectDef, FrameCommand
     looked_up: tuple  # (name, node or None) of each object name the parser looked up
     parameters: tuple  # parameter names it added to the parser's (for --set's warning)
 

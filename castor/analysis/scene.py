@@ -110,7 +110,7 @@ def analyse(source: Source, reading: ReadSettings = ReadSettings(),
     A file that cannot be read goes to ``unreadable`` (None: UsageError)."""
     import time
 
-    from castor.language.scene import Facetize, ObjectDef, ParamDef
+    from castor.language.scene import FrameCommand, ObjectDef, ParamDef
     from castor.analysis.reuse import ReusingInterpreter
 
     started = time.perf_counter()
@@ -131,7 +131,7 @@ def analyse(source: Source, reading: ReadSettings = ReadSettings(),
             elif isinstance(item, ObjectDef):
                 analysis.definitions.append(Definition("object", item.name, item.location,
                                                        node=item.node))
-            elif isinstance(item, Facetize):
+            elif isinstance(item, FrameCommand):
                 analysis.definitions.append(Definition("frame", ">", item.location,
                                                        node=item.objects))
 
@@ -192,7 +192,7 @@ def object_classes(analysis: Analysis):
     each annotated definition, its name, where it is, its class (None when the
     annotation cannot be understood) and the warning about it, if any: what a
     hover, an outline and the warnings as you type read."""
-    from castor.language.classes import object_classes as classes_of
+    from castor.language.annotations import object_classes as classes_of
 
     lines: dict[str, list[str] | None] = {}
 
@@ -222,10 +222,10 @@ def object_figures(analysis: Analysis, name: str, tolerance: float | None = None
     if tolerance is not None:
         env["TOLERANCE"] = tolerance
     try:
-        scene = Evaluator().frame((node,), env, 1, name, node.location)
+        tree = Evaluator().frame((node,), env, 1, name, node.location)
     except (CastorError, RecursionError):
         return None
-    result = make(Job(scene, FrameSettings(output=OutputSettings(format=None, summary=True),
+    result = make(Job(tree, FrameSettings(output=OutputSettings(format=None, summary=True),
                                            mesh=MeshSettings(max_polygons=HOVER_POLYGONS))))
     if result.errors:
         return {"refused": result.errors[0].message}

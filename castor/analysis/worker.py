@@ -22,7 +22,7 @@ from castor.pipeline import Overtaken
 
 
 @dataclass
-class Job:
+class Submission:
     """A text to analyse: ``key`` names its document (newer texts of one key
     overtake older ones); ``payload`` is the caller's, handed back with the result."""
 
@@ -71,20 +71,20 @@ class Stopper:
 
 
 class Worker:
-    """Analyses each job with ``analyse(job, cancelled)`` and hands
-    ``done(job, analysis, problem)`` the result (``problem``, a message, when
-    there is no analysis); a job overtaken by a newer one of its key gives nothing."""
+    """Analyses each submission with ``analyse(submission, cancelled)`` and hands
+    ``done(submission, analysis, problem)`` the result (``problem``, a message, when
+    there is no analysis); a submission overtaken by a newer one of its key gives nothing."""
 
     def __init__(self, analyse: Callable, done: Callable, stack_bytes: int = 0):
         self.analyse, self.done = analyse, done
         self.queue = threading.Condition()
-        self.pending: dict[str, Job] = {}
+        self.pending: dict[str, Submission] = {}
         self.latest: dict[str, int] = {}  # key -> the number of its newest submission
         self.submitted = 0
         self.stopped = False
-        self.running: Job | None = None  # the job being analysed
+        self.running: Submission | None = None  # the submission being analysed
         self.stopper = Stopper()
-        # ("started" | "stopped" | "finished", key, number) of the latest jobs
+        # ("started" | "stopped" | "finished", key, number) of the latest submissions
         self.log: collections.deque = collections.deque(maxlen=1000)
         size = threading.stack_size()
         if stack_bytes:
@@ -95,15 +95,15 @@ class Worker:
             threading.stack_size(size)
         self.thread.start()
 
-    def submit(self, job: Job) -> None:
-        """Analyse ``job`` soon; an older job of its key, pending or running, is dropped."""
+    def submit(self, submission: Submission) -> None:
+        """Analyse ``submission`` soon; an older one of its key, pending or running, is dropped."""
         with self.queue:
             self.submitted += 1
-            job.number = self.submitted
-            self.latest[job.key] = job.number
-            self.pending[job.key] = job
+            submission.number = self.submitted
+            self.latest[submission.key] = submission.number
+            self.pending[submission.key] = submission
             self.queue.notify()
-        self._interrupt(lambda running: running.key == job.key)
+        self._interrupt(lambda running: running.key == submission.key)
 
     def stop(self) -> None:
         with self.queue:
@@ -111,19 +111,19 @@ class Worker:
             self.queue.notify()
         self._interrupt(lambda running: True)
 
-    def overtaken(self, job: Job) -> bool:
-        return self.stopped or self.latest.get(job.key) != job.number
+    def overtaken(self, submission: Submission) -> bool:
+        return self.stopped or self.latest.get(submission.key) != submission.number
 
-    def _interrupt(self, which: Callable[[Job], bool]) -> None:
+    def _interrupt(self, which: Callable[[Submission], bool]) -> None:
         """Stop the running analysis now if ``which`` says it is stale."""
         def stale(number: int) -> bool:  # asked with the stopper's lock held
-            job = self.running
-            return job is not None and job.number == number and which(job) \
-                and self.overtaken(job)
+            submission = self.running
+            return submission is not None and submission.number == number and which(submission) \
+                and self.overtaken(submission)
 
         self.stopper.stop(stale)
 
-    def _next(self) -> Job | None:
+    def _next(self) -> Submission | None:
         with self.queue:
             while not self.pending and not self.stopped:
                 self.queue.wait()
@@ -134,34 +134,35 @@ class Worker:
     def _loop(self) -> None:
         while True:
             try:
-                job = self._next()
-                if job is None:
+                submission = self._next()
+                if submission is None:
                     return
-                self._one(job)
+                self._one(submission)
             except Overtaken:  # sent late, after the analysis it was meant for
                 continue
 
-    def _one(self, job: Job) -> None:
-        self.log.append(("started", job.key, job.number))
+    def _one(self, submission: Submission) -> None:
+        self.log.append(("started", submission.key, submission.number))
         try:
-            self.running = job
-            self.stopper.begin(job.number)
+            self.running = submission
+            self.stopper.begin(submission.number)
             try:
-                if self.overtaken(job):  # a newer one came before begin(): not stopped
+                if self.overtaken(submission):  # a newer one came before begin(): not stopped
                     raise Overtaken()
-                analysis, problem = self.analyse(job, lambda: self.overtaken(job)), None
+                analysis = self.analyse(submission, lambda: self.overtaken(submission))
+                problem = None
             finally:
                 self.stopper.end()
         except Overtaken:
-            self.log.append(("stopped", job.key, job.number))
+            self.log.append(("stopped", submission.key, submission.number))
             return
         except MemoryError:
             analysis, problem = None, "out of memory analysing the scene"
         except Exception as exc:  # a fault of castor's: said, and the worker goes on
             analysis, problem = None, (f"castor: internal error: {type(exc).__name__}: {exc} "
                                        f"(please report it with the scene)")
-        if self.overtaken(job):
-            self.log.append(("stopped", job.key, job.number))
+        if self.overtaken(submission):
+            self.log.append(("stopped", submission.key, submission.number))
             return
-        self.log.append(("finished", job.key, job.number))
-        self.done(job, analysis, problem)
+        self.log.append(("finished", submission.key, submission.number))
+        self.done(submission, analysis, problem)

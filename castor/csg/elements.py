@@ -158,15 +158,15 @@ class _Finder:
                 self._cutters(child, index, address + (k,), cut)
 
 
-def find(scene: tree.FrameTree) -> tuple[list[Element], list[Opening]]:
+def find(frame_tree: tree.FrameTree) -> tuple[list[Element], list[Opening]]:
     """The elements and openings of a frame, numbered in the tree's order: for
     each '>' object, its classed objects, then the rest of it (an element of
     its own class if the object is classed, else unclassed) when it is not
     wholly theirs."""
     elements: list[Element] = []
     openings: list[Opening] = []
-    declared = scene.classes
-    for index, obj in enumerate(scene.objects):
+    declared = frame_tree.classes
+    for index, obj in enumerate(frame_tree.objects):
         if obj.root is None:
             continue
         if declared is None:
@@ -298,19 +298,19 @@ def _less_parts(node, parts, location, boxes: Boxes):
     return tree.Boolean("D", (node, other), location)
 
 
-def element_tree(scene: tree.FrameTree, element: Element, boxes: Boxes | None = None):
+def element_tree(frame_tree: tree.FrameTree, element: Element, boxes: Boxes | None = None):
     """The CSG tree, in scene units, of the element's own solid (``boxes``:
     those of the frame's nodes, kept from one element to the next)."""
     boxes = Boxes() if boxes is None else boxes
-    root = scene.objects[element.object].root
+    root = frame_tree.objects[element.object].root
     return _reach(root, element.address,
-                  lambda node: _less_parts(node, element.parts, scene.location, boxes), boxes)
+                  lambda node: _less_parts(node, element.parts, frame_tree.location, boxes), boxes)
 
 
-def opening_tree(scene: tree.FrameTree, opening: Opening):
+def opening_tree(frame_tree: tree.FrameTree, opening: Opening):
     """The CSG tree of what the door or window took out: its solid where the
     first operand of the '$D' that subtracts it was (the wall's thickness deep)."""
-    root = scene.objects[opening.object].root
+    root = frame_tree.objects[opening.object].root
     cut = _node_at(root, opening.cut)
     cutter = _node_at(cut, opening.address[len(opening.cut):])
     block = tree.Boolean("I", (cutter, cut.operands[0]), cut.location)
@@ -330,20 +330,20 @@ def _placed(node, address, replacement):
 # --- spaces: rooms, not solids
 
 
-def without_spaces(scene: tree.FrameTree) -> tree.FrameTree:
+def without_spaces(frame_tree: tree.FrameTree) -> tree.FrameTree:
     """The frame with every use of a ``space`` object taken out (its objects and
     shared subtrees rebuilt where they held one), the spaces in ``spaces``; a
     '>' object that was only a space is left out."""
-    stripper = _Stripper(scene.classes)
+    stripper = _Stripper(frame_tree.classes)
     objects = []
-    for obj in scene.objects:
+    for obj in frame_tree.objects:
         if obj.root is None:
             objects.append(obj)
             continue
         root = stripper.strip(obj.root, tree.IDENTITY)
         if root is not None or not stripper.has_space(obj.root):
             objects.append(obj if root is obj.root else tree.Object(obj.name, root, obj.where))
-    return scene.replace(objects=tuple(objects), spaces=tuple(stripper.spaces))
+    return frame_tree.replace(objects=tuple(objects), spaces=tuple(stripper.spaces))
 
 
 class _Stripper:

@@ -20,7 +20,7 @@ from castor.csg.paths import ROOT, Trail
 from castor.diagnostics import CastorError, EvaluationError, GeometryError, LimitError, Location
 from castor.language.expressions import evaluate, format_number
 from castor.language.scene import BooleanNode, NamedNode, SceneNode, PrimitiveNode, Repeat, TransformedNode
-from castor.options import DEFAULT_TOLERANCE
+from castor.settings import DEFAULT_TOLERANCE
 from castor.primitives import PRIMITIVES
 from castor.primitives.facets import linear_part, product, quantize, stretch_above
 from castor.transformations import step_matrix

@@ -44,13 +44,16 @@ IDENTITY: Matrix = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0)
 
 
 class Primitive(Record):
+    """One primitive placed in the frame, a leaf of the tree: ``kind`` names its
+    declaration (a castor.primitives.PrimitiveKind, ``PRIMITIVES[kind]``)."""
+
     __slots__ = ("kind", "shape", "colour", "matrix", "tolerance", "metric", "path", "location")
     _compared = ("kind", "shape", "colour", "matrix", "tolerance", "metric", "path")
 
     def __init__(self, kind: str, shape: tuple[float, ...], colour: tuple[float, float, float],
                  matrix: Matrix, tolerance: float, metric: tuple[float, ...] | None, path: str,
                  location: Location):
-        self.kind = kind  # "cu", "sp", ... (castor.language.vocabulary.PRIMITIVES)
+        self.kind = kind  # "cu", "sp", ... (castor.primitives.PRIMITIVES)
         self.shape = shape  # the arguments after the colour
         self.colour = colour
         self.matrix = matrix
@@ -265,10 +268,10 @@ def _feed(digest, node: TreeNode) -> None:
             update(pack_matrix(*node.matrix))
 
 
-def dump(frame: FrameTree) -> str:
+def dump(tree: FrameTree) -> str:
     """The tree as indented text, shared subtrees written once: for tests and
     for reading what a frame is made of."""
-    lines: list[str] = [f"frame {frame.number} {frame.where}"]
+    lines: list[str] = [f"frame {tree.number} {tree.where}"]
     written: set[str] = set()
 
     def number(x: float) -> str:
@@ -303,7 +306,7 @@ def dump(frame: FrameTree) -> str:
             if shared.child is not None:
                 walk(shared.child, depth + 1, "")
 
-    for obj in frame.objects:
+    for obj in tree.objects:
         lines.append(f"object {obj.name}")
         if obj.root is not None:
             walk(obj.root, 1, "")

@@ -72,8 +72,12 @@ def _envelope(a: np.ndarray, b: np.ndarray):
     return ends, nearest
 
 
-def dimension_chains(loops: list[np.ndarray]) -> list[Chain]:
-    """The chains on each side of the cut regions (page metres)."""
+def dimension_chains(loops: list[np.ndarray], holes=(), classed: bool = False) -> list[Chain]:
+    """The chains on each side of the cut regions (page metres). ``holes``:
+    the page boxes ((x0, y0), (x1, y1)) of the openings the drawing cuts; a
+    stretch of a side within one that reaches the outer face is an opening,
+    whatever is seen through it. With classes (``classed``) the overall spans
+    the chain it stands beside (the cut regions' extent when there is no chain)."""
     loops = [l for l in loops if len(l) >= 3]
     if not loops:
         return []
@@ -90,6 +94,12 @@ def dimension_chains(loops: list[np.ndarray]) -> list[Chain]:
         outermost = nearest[finite].min()
         outer = finite & (nearest <= outermost + BAND)
         state = np.where(outer, np.round(nearest / GRID), np.nan)
+        middles = (ends[:-1] + ends[1:]) / 2
+        for hole in holes:
+            corners = _turned(np.asarray(hole, float), side)
+            (u0, v0), (u1, v1) = corners.min(axis=0), corners.max(axis=0)
+            if v0 <= outermost + 1e-3:  # it goes through the outer face
+                state[(middles > u0) & (middles < u1)] = np.nan
         first, last = np.flatnonzero(outer)[[0, -1]]
         breaks = [ends[first]]
         for k in range(first + 1, last + 1):
@@ -105,27 +115,61 @@ def dimension_chains(loops: list[np.ndarray]) -> list[Chain]:
         along = np.sort(_along(breaks, side))
         if len(along) < 3:
             along = np.zeros(0)
+        elif classed:  # the overall is the chain's extent
+            span = along[[0, -1]]
         edge = outermost if side in ("bottom", "left") else -outermost
         chains.append(Chain(side, along, (float(span[0]), float(span[1])), float(edge)))
     return chains
 
 
+def vertical_chain(side: str, edge: float, heights, top: float) -> Chain | None:
+    """A vertical chain on the ``side`` ('left' or 'right') of a section or an
+    elevation: its breaks the storeys' levels, the sills and heads of the
+    openings on that side and the top (page y, metres), standing off the
+    page x ``edge``; None when it would have a single dimension."""
+    breaks = sorted({round(float(h), 6) for h in list(heights) + [top]})
+    merged: list[float] = []
+    for h in breaks:
+        if not merged or h - merged[-1] > MERGE:
+            merged.append(h)
+    if len(merged) < 3:
+        return None
+    return Chain(side, np.array(merged), (merged[0], merged[-1]), float(edge))
+
+
 class Level(NamedTuple):
     height: float  # metres, page y (z in an elevation or a vertical section)
-    kind: str  # "ground", "top" or "edge"
+    kind: str  # "ground", "storey", "top" or "edge"
 
 
-def level_heights(layers, box: np.ndarray) -> list[Level]:
+def _through(seg: np.ndarray, holes) -> np.ndarray:
+    """Which segments lie inside an opening's page box: seen through it."""
+    inside = np.zeros(len(seg), bool)
+    middle = seg.mean(axis=1)
+    for (x0, y0), (x1, y1) in holes:
+        inside |= ((middle[:, 0] > x0 + 1e-3) & (middle[:, 0] < x1 - 1e-3)
+                   & (middle[:, 1] > y0 + 1e-3) & (middle[:, 1] < y1 - 1e-3))
+    return inside
+
+
+def level_heights(layers, box: np.ndarray, storeys=(), holes=(), classed: bool = False,
+                  openings=()) -> list[Level]:
     """The levels of an elevation or vertical section: the ground (z = 0), the
-    top of what is drawn and every horizontal edge seen (profile or not: a
-    sill or a head seen in front of the room behind it is not an outline) or
-    of a cut region, each once (to the millimetre)."""
+    storeys' floor levels, the top of what is drawn and every horizontal edge
+    seen (profile or not: a sill or a head seen in front of the room behind it
+    is not an outline) or of a cut region, each once (to the millimetre); an
+    edge inside an opening seen face on (``holes``, page boxes) is seen
+    through it, and never a level. With classes (``classed``), the seen edges
+    are the profile's only, and the sills and heads of the ``openings`` the
+    drawing cuts or shows in its nearest façade are levels."""
     heights = []
     for layer in layers:
         seg = layer.lines
         if len(seg):
             d = seg[:, 1] - seg[:, 0]
             flat = (np.abs(d[:, 1]) <= GRID) & (np.abs(d[:, 0]) > 1e-3)
+            if classed:  # the outline only: the openings give their sills and heads
+                flat &= layer.profile & ~_through(seg, holes)
             heights.append(seg[flat, 0, 1])
         for loop in layer.cuts:
             nxt = np.roll(loop, -1, axis=0)
@@ -136,6 +180,11 @@ def level_heights(layers, box: np.ndarray) -> list[Level]:
         found.setdefault(round(h, 3), "edge")
     top = round(float(box[1, 1]), 3)
     found[top] = "top"
+    for h in openings:
+        found.setdefault(round(float(h), 3), "edge")
+    for level in storeys:
+        if box[0, 1] - 1e-3 <= level <= box[1, 1] + 1e-3:
+            found[round(float(level), 3)] = "storey"
     found[0.0] = "ground"
     return [Level(h, kind) for h, kind in sorted(found.items())]
 

@@ -14,119 +14,21 @@ from __future__ import annotations
 
 import datetime
 import os
-from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
 
 from castor.drawings.annotate import (Chain, dimension_chains, length_text, level_heights,
-                                      level_text)
-
-CUT_PEN, PROFILE_PEN, SEEN_PEN, THIN_PEN = 0.5, 0.35, 0.18, 0.13  # mm
-POCHE = "#8c8c8c"
-TEXT = 2.5  # mm, the height of dimension, level and sheet text
-MARGIN = 10.0  # mm round the sheet's content, and from the paper's edge to the border
-STANDARD_SCALES = (20, 50, 100, 200, 500, 1000)
-TITLE_BLOCK = (110.0, 30.0)  # mm
-GROUND_OVERHANG = 5.0  # mm the ground line runs on beyond the drawing
-
-# where the parts of a dimension stand, in mm out from the drawing's box
-EXTENSION_GAP = 2.0  # extension lines start this far from the drawing
-OVERSHOOT = 1.5  # and run on past the dimension line
-CHAIN_LINE, OVERALL_LINE, ALONE_LINE = 10.0, 19.0, 10.0
-# text rows (from, to): the chain's own row, its staggered row, the overall's;
-# text stands on the side of its line that reads as "above": towards the
-# drawing at the bottom and right, away from it at the top and left
-ROWS = {"inward": {"chain": (6.5, 9.0), "stagger": (12.0, 14.5), "overall": (15.5, 18.0),
-                   "alone": (6.5, 9.0)},
-        "outward": {"chain": (11.0, 13.5), "stagger": (14.5, 17.0), "overall": (20.0, 22.5),
-                    "alone": (11.0, 13.5)}}
-READS = {"bottom": "inward", "right": "inward", "top": "outward", "left": "outward"}
-DEPTH = {"inward": 21.0, "outward": 23.5}  # mm a side's dimensions take
-LEVEL_WIDTH = 22.0  # mm a column of levels takes
-
-
-# Helvetica's advance widths (per em) for the characters drawings write most
-_WIDTHS = {**{c: 0.556 for c in "0123456789+-±$#_?"}, ".": 0.278, ",": 0.278, " ": 0.278,
-           ":": 0.278, "=": 0.584, "i": 0.222, "l": 0.222, "j": 0.222, "f": 0.278, "t": 0.278,
-           "I": 0.278, "m": 0.833, "w": 0.722, "M": 0.833, "W": 0.944, "r": 0.333}
-
-
-def text_width(text: str, size: float) -> float:
-    """The width of ``text`` set in Helvetica at ``size`` mm, near enough to place it."""
-    return size * sum(_WIDTHS.get(c, 0.667 if c.isupper() else 0.556) for c in text)
-
-
-class Lines(NamedTuple):
-    """Straight segments (L, 2, 2) in paper mm, drawn with one pen."""
-
-    segments: np.ndarray
-    pen: float
-    kind: str  # "profile", "seen", "annotation", "sheet"
-
-
-class Shape(NamedTuple):
-    """Closed (or open) outlines in paper mm, filled or not."""
-
-    loops: list
-    pen: float
-    fill: str | None = None
-    closed: bool = True
-    kind: str = "annotation"  # "cut", "annotation", "sheet"
-
-
-class Text(NamedTuple):
-    x: float
-    y: float  # the baseline's anchor point, paper mm
-    text: str
-    size: float = TEXT
-    angle: float = 0.0  # degrees, counter-clockwise as seen on the paper
-    anchor: str = "start"  # "start", "middle", "end"
-
-
-class Dimension(NamedTuple):
-    """One dimension as CAD keeps it, in page metres: measured from p1 to p2
-    along ``angle`` (0 or 90), its line through ``base``, its text at
-    ``text_at`` (None: on the line's middle, where CAD puts it)."""
-
-    p1: tuple
-    p2: tuple
-    base: tuple
-    angle: float
-    text_at: tuple | None
-    offset: float  # metres from p1 and p2 to where the extension lines start
-    shown: bool = True  # False: no room for its text, which is left out
-
-
-@dataclass
-class Group:
-    name: str
-    items: list = field(default_factory=list)
-
-
-@dataclass
-class Sheet:
-    """A drawing laid on paper: the paper's size, the objects' groups, the
-    annotation groups and what a CAD file needs to rebuild the dimensions."""
-
-    width: float
-    height: float
-    title: str
-    description: str
-    origin: tuple[float, float]  # the paper point of the page's (0, 0) metres
-    mm: float  # paper millimetres per metre
-    layers: list[Group]  # one per object
-    groups: list[Group]  # "dimensions", "levels", "sheet"
-    dimensions: list[Dimension]
-    drawing: object  # castor.drawings.model.Drawing
-
-    def to_metres(self, points: np.ndarray) -> np.ndarray:
-        """Paper mm back to page metres (where a CAD file puts the sheet's items)."""
-        points = np.asarray(points, float)
-        return np.column_stack([(points[..., 0].ravel() - self.origin[0]) / self.mm,
-                                (self.origin[1] - points[..., 1].ravel()) / self.mm]
-                               ).reshape(points.shape)
-
+                                      level_text, vertical_chain)
+from castor.drawings.legend import (_legend, _legend_items, _legend_width, _project_rows,
+                                    _symbols, _title_size, PROJECT_ROWS)
+# the sheet's items and pens (castor.drawings.paper), as the writers import them from here
+from castor.drawings.paper import (ALONE_LINE, CHAIN_LINE, CUT_PEN, DASH, DEPTH,  # noqa: F401
+                                   EXTENSION_GAP, GAP, GROUND_OVERHANG, LEVEL_WIDTH, MARGIN,
+                                   OVERALL_LINE, OVERSHOOT, POCHE, PROFILE_PEN, READS, ROWS,
+                                   SEEN_PEN, STANDARD_SCALES, TEXT, THIN_PEN, TITLE_BLOCK, Arc,
+                                   Dimension, Group, Lines, Shape, Sheet, Text, _fitted,
+                                   text_width)
 
 class DoesNotFit(Exception):
     """The drawing is larger than the sheet at the asked scale."""
@@ -292,7 +194,7 @@ def _level_symbols(levels, box_mm, x, items):
     shown than its text's height and gap is merged into it; the ground and the
     top are shown first, then the others from the bottom up. Returns the
     levels shown."""
-    priority = {"ground": 0, "top": 1, "edge": 2}
+    priority = {"ground": 0, "storey": 1, "top": 2, "edge": 3}
     shown: list = []
     for level, y in sorted(levels, key=lambda item: (priority[item[0].kind], -item[1])):
         if all(abs(y - other) >= TEXT + 1.0 for _, other in shown):
@@ -330,17 +232,48 @@ def _framed(drawing, mm: float) -> _Frame:
     if ground:
         box[0, 0] -= GROUND_OVERHANG
         box[1, 0] += GROUND_OVERHANG
-    loops = [c for layer in drawing.layers for c in layer.cuts]
-    chains = dimension_chains(loops) if drawing.section is not None else []
+    chains = _chains(drawing, np.array([[x0, y0], [x1, y1]]), vertical)
     depth = {side: 0.0 for side in ("bottom", "top", "left", "right")}
     for chain in chains:
         depth[chain.side] = DEPTH[READS[chain.side]] if len(chain.breaks) else DEPTH[READS[chain.side]] - 9
-    levels = level_heights(drawing.layers, np.array([[x0, y0], [x1, y1]])) if vertical else []
+    symbols = drawing.symbols
+    levels = level_heights(drawing.layers, np.array([[x0, y0], [x1, y1]]),
+                           symbols.storeys if symbols else (),
+                           symbols.seen_openings + symbols.cut_openings if symbols else (),
+                           symbols is not None,
+                           [h for hs in symbols.sides.values() for h in hs] if symbols else ()
+                           ) if vertical else []
     level_x = box[1, 0] + depth["right"] + (4.0 if depth["right"] else 6.0)
     right = depth["right"] + (LEVEL_WIDTH + 6.0 if levels else 0.0)
     content = np.array([[box[0, 0] - depth["left"], box[0, 1] - depth["top"]],
                         [box[1, 0] + right, box[1, 1] + depth["bottom"]]])
     return _Frame(box, ground, chains, levels, level_x, content)
+
+
+def _chains(drawing, box: np.ndarray, vertical: bool) -> list:
+    """The dimension chains of a drawing: along the cut regions of a plan or
+    section; with classes, along the cut walls only (the others when none is
+    cut), breaking at every opening cut, and on a section or an elevation
+    vertical chains of the storeys, the openings' sills and heads and the top."""
+    symbols = drawing.symbols
+    loops = [c for layer in drawing.layers for c in layer.cuts]
+    if symbols is None:
+        return dimension_chains(loops) if drawing.section is not None else []
+    chains = []
+    if drawing.section is not None:
+        chains = dimension_chains(symbols.walls or loops, symbols.cut_openings, classed=True)
+    if vertical:
+        levels = [h for h in symbols.storeys if box[0, 1] - 1e-3 <= h <= box[1, 1] + 1e-3]
+        sides = {"left": box[0, 0], "right": box[1, 0]}
+        made = {}
+        for side, edge in sides.items():
+            chain = vertical_chain(side, edge, levels + symbols.sides.get(side, []),
+                                   float(box[1, 1]))
+            if chain is not None:
+                made[side] = chain
+        if made:  # they stand for the cut regions' own chains on those sides
+            chains = [c for c in chains if c.side not in ("left", "right")] + list(made.values())
+    return chains
 
 
 # the scale bar and north arrow above the title block, when the two do not
@@ -349,9 +282,10 @@ STACKED = 25.0
 
 
 def _bar_width(drawing, scale: float) -> float:
-    """The scale bar's width with its label, and the north arrow's beside it for a plan."""
+    """The scale bar's width with its label, the north arrow's beside it for a
+    plan, and the legend of the hatches beside them."""
     bar_m, _ = scale_bar_length(scale)
-    return bar_m * 1000.0 / scale + 10.0 + (20.0 if drawing.is_plan else 0.0)
+    return bar_m * 1000.0 / scale + 10.0 + (20.0 if drawing.is_plan else 0.0) + _legend_width(drawing)
 
 
 def _band(drawing, scale: float, room: float | None) -> tuple[float, bool]:
@@ -359,7 +293,7 @@ def _band(drawing, scale: float, room: float | None) -> tuple[float, bool]:
     height, and whether the scale bar stands above the title block, which it
     does when the two do not fit side by side in ``room`` mm (None: no paper)."""
     side_by_side = room is None or TITLE_BLOCK[0] + _bar_width(drawing, scale) + 10.0 <= room
-    return TITLE_BLOCK[1] + 8.0 + (0.0 if side_by_side else STACKED), not side_by_side
+    return _title_size(drawing)[1] + 8.0 + (0.0 if side_by_side else STACKED), not side_by_side
 
 
 class _Room(NamedTuple):
@@ -406,7 +340,7 @@ def _refusal(drawing, paper, room: _Room) -> DoesNotFit:
 
 
 def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> Sheet:
-    """The drawing on its sheet (``paper``: castor.options.Paper, or None for a
+    """The drawing on its sheet (``paper``: castor.settings.Paper, or None for a
     sheet as large as the drawing needs). Raises DoesNotFit when the drawing
     is larger than the paper at its scale."""
     mm = 1000.0 / drawing.scale
@@ -430,11 +364,13 @@ def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> 
     origin = (float(shift[0]), float(shift[1]))
     box_mm = frame.box + shift
     layers = _drawn(drawing, frame.ground, box_mm, origin, mm)
+    symbols = _symbols(drawing, origin, mm)
     dimensions, levels, cad = _annotated(drawing, frame, box_mm, origin, mm,
                                          frame.level_x + shift[0], warn)
     band = _sheet_band(drawing, paper, width, height, stacked, mm, title, where)
+    groups = [dimensions, levels, band] if symbols is None else [symbols, dimensions, levels, band]
     return Sheet(width, height, title, drawing.description(), origin, mm, layers,
-                 [dimensions, levels, band], cad, drawing)
+                 groups, cad, drawing)
 
 
 def _drawn(drawing, ground: bool, box_mm, origin, mm: float) -> list[Group]:
@@ -454,7 +390,13 @@ def _drawn(drawing, ground: bool, box_mm, origin, mm: float) -> list[Group]:
                 group.items.append(Lines(seen, SEEN_PEN, "seen"))
             if len(profile):
                 group.items.append(Lines(profile, PROFILE_PEN, "profile"))
-        if layer.cuts:
+        if layer.regions is not None:
+            for region in layer.regions:  # element by element, hatched by class
+                solid = region.pattern == "SOLID"
+                group.items.append(Shape([paper_of(loop) for loop in region.loops], CUT_PEN,
+                                         POCHE if solid else "white", True, "cut",
+                                         None if solid else region.pattern, region.ifc_class))
+        elif layer.cuts:
             group.items.append(Shape([paper_of(loop) for loop in layer.cuts], CUT_PEN, POCHE,
                                      True, "cut"))
         layers.append(group)
@@ -490,7 +432,7 @@ def _sheet_band(drawing, paper, width: float, height: float, stacked: bool, mm: 
     """The border (on paper), the title block at the lower right, the scale bar
     and the north arrow at the left of it, or above it when ``stacked``."""
     group = Group("sheet")
-    title_w, title_h = TITLE_BLOCK
+    title_w, title_h = _title_size(drawing)
     tx, ty = width - MARGIN - title_w, height - MARGIN - title_h
     if paper is not None:
         group.items.append(Shape([np.array([(MARGIN, MARGIN), (width - MARGIN, MARGIN),
@@ -500,25 +442,22 @@ def _sheet_band(drawing, paper, width: float, height: float, stacked: bool, mm: 
         bx, by = MARGIN + 5.0, (ty - 6.0 if stacked else height - MARGIN - 8.0)
     else:
         bx, by = MARGIN, height - MARGIN - 8.0
+    if drawing.fields:
+        _project_rows(group.items, tx, ty, drawing.fields)
+        ty += PROJECT_ROWS
+    fields = drawing.fields
+    if fields.get("sheet_title"):
+        title = fields["sheet_title"]
     _title_block(group.items, tx, ty, title, drawing.description(),
                  f"1:{drawing.scale:g}", sheet_date(), where)
     bar_m, bar_step = scale_bar_length(drawing.scale)
     _scale_bar(group.items, bx, by, bar_m, bar_step, mm)
     if drawing.is_plan:
         _north_arrow(group.items, bx + bar_m * mm + 18.0, by - 9.0)
+    if _legend(drawing):
+        _legend_items(drawing, group.items,
+                      bx + bar_m * mm + 10.0 + (20.0 if drawing.is_plan else 0.0), by + 4.0)
     return group
-
-
-def _fitted(text: str, size: float, room: float, keep_end: bool = False) -> tuple[str, float]:
-    """The text and size that fit ``room`` mm: smaller down to TEXT, then cut
-    short (at its start for a path, whose end says most)."""
-    while size > TEXT and text_width(text, size) > room:
-        size = max(TEXT, size - 0.25)
-    if text_width(text, size) > room:
-        while text and text_width(text + "…", size) > room:
-            text = text[1:] if keep_end else text[:-1]
-        text = "…" + text if keep_end else text + "…"
-    return text, size
 
 
 def _title_block(items, x, y, title, what, scale, date, where):

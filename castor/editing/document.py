@@ -65,7 +65,7 @@ class Document:
         self.read = read
         self.reading = reading
         self.frames: list = []  # castor.csg.tree.FrameTree, by number - 1
-        self.statements: list = []  # ObjectDef and Facetize, in the order they ran
+        self.statements: list = []  # ObjectDef and FrameCommand, in the order they ran
         self.objects: dict = {}  # name -> NamedNode, at the end
         self.files: list[str] = []  # the scene's own: the main file and those it includes
         self.included: dict[str, str] = {}  # included file -> digest of its text evaluated
@@ -75,7 +75,7 @@ class Document:
 
     def evaluate(self) -> "Document":
         from castor.interpreter import Interpreter
-        from castor.language.scene import Facetize, ObjectDef
+        from castor.language.scene import FrameCommand, ObjectDef
         from castor.pipeline import evaluate
         from castor.settings import EvaluationSettings
 
@@ -83,7 +83,7 @@ class Document:
 
         class Recording(Interpreter):
             def execute(self, item) -> None:
-                if isinstance(item, (ObjectDef, Facetize)):
+                if isinstance(item, (ObjectDef, FrameCommand)):
                     document.statements.append(item)
                 super().execute(item)
 
@@ -123,10 +123,10 @@ class Document:
 
     def facetize(self, frame) -> object:
         """The '>' command that made ``frame``."""
-        from castor.language.scene import Facetize
+        from castor.language.scene import FrameCommand
 
         for statement in self.statements:
-            if isinstance(statement, Facetize) and statement.location == frame.location:
+            if isinstance(statement, FrameCommand) and statement.location == frame.location:
                 return statement
         raise CommandError(f"the '>' command of frame {frame.number} was not found")
 

@@ -21,14 +21,15 @@ from typing import NamedTuple
 from castor.csg import tree
 from castor.editing.document import CommandError, Document
 from castor.editing.text import Token, tokens
-from castor.language.scene import BooleanNode, Facetize, NamedNode, PrimitiveNode, TransformedNode
+from castor.language.scene import (BooleanNode, FrameCommand, NamedNode, PrimitiveNode,
+                                   TransformedNode)
 
 _SEGMENT = re.compile(r"\(([a-z]\w*)\)|\.?([UID])(\d+)|!([a-z]\w*)")
 
 
 class Place(NamedTuple):
     node: object  # the expression written there: a TransformedNode or an atom
-    container: object  # the Facetize, BooleanNode or NamedNode (a definition's body) it is in
+    container: object  # the FrameCommand, BooleanNode or NamedNode (a definition's body) it is in
     index: int  # its operand number (1-based) in the container; 0 for a body
     repeat: int | None  # for the body of a repetition, which of its values (1-based)
     consumed: int  # the path's segments passed to reach it
@@ -167,7 +168,7 @@ def container_text(document: Document, container) -> Written:
     path, text, start = document.offset_of(location)
     ahead = tokens(text, start)
     first = next(ahead, None)
-    if isinstance(container, Facetize):
+    if isinstance(container, FrameCommand):
         expected, opening, closing, count = ">", None, ";", len(container.objects)
     elif isinstance(container, BooleanNode):
         expected, opening, closing = f"${container.op}", "(", ")"

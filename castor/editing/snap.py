@@ -55,7 +55,7 @@ class Prepared:
         """The source and path of leaf ``number``."""
         if number is None:
             return None, None
-        node, above = self.solids.scene.leaves[number].origin
+        node, above = self.solids.traced.leaves[number].origin
         path = join((above, node.path)) if hasattr(node, "path") else above
         return self.source_of(node.location), path
 
@@ -113,7 +113,7 @@ def snap(prepared: Prepared, origin, direction, pixel: float | None = None,
     view = _View(origin, direction, pixel, pixel_size)
     solids = prepared.solids
     previous = None if previous is None else np.asarray(previous, np.float64)
-    t, face = solids.scene.first_hit(view.origin[None], view.direction[None])
+    t, face = solids.traced.first_hit(view.origin[None], view.direction[None])
     found: dict[str, list] = {}
     hit = number = plane = None
     if np.isfinite(t[0]):
@@ -222,14 +222,14 @@ def _boundary(solids: Solids, view: _View, hit, reach: float, plane, count: int 
 def _curved_near(solids: Solids, numbers) -> bool:
     from castor.primitives import PRIMITIVES
 
-    leaves = solids.scene.leaves
+    leaves = solids.traced.leaves
     return any(leaves[k].kind == "smooth" or PRIMITIVES[leaves[k].kind].curved for k in numbers)
 
 
 def _own_plane(solids: Solids, hit, face: int, normals, offsets, owned) -> np.ndarray:
     """The rows of the hit face's plane: a flat face of the leaf hit, through
     the point, turned as the surface is there (none: the face is curved)."""
-    normal = solids.scene.normals(hit[None], np.array([face]))[0]
+    normal = solids.traced.normals(hit[None], np.array([face]))[0]
     return np.flatnonzero(owned & (np.abs(normals @ hit - offsets) < 1e-6 * solids.size)
                           & (normals @ normal > 1 - 1e-6))
 
@@ -239,7 +239,7 @@ def face_at(prepared: Prepared, origin, direction):
     offset) when the face is flat, else None), or None."""
     view = _View(origin, direction, 1.0, None)
     solids = prepared.solids
-    t, face = solids.scene.first_hit(view.origin[None], view.direction[None])
+    t, face = solids.traced.first_hit(view.origin[None], view.direction[None])
     if not np.isfinite(t[0]):
         return None
     hit = view.origin + t[0] * view.direction
@@ -293,7 +293,7 @@ def _middle(solids: Solids, plane, line) -> np.ndarray | None:
     normals, offsets, _, _ = solids.gathered(crossing)
     with np.errstate(divide="ignore", invalid="ignore"):
         s = (offsets - normals @ start) / (normals @ u)
-    low, high = solids.scene.box
+    low, high = solids.traced.box
     extent = float(np.abs(np.concatenate([low - start, high - start])).max()) * 2 + 1
     s = np.unique(np.concatenate([s[np.isfinite(s) & (np.abs(s) <= extent)], [-extent, extent]]))
     if len(s) < 2:

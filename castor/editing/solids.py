@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from castor.pictures.spans import SPANS
-from castor.pictures.trace import Leaf, Scene, TracedBoolean
+from castor.pictures.trace import TracedBoolean, TracedLeaf, TracedTree
 
 # a direction along which no face of an architect's scene lies: the lines
 # that classify points go this way
@@ -81,12 +81,12 @@ def unit_planes(kind: str, shape: tuple) -> tuple[np.ndarray, np.ndarray, np.nda
 class Solids:
     """A compiled frame, asked about points and planes."""
 
-    def __init__(self, scene: Scene):
-        self.scene = scene
-        leaves = scene.leaves
+    def __init__(self, traced: TracedTree):
+        self.traced = traced
+        leaves = traced.leaves
         self.lows = np.array([leaf.low for leaf in leaves]).reshape(-1, 3)
         self.highs = np.array([leaf.high for leaf in leaves]).reshape(-1, 3)
-        low, high = scene.box
+        low, high = traced.box
         self.size = max(float(np.linalg.norm(high - low)), 1.0)
         # how far from a point its neighbours are sampled, along a face and across it
         self.step = 2e-6 * self.size
@@ -100,10 +100,10 @@ class Solids:
         """Whether each point is inside the frame's solids (a point on a face
         may go either way: ask about points off the faces)."""
         points = np.asarray(points, np.float64).reshape(-1, 3)
-        if self.scene.root is None or len(points) == 0:
+        if self.traced.root is None or len(points) == 0:
             return np.zeros(len(points), bool)
         if self._region is None:
-            return _inside(self.scene.root, points, np.arange(len(points)))
+            return _inside(self.traced.root, points, np.arange(len(points)))
         low, high, root = self._region
         result = np.zeros(len(points), bool)
         near = np.all((low <= points) & (points <= high), axis=1)
@@ -112,7 +112,7 @@ class Solids:
             result[rows] = _inside(root, points, rows)
         rows = np.flatnonzero(~near)
         if len(rows):
-            result[rows] = _inside(self.scene.root, points, rows)
+            result[rows] = _inside(self.traced.root, points, rows)
         return result
 
     def around(self, point: np.ndarray, radius: float) -> "Solids":
@@ -121,8 +121,8 @@ class Solids:
         local = Solids.__new__(Solids)
         local.__dict__.update(self.__dict__)
         low, high = point - radius, point + radius
-        local._region = (low, high, None if self.scene.root is None
-                         else _pruned(self.scene.root, low, high))
+        local._region = (low, high, None if self.traced.root is None
+                         else _pruned(self.traced.root, low, high))
         return local
 
     def carries(self, normals: np.ndarray, points: np.ndarray) -> np.ndarray:
@@ -160,7 +160,7 @@ class Solids:
         """The flat faces of leaf ``number``, placed in the scene."""
         found = self._planes.get(number)
         if found is None:
-            leaf = self.scene.leaves[number]
+            leaf = self.traced.leaves[number]
             if leaf.kind == "smooth":  # traced through facets: no exact plane of its own
                 found = Planes(np.zeros((0, 3)), np.zeros(0), np.zeros((0, 3)))
             else:
@@ -203,7 +203,7 @@ def _pruned(node, low: np.ndarray, high: np.ndarray):
     (low, high): nodes whose boxes miss it are empty there."""
     if np.any(node.high < low) or np.any(node.low > high):
         return None
-    if isinstance(node, Leaf):
+    if isinstance(node, TracedLeaf):
         return node
     operands = [_pruned(o, low, high) for o in node.operands]
     if node.op == "I":
@@ -228,7 +228,7 @@ def _inside(node, points: np.ndarray, rows: np.ndarray) -> np.ndarray:
     if len(within) == 0:
         return result
     rows = rows[within]
-    if isinstance(node, Leaf):
+    if isinstance(node, TracedLeaf):
         local = points[rows] @ node.inverse[:, :3].T + node.inverse[:, 3]
         direction = np.broadcast_to(node.inverse[:, :3] @ _SLANT, local.shape)
         t, _ = SPANS[node.kind].spans(node.shape, local, np.ascontiguousarray(direction))

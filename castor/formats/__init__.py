@@ -154,11 +154,11 @@ _DECLARED = (
     _declare("gif", "gif", (".gif",), PICTURE, "every frame ray traced, as an animation",
              one_frame=False),
     _declare("svg", "svg", (".svg",), DRAWING, "a plan, section or elevation as a vector drawing",
-             binary=False),
+             binary=False, companions=True),  # companions: a drawing set's other sheets
     _declare("dxf", "dxf", (".dxf",), DRAWING, "a plan, section or elevation for CAD, in metres",
-             binary=False),
+             binary=False, companions=True),
     _declare("pdf", "pdf", (".pdf",), DRAWING,
-             "a plan, section or elevation on its sheet, for printing"),
+             "a plan, section or elevation on its sheet, for printing", companions=True),
 )
 
 _registry: dict[str, Format] | None = None
@@ -207,12 +207,19 @@ def acts_on(option: str, chosen: Format) -> bool:
     return option in chosen.kind.options or option in chosen.options
 
 
-def without_effect(given: list[str], chosen: Format) -> list[str]:
+def without_effect(given: list[str], chosen: Format,
+                   brings: dict[str, tuple[str, ...]] | None = None) -> list[str]:
     """A warning for each output option of ``given`` that has no effect on the
-    format ``chosen``, naming the outputs it acts on (CLI.md)."""
+    format ``chosen``, naming the outputs it acts on (CLI.md): neither its own
+    nor brought by another option given that acts on it (``brings``: the
+    options each option brings, from castor.options.OUTPUT_OPTIONS; --pixel-error
+    brings the camera's options)."""
+    brings = brings or {}
+    brought = {flag for option in given
+               if acts_on(option, chosen) for flag in brings.get(option, ())}
     return [f"{option} has no effect on {chosen.name} output (it acts on "
             f"{' and '.join(outputs_of(option))}); it is ignored"
-            for option in given if not acts_on(option, chosen)]
+            for option in given if not acts_on(option, chosen) and option not in brought]
 
 
 def outputs_of(option: str) -> list[str]:

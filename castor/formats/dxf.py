@@ -42,10 +42,12 @@ def _weight(pen: float) -> int:
     return int(round(pen * 100))
 
 
-def _dimension_style(doc, mm: float):
-    """The style ``CASTOR``, also made the header's current dimension
-    variables (some CAD programs, LibreCAD among them, draw every dimension
-    with the header's)."""
+def _dimension_style(doc, mm: float, style: str = "CASTOR") -> str:
+    """The style ``CASTOR`` (a set's: one per scale, ``CASTOR_50``), also made
+    the header's current dimension variables (some CAD programs, LibreCAD among
+    them, draw every dimension with the header's)."""
+    if style in doc.dimstyles:
+        return style
     k = 1 / mm  # metres per paper millimetre
     values = {
         "dimtxt": 2.5 * k, "dimtsz": 1.25 * k, "dimasz": 1.25 * k, "dimexe": 1.5 * k,
@@ -55,24 +57,63 @@ def _dimension_style(doc, mm: float):
     }
     for name, value in values.items():
         doc.header[f"${name.upper()}"] = value
-    doc.header["$DIMSTYLE"] = "CASTOR"
-    return doc.dimstyles.new("CASTOR", dxfattribs=values)
+    doc.header["$DIMSTYLE"] = style
+    doc.dimstyles.new(style, dxfattribs=values)
+    return style
 
 
-def _sheet_items(msp, sheet, items, layer):
-    """Lines, shapes and text of the sheet's paper, in model-space metres."""
+class _To:
+    """Where a sheet's paper items go: model space in metres (shifted along x:
+    the sheets of a set side by side) or a layout's paper space in mm."""
+
+    def __init__(self, sheet, shift: float = 0.0, paper: bool = False, dashed: str = "CASTOR_DASHED",
+                 style: str = "CASTOR"):
+        self.sheet, self.shift, self.paper, self.dashed = sheet, shift, paper, dashed
+        self.paper_style = style  # the dimension style of its scale
+        self.unit = 1.0 if paper else 1.0 / sheet.mm  # drawing units per paper mm
+
+    def points(self, points) -> np.ndarray:
+        points = np.asarray(points, float)
+        if self.paper:
+            return np.stack([points[..., 0], self.sheet.height - points[..., 1]], axis=-1)
+        return self.sheet.to_metres(points) + np.array([self.shift, 0.0])
+
+    def model(self, points) -> np.ndarray:
+        """Page metres (the drawing's own points) where they go in model space
+        (unshifted: the very numbers, -0.0 and all)."""
+        if not self.shift:
+            return np.asarray(points, float)
+        return np.asarray(points, float) + np.array([self.shift, 0.0])
+
+    def point(self, p):
+        """One page point where it goes in model space, as the tuple it was."""
+        if not self.shift or p is None:
+            return p
+        return (float(p[0]) + self.shift, float(p[1]))
+
+
+def _sheet_items(msp, to: _To, items, layer):
+    """Lines, shapes and text of the sheet's paper, where ``to`` puts them."""
     from ezdxf.enums import TextEntityAlignment
 
-    from castor.drawings.sheet import Lines, Shape
+    from castor.drawings.sheet import Arc, Lines, Shape
 
     for item in items:
         if isinstance(item, Lines):
-            weight = _weight(item.pen)
-            for (a, b) in sheet.to_metres(item.segments).tolist():
-                msp.add_line(a, b, dxfattribs={"layer": layer, "lineweight": weight})
+            attributes = {"layer": layer, "lineweight": _weight(item.pen)}
+            if item.dashed:
+                attributes["linetype"] = to.dashed
+            for (a, b) in to.points(item.segments).tolist():
+                msp.add_line(a, b, dxfattribs=attributes)
+        elif isinstance(item, Arc):
+            (x, y), = to.points(np.array([[item.x, item.y]])).tolist()
+            msp.add_arc((x, y), item.radius * to.unit, item.start, item.end,
+                        dxfattribs={"layer": layer, "lineweight": _weight(item.pen)})
         elif isinstance(item, Shape):
-            loops = [sheet.to_metres(loop) for loop in item.loops]
-            if item.fill not in (None, "white"):
+            loops = [to.points(loop) for loop in item.loops]
+            if item.pattern is not None:
+                _hatch(msp, to.unit, loops, item.pattern, layer)
+            elif item.fill not in (None, "white"):
                 hatch = msp.add_hatch(color=7, dxfattribs={"layer": layer})
                 for loop in loops:
                     hatch.paths.add_polyline_path([tuple(p) for p in loop.tolist()], is_closed=True)
@@ -80,12 +121,39 @@ def _sheet_items(msp, sheet, items, layer):
                 msp.add_lwpolyline([tuple(p) for p in loop.tolist()], close=item.closed,
                                    dxfattribs={"layer": layer, "lineweight": _weight(item.pen)})
         else:
-            (x, y), = sheet.to_metres(np.array([[item.x, item.y]])).tolist()
-            text = msp.add_text(item.text, height=item.size * 0.72 / sheet.mm,
+            (x, y), = to.points(np.array([[item.x, item.y]])).tolist()
+            text = msp.add_text(item.text, height=item.size * 0.72 * to.unit,
                                 rotation=item.angle, dxfattribs={"layer": layer})
             align = {"start": TextEntityAlignment.LEFT, "middle": TextEntityAlignment.CENTER,
                      "end": TextEntityAlignment.RIGHT}[item.anchor]
             text.set_placement((x, y), align=align)
+
+
+DASHED = "CASTOR_DASHED"
+
+
+def _linetypes(doc, mm: float, name: str = DASHED) -> str:
+    """ISO 128's dashed line at the printed size: DASH mm dashes, GAP mm gaps."""
+    from castor.drawings.sheet import DASH, GAP
+
+    k = 1 / mm
+    if name not in doc.linetypes:
+        doc.linetypes.add(name, pattern=[(DASH + GAP) * k, DASH * k, -GAP * k],
+                          description="Dashed __ __ __")
+    return name
+
+
+def _hatch(msp, unit: float, loops, pattern: str, layer: str) -> None:
+    """A region hatched with its pattern (castor.drawings.classes.HATCHES): a
+    real HATCH of that name, scaled so that its lines are as far apart on the
+    printed sheet as in the SVG and PDF."""
+    from castor.drawings.classes import HATCHES
+
+    _, period, base = HATCHES[pattern]
+    hatch = msp.add_hatch(color=7, dxfattribs={"layer": layer})
+    hatch.set_pattern_fill(pattern, color=7, scale=period * unit / base)
+    for loop in loops:
+        hatch.paths.add_polyline_path([tuple(p) for p in np.asarray(loop).tolist()], is_closed=True)
 
 
 def _tidy(value: float) -> float:
@@ -93,56 +161,97 @@ def _tidy(value: float) -> float:
     return round(float(value), 9) + 0.0
 
 
-def export_drawing(sheet) -> bytes:
-    """The sheet as a DXF (R2010) document's bytes."""
+def _document():
     import ezdxf
-
-    from castor.drawings.sheet import CUT_PEN, Lines
 
     doc = ezdxf.new("R2010")
     doc.units = ezdxf.units.M
     doc.header["$MEASUREMENT"] = 1  # metric
     doc.header["$LWDISPLAY"] = 1  # show lineweights
     doc.header["$INSUNITS"] = 6  # metres
-    msp = doc.modelspace()
+    return doc
+
+
+def _model(doc, msp, to: _To, paper_items: bool) -> None:
+    """One sheet's drawing in model space, in metres (shifted by ``to``): each
+    object a layer, its dimensions, levels and symbols; its paper's items
+    (border, title block, scale bar) too when ``paper_items``."""
+    from castor.drawings.sheet import CUT_PEN, Lines
+
+    sheet = to.sheet
     drawing = sheet.drawing
-    annotation = {"dimensions", "levels", "sheet"}
+    annotation = {"dimensions", "levels", "sheet", "symbols"}
     names = _layer_names([l.name for l in drawing.layers], annotation | {"ground"})
+    if drawing.symbols is not None:
+        to.dashed = _linetypes(doc, sheet.mm, to.dashed)
+
+    def outline(loop, name):
+        points = [tuple(p) for p in to.model(loop).tolist()]
+        msp.add_lwpolyline(points, close=True,
+                           dxfattribs={"layer": name, "lineweight": _weight(CUT_PEN)})
+        return points
+
     for layer, name in zip(drawing.layers, names):
-        doc.layers.add(name)
-        if layer.cuts:
+        if name not in doc.layers:
+            doc.layers.add(name)
+        if layer.regions is not None:
+            for region in layer.regions:
+                loops = [to.model(loop) for loop in region.loops]
+                if region.pattern == "SOLID":
+                    hatch = msp.add_hatch(color=8, dxfattribs={"layer": name})
+                    hatch.set_solid_fill(color=8)
+                    for loop in loops:
+                        hatch.paths.add_polyline_path([tuple(p) for p in loop.tolist()],
+                                                      is_closed=True)
+                else:
+                    _hatch(msp, 1 / sheet.mm, loops, region.pattern, name)
+                for loop in region.loops:
+                    outline(loop, name)
+        elif layer.cuts:
             hatch = msp.add_hatch(color=8, dxfattribs={"layer": name})
             hatch.set_solid_fill(color=8)
             for loop in layer.cuts:
-                points = [tuple(p) for p in loop.tolist()]
-                hatch.paths.add_polyline_path(points, is_closed=True)
-                msp.add_lwpolyline(points, close=True,
-                                   dxfattribs={"layer": name, "lineweight": _weight(CUT_PEN)})
+                hatch.paths.add_polyline_path(outline(loop, name), is_closed=True)
         pens = {item.kind: item.pen for group in sheet.layers for item in group.items
                 if isinstance(item, Lines)}
         for kind, mask in (("seen", ~layer.profile), ("profile", layer.profile)):
             weight = _weight(pens.get(kind, 0.18 if kind == "seen" else 0.35))
-            for (x0, y0), (x1, y1) in layer.lines[mask].tolist():
-                msp.add_line((x0, y0), (x1, y1), dxfattribs={"layer": name, "lineweight": weight})
+            for a, b in to.model(layer.lines[mask]).tolist():
+                msp.add_line(a, b, dxfattribs={"layer": name, "lineweight": weight})
     for group in sheet.layers[len(drawing.layers):]:  # the ground line
-        doc.layers.add(group.name)
-        _sheet_items(msp, sheet, group.items, group.name)
-    doc.layers.add("dimensions")
+        if group.name not in doc.layers:
+            doc.layers.add(group.name)
+        _sheet_items(msp, to, group.items, group.name)
+    if "dimensions" not in doc.layers:
+        doc.layers.add("dimensions")
+    style = None
     if sheet.dimensions:
-        _dimension_style(doc, sheet.mm)
+        style = _dimension_style(doc, sheet.mm, to.paper_style)
     for d in sheet.dimensions:
-        dim = msp.add_linear_dim(base=d.base, p1=d.p1, p2=d.p2, location=d.text_at, angle=d.angle,
+        dim = msp.add_linear_dim(base=to.point(d.base), p1=to.point(d.p1), p2=to.point(d.p2),
+                                 location=to.point(d.text_at), angle=d.angle,
                                  text="<>" if d.shown else " ",  # " ": no text (DXF's way)
-                                 dimstyle="CASTOR", override={"dimexo": d.offset},
+                                 dimstyle=style, override={"dimexo": d.offset},
                                  dxfattribs={"layer": "dimensions"})
         dim.render()
         # the measurement itself (group code 42), as CAD programs write it
         dim.dimension.dxf.actual_measurement = dim.dimension.get_measurement()
     for group in sheet.groups:
-        if group.name == "dimensions":
-            continue  # the DIMENSION entities stand for them
-        doc.layers.add(group.name)
-        _sheet_items(msp, sheet, group.items, group.name)
+        if group.name == "dimensions" or (group.name == "sheet" and not paper_items):
+            continue  # the DIMENSION entities stand for them; the paper is a layout's
+        if group.name not in doc.layers:
+            doc.layers.add(group.name)
+        _sheet_items(msp, to, group.items, group.name)
+
+
+def export_drawing(sheet) -> bytes:
+    """The sheet as a DXF (R2010) document's bytes: drawn in model space as it is
+    printed at its scale."""
+    doc = _document()
+    msp = doc.modelspace()
+    to = _To(sheet)
+    to.paper_style = "CASTOR"
+    _model(doc, msp, to, True)
     # the header's extents: the sheet's paper, in metres, to the nanometre (the
     # coordinates' last bits of rounding, -6.999999999999999, are no size)
     (x0, y0), (x1, y1) = sheet.to_metres(np.array([[0.0, 0.0], [sheet.width, sheet.height]])).tolist()
@@ -153,6 +262,80 @@ def export_drawing(sheet) -> bytes:
     return stream.getvalue().encode("utf-8")
 
 
+SPACING = 20.0  # paper mm between the sheets' drawings side by side in model space
+
+
+def export_set(drawing_set) -> bytes:
+    """A drawing set as one DXF: each sheet's drawing in model space, in metres,
+    side by side; each sheet a paper-space layout named after its number, its
+    border, title block, scale bar and legend in paper millimetres, and a
+    viewport that shows its drawing at the sheet's scale (so that a CAD program
+    plots the layout at 1:1 with the pens' true widths)."""
+    doc = _document()
+    msp = doc.modelspace()
+    shift = 0.0
+    used: set[str] = set()
+    for entry, sheet in zip(drawing_set.entries, drawing_set.sheets):
+        scale = sheet.drawing.scale
+        # the sheet's paper, in model metres, starts where the last one ended
+        (x0, _), (x1, _) = sheet.to_metres(np.array([[0.0, 0.0], [sheet.width, sheet.height]]))
+        left = min(x0, x1)
+        to = _To(sheet, shift - left, dashed=f"{DASHED}_{scale:g}")
+        to.paper_style = f"CASTOR_{scale:g}"
+        _model(doc, msp, to, False)
+        name = _layout_name(entry.number, used)
+        layout = doc.layouts.new(name)
+        layout.page_setup(size=(sheet.width, sheet.height), margins=(0, 0, 0, 0), units="mm")
+        paper = _To(sheet, paper=True, dashed=to.dashed)
+        for group in sheet.groups:
+            if group.name == "sheet":
+                if group.name not in doc.layers:
+                    doc.layers.add(group.name)
+                _sheet_items(layout, paper, group.items, group.name)
+        # the viewport: the whole paper inside the border, looking at the sheet's
+        # paper in model space at 1:N
+        centre_paper = (sheet.width / 2, sheet.height / 2)
+        (cx, cy), = to.points(np.array([[sheet.width / 2, sheet.height / 2]]))
+        viewport = layout.add_viewport(center=centre_paper, size=(sheet.width, sheet.height),
+                                       view_center_point=(float(cx), float(cy)),
+                                       view_height=sheet.height / sheet.mm)
+        viewport.dxf.status = 2
+        shift += (x1 - x0 if x1 > x0 else x0 - x1) + SPACING / sheet.mm
+    if "Layout1" in doc.layouts and len(drawing_set.sheets):
+        doc.layouts.delete("Layout1")  # ezdxf's own empty layout
+    stream = io.StringIO()
+    doc.write(stream)
+    return stream.getvalue().encode("utf-8")
+
+
+def _layout_name(number: str, used: set) -> str:
+    base = re.sub(r'[<>/\\":;?*|=`,\x00-\x1f]', "_", number).strip() or "Sheet"
+    name, n = base, 2
+    while name.lower() in used or name.lower() == "model":
+        name, n = f"{base}-{n}", n + 1
+    used.add(name.lower())
+    return name
+
+
+def patterned(product) -> bool:
+    from castor.formats.svg import patterned
+
+    return patterned(product)
+
+
 def write(sheet, info: WriteInfo) -> Iterator[bytes]:
-    """The registry's writer (castor.formats): the sheet as one piece."""
+    """The registry's writer (castor.formats): the sheet as one piece; a drawing
+    set (--sheets) as one document with a layout per sheet, or its first sheet
+    for a %d pattern."""
+    if hasattr(sheet, "sheets"):
+        if patterned(sheet):
+            return iter([export_drawing(sheet.sheets[0])])
+        return iter([export_set(sheet)])
     return iter([export_drawing(sheet)])
+
+
+def companions(product, info: WriteInfo) -> dict:
+    """A drawing set written to a %d pattern: the files of its other sheets."""
+    from castor.formats.svg import sheet_files
+
+    return sheet_files(product, export_drawing)

@@ -1,28 +1,24 @@
-"""IFC4 for BIM programs: the frame as a building model a coordinator opens.
+"""IFC4 for BIM programs: the frame as the building model a coordinator accepts.
 
-The spatial structure is the one every BIM program expects, and no more: an
-``IfcProject`` (the title; lengths in metres, so one scene unit is one metre)
-aggregates an ``IfcSite``, which aggregates an ``IfcBuilding``, which aggregates
-one ``IfcBuildingStorey`` at elevation 0; every object of the frame is one
-element contained in that storey, named after the object, of the class
-``--ifc-class NAME=CLASS`` gives (``IfcBuildingElementProxy`` otherwise), with
-the object's source ``FILE:LINE`` as its description.
+The model (castor.bim: storeys, elements, openings, spaces, quantities) is
+written with ifcopenshell's entity API as buildingSMART's IFC4 Reference View
+has it: ``IfcProject`` (lengths in metres: one scene unit is one metre) →
+``IfcSite`` → ``IfcBuilding`` → one ``IfcBuildingStorey`` per storey, placed at
+its level; every element contained in its storey, every space aggregated into
+it. An element is of its class (the annotation's, or --ifc-class's) and
+predefined type, named after its object, its ``Tag`` the annotation's quoted
+name, its description the annotation's followed by its ``FILE:LINE``. An
+opening is an ``IfcOpeningElement`` voiding its element and filled by its door
+or window; the element's body keeps the hole, as the Reference View wants (no
+boolean for a reader to do). Each body is one closed face set
+(castor.formats.ifc_body). Quantities are buildingSMART's base quantity sets,
+properties each class's common set with its ``Reference``; the frame's
+parameters are ``Castor_Parameters`` on the project.
 
-An element's body is castor's own convex polygons as ``IfcPolygonalFaceSet``s
-(no triangle added), counter-clockwise seen from outside as IFC wants. IFC
-colours a representation item through a styled item, never a single face, so
-an object of several colours is one face set per colour, all indexing one
-coordinate list: together they are the object's closed surface, and a face set
-is flagged ``Closed`` when it is that whole surface alone. There is one
-``IfcSurfaceStyle`` per colour of the file, named as the other formats name
-their materials. The frame's parameters are the property set
-``Castor_Parameters`` of the project; each element's volume and area (those of
-``--summary``) its quantity set ``Castor_Quantities``.
-
-Global ids are derived from the title and the names (not drawn at random), and
-the header's time stamp is fixed: the same scene gives the same file, and a
-model exported again keeps its elements' identities, so that a coordinator's
-comparison of two versions sees what changed.
+Global ids are derived from the title and the names (UUID 5), not drawn at
+random, and the header's time stamp is fixed: the same scene gives the same
+file, and a model exported again keeps its elements' identities, so that a
+coordinator's comparison of two versions sees what changed.
 
 ifcopenshell (about 200 MB) is imported here only, when an IFC file is made:
 ``pip install 'castor[ifc]'``.
@@ -30,19 +26,15 @@ ifcopenshell (about 200 MB) is imported here only, when an IFC file is made:
 
 from __future__ import annotations
 
-import os
 import uuid
 from typing import Iterator
 
-import numpy as np
-
-from castor.csg import tree
 from castor.formats import WriteInfo
+from castor.formats import ifc_body
+from castor.formats.ifc_body import Styles, face_set, true_corner_first  # noqa: F401
 from castor.formats.kinds import BuildingModel
-from castor.mesh.frame import Frame
 
 INSTALL = "pip install 'castor[ifc]'"
-DEFAULT_CLASS = "IfcBuildingElementProxy"
 
 # the IFC4 classes an object may take: the concrete subtypes of IfcElement that
 # are physical things (no feature or virtual element) and need nothing but a
@@ -117,8 +109,13 @@ def parse_classes_option(items: list[str]) -> tuple[tuple[str, str], ...]:
 def element_class(text: str) -> str:
     """The IFC class ``text`` names (``IfcWall``, ``ifcwall`` or ``wall``);
     ``ValueError`` with the message a usage error shows when it names none."""
+    from castor.bim.model import OUTSIDE_REFERENCE_VIEW
+
     key = text.strip().lower()
     found = _BY_KEY.get(key) or _BY_KEY.get("ifc" + key)
+    if found is None:  # kept as written: the model says what it writes instead
+        found = next((c for c in OUTSIDE_REFERENCE_VIEW if c.lower() in (key, "ifc" + key)),
+                     None)
     if found is None:
         raise ValueError(f"--ifc-class: '{text}' is not an IFC4 element class; use one of "
                          f"{', '.join(COMMON_CLASSES)} (or another subtype of IfcElement)")
@@ -140,45 +137,48 @@ def parse_ifc_classes(items: list[str]) -> dict[str, str]:
     return classes
 
 
-def default_title(frame: Frame) -> str:
-    """The title when --title gives none: the '>' object's name (the first
-    named one), else the scene file's name without its extension."""
-    import re
 
-    for obj in frame.objects:
-        if obj.name and not re.fullmatch(r"object\d+", obj.name):
-            return obj.name
-    file = frame.where.rpartition(":")[0] or frame.where
-    stem = os.path.splitext(os.path.basename(file))[0]
-    return stem if stem and stem != "<stdin>" else "castor"
-
-
-def export(scene: tree.FrameTree, frame: Frame, title: str | None = None,
-           classes: dict[str, str] | None = None) -> bytes:
-    """The frame as an IFC4 file (STEP physical file text): ``scene`` is its
-    evaluated CSG tree (the parameters, each object's source), ``frame`` its
-    polygons. ``classes`` maps an object's name to its IFC class
-    (``element_class``'s spelling)."""
-    return model(scene, frame, title, classes).to_string().encode("utf-8")
+# each class's common property set (IFC4's templates: tests/formats/test_ifc_coordinator.py)
+COMMON_PSETS = ("IfcWall", "IfcSlab", "IfcDoor", "IfcWindow", "IfcRoof", "IfcStair",
+                "IfcStairFlight", "IfcRamp", "IfcRampFlight", "IfcColumn", "IfcBeam",
+                "IfcMember", "IfcPlate", "IfcRailing", "IfcCovering", "IfcCurtainWall",
+                "IfcChimney", "IfcFooting", "IfcPile", "IfcShadingDevice",
+                "IfcBuildingElementProxy", "IfcElementAssembly", "IfcTransportElement",
+                "IfcCivilElement", "IfcSpace")
+_QUANTITY = {"length": "IfcQuantityLength", "area": "IfcQuantityArea",
+             "volume": "IfcQuantityVolume"}
 
 
-def model(scene: tree.FrameTree, frame: Frame, title: str | None = None,
-          classes: dict[str, str] | None = None):
-    """The frame as an ``ifcopenshell.file``: the header, the project and its
-    spatial structure, the parameters, then one element per object (in this
-    order: the entities' numbers follow it)."""
+def export(tree, frame, title: str | None = None, classes: dict[str, str] | None = None,
+           facetizer=None, warn=lambda message: None) -> bytes:
+    """The frame as an IFC4 file (STEP physical file text): ``frame_tree`` is its
+    evaluated CSG tree, ``frame`` its polygons (made by ``facetizer``, or a new
+    one). ``classes`` maps an object's name to its IFC class (--ifc-class)."""
+    from castor.bim import build
+
+    if facetizer is None:
+        from castor.mesh.facetize import Facetizer
+
+        facetizer = Facetizer()
+    building = build(tree, frame, facetizer, title, classes, warn)
+    return model(building).to_string().encode("utf-8")
+
+
+def model(building):
+    """The building model (castor.bim.Building) as an ``ifcopenshell.file``: the
+    header, the project and its spatial structure, the parameters, the elements
+    and their openings, the spaces (in this order: the entities' numbers follow it)."""
     import ifcopenshell
 
-    title = title or default_title(frame)  # an empty --title is no title
     f = ifcopenshell.file(schema="IFC4")
-    _header(f, title)
-    built = _Builder(f, title)
-    project, storey, storey_place, body = _structure(built, frame)
-    _parameters(built, scene, project)
-    elements = _elements(built, scene, frame, classes or {}, body, storey_place)
-    if elements:
-        built.create("IfcRelContainedInSpatialStructure", built.guid("contains", "storey"), None,
-                     None, None, elements, storey)
+    _header(f, building.title)
+    writer = _Writer(f, building)
+    project = writer.structure()
+    writer.parameters(project)
+    elements = [writer.element(part) for part in building.elements]
+    writer.openings(elements)
+    spaces = [writer.element(part) for part in building.spaces]
+    writer.relate(elements, spaces)
     return f
 
 
@@ -193,211 +193,184 @@ def _header(f, title: str) -> None:
     header.file_name.originating_system = f"castor {__version__}"
 
 
-class _Builder:
-    """The file being made, its entities' global ids (from the title and a key)
-    and the placement every entity shares."""
+class _Writer:
+    """The file being made: its entities' global ids (from the title and a key),
+    the placements of the storeys, the styles of the elements' colours."""
 
-    def __init__(self, f, title: str):
-        self.f, self.title, self.create = f, title, f.create_entity
+    def __init__(self, f, building):
+        from castor.formats._mesh import materials
+        from castor.mesh.frame import Frame
+
+        self.f, self.building, self.create = f, building, ifc_body.entity_maker(f)
         origin = self.create("IfcCartesianPoint", (0.0, 0.0, 0.0))
         self.axes = self.create("IfcAxis2Placement3D", origin, None, None)
+        table, self.material_of = materials(Frame(building.number, building.where,
+                                                  [p.solid for p in building.elements]))
+        self.styles = Styles(f, table, self.create)
+        self.attributes: dict[str, set[str]] = {}
+        self.placed: dict[int, tuple] = {}  # id of an element's entity -> (placement, level)
 
     def guid(self, *key: str) -> str:
         import ifcopenshell.guid
 
         return ifcopenshell.guid.compress(
-            uuid.uuid5(_GUID_SPACE, "\0".join((self.title,) + key)).hex)
+            uuid.uuid5(_GUID_SPACE, "\0".join((self.building.title,) + key)).hex)
 
-    def placement(self, relative_to=None):
-        return self.create("IfcLocalPlacement", relative_to, self.axes)
+    def placement(self, relative_to=None, level: float = 0.0):
+        axes = self.axes if level == 0 else self.create(
+            "IfcAxis2Placement3D", self.create("IfcCartesianPoint", (0.0, 0.0, float(level))),
+            None, None)
+        return self.create("IfcLocalPlacement", relative_to, axes)
 
+    def has(self, cls: str, attribute: str) -> bool:
+        if cls not in self.attributes:
+            import ifcopenshell.ifcopenshell_wrapper as wrapper
 
-def _structure(built: _Builder, frame: Frame):
-    """The project (its units and context), its site, building and one storey:
-    (project, storey, the storey's placement, the body's representation context)."""
-    create, guid = built.create, built.guid
-    context = create("IfcGeometricRepresentationContext", None, "Model", 3, 1e-5, built.axes,
-                     create("IfcDirection", (0.0, 1.0)))  # north is +y
-    body = create("IfcGeometricRepresentationSubContext", "Body", "Model", None, None, None,
-                  None, context, None, "MODEL_VIEW", None)
-    units = create("IfcUnitAssignment", [
-        create("IfcSIUnit", None, "LENGTHUNIT", None, "METRE"),
-        create("IfcSIUnit", None, "AREAUNIT", None, "SQUARE_METRE"),
-        create("IfcSIUnit", None, "VOLUMEUNIT", None, "CUBIC_METRE"),
-        create("IfcSIUnit", None, "PLANEANGLEUNIT", None, "RADIAN")])
-    project = create("IfcProject", guid("project"), None, built.title,
-                     f"castor frame {frame.number}, {frame.where}", None, None, None,
-                     [context], units)
-    site_place = built.placement()
-    building_place = built.placement(site_place)
-    storey_place = built.placement(building_place)
-    site = create("IfcSite", guid("site"), None, "Site", None, None, site_place, None, None,
-                  "ELEMENT")
-    building = create("IfcBuilding", guid("building"), None, "Building", None, None,
-                      building_place, None, None, "ELEMENT")
-    storey = create("IfcBuildingStorey", guid("storey"), None, "Level 0", None, None,
-                    storey_place, None, None, "ELEMENT", 0.0)
-    for whole, part in ((project, site), (site, building), (building, storey)):
-        create("IfcRelAggregates", guid("aggregates", whole.Name or "", part.Name),
-               None, None, None, whole, [part])
-    return project, storey, storey_place, body
+            declaration = wrapper.schema_by_name("IFC4").declaration_by_name(cls)
+            self.attributes[cls] = {a.name() for a in declaration.all_attributes()}
+        return attribute in self.attributes[cls]
 
+    def structure(self):
+        """The project (its units and context), its site, building and storeys."""
+        create, guid, building = self.create, self.guid, self.building
+        context = create("IfcGeometricRepresentationContext", None, "Model", 3, 1e-5, self.axes,
+                         create("IfcDirection", (0.0, 1.0)))  # north is +y
+        self.body = create("IfcGeometricRepresentationSubContext", "Body", "Model", None, None,
+                           None, None, context, None, "MODEL_VIEW", None)
+        units = create("IfcUnitAssignment", [
+            create("IfcSIUnit", None, "LENGTHUNIT", None, "METRE"),
+            create("IfcSIUnit", None, "AREAUNIT", None, "SQUARE_METRE"),
+            create("IfcSIUnit", None, "VOLUMEUNIT", None, "CUBIC_METRE"),
+            create("IfcSIUnit", None, "PLANEANGLEUNIT", None, "RADIAN")])
+        project = create("IfcProject", guid("project"), None, building.title,
+                         f"castor frame {building.number}, {building.where}", None, None, None,
+                         [context], units)
+        site_place = self.placement()
+        building_place = self.placement(site_place)
+        site = create("IfcSite", guid("site"), None, "Site", None, None, site_place, None, None,
+                      "ELEMENT")
+        whole = create("IfcBuilding", guid("building"), None, "Building", None, None,
+                       building_place, None, None, "ELEMENT")
+        self.storeys = []
+        for storey in building.storeys:
+            place = self.placement(building_place, storey.level)
+            self.storeys.append((create(
+                "IfcBuildingStorey", guid("storey", storey.name), None, storey.name, None, None,
+                place, None, storey.name, "ELEMENT", float(storey.level)), place, storey.level))
+        for parent, parts in ((project, [site]), (site, [whole]),
+                              (whole, [s for s, _, _ in self.storeys])):
+            create("IfcRelAggregates", guid("aggregates", parent.Name or ""), None, None, None,
+                   parent, parts)
+        return project
 
-def _parameters(built: _Builder, scene: tree.FrameTree, project) -> None:
-    """The frame's parameters: the project's property set Castor_Parameters."""
-    create = built.create
-    parameters = [create("IfcPropertySingleValue", name, None,
-                         create("IfcReal", float(value)), None)
-                  for name, value in scene.parameters]
-    if parameters:
-        pset = create("IfcPropertySet", built.guid("Castor_Parameters"), None,
-                      "Castor_Parameters",
-                      "the parameter values in force at the frame's '>' command", parameters)
-        create("IfcRelDefinesByProperties", built.guid("defines", "Castor_Parameters"), None,
-               None, None, [project], pset)
+    def parameters(self, project) -> None:
+        """The frame's parameters: the project's property set Castor_Parameters."""
+        create = self.create
+        parameters = [create("IfcPropertySingleValue", name, None,
+                             create("IfcReal", float(value)), None)
+                      for name, value in self.building.parameters]
+        if parameters:
+            pset = create("IfcPropertySet", self.guid("Castor_Parameters"), None,
+                          "Castor_Parameters",
+                          "the parameter values in force at the frame's '>' command", parameters)
+            create("IfcRelDefinesByProperties", self.guid("defines", "Castor_Parameters"), None,
+                   None, None, [project], pset)
 
+    def shape(self, solid, shift: float, material=None):
+        item = face_set(self.f, solid, shift, material, self.styles)
+        return self.create("IfcProductDefinitionShape", None, None, [
+            self.create("IfcShapeRepresentation", self.body, "Body", "Tessellation", [item])])
 
-def _elements(built: _Builder, scene: tree.FrameTree, frame: Frame, classes: dict[str, str],
-              body, storey_place) -> list:
-    """One element per object with polygons: its body in its colours, its class,
-    its quantities (those of --summary)."""
-    from castor.formats._mesh import materials, object_names
-    from castor.quantities import object_figures
+    def element(self, part):
+        """An element or a space: its entity, body, quantities and common properties."""
+        _, storey_place, level = self.storeys[part.storey]
+        cls = part.ifc_class
+        number = len(self.placed)
+        material = self.material_of[number] if number < len(self.material_of) else None
+        place = self.placement(storey_place)
+        values = dict(GlobalId=self.guid(*part.key.split("\0")), Name=part.name,
+                      Description=part.description, ObjectPlacement=place,
+                      Representation=self.shape(part.solid, level, material))
+        values.update(self.typed(cls, part))
+        entity = self.create(cls, **values)
+        self.placed[entity.id()] = (place, level)
+        for qto in part.quantities:
+            self.quantities(entity, part.key, qto)
+        if cls in COMMON_PSETS:
+            self.properties(entity, part.key, f"Pset_{cls[3:]}Common", {"Reference": part.name})
+        return entity
 
-    create, guid = built.create, built.guid
-    table, material_of = materials(frame)
-    styles: dict[int, object] = {}  # frame material -> IfcSurfaceStyle
+    def typed(self, cls: str, part) -> dict:
+        """The attributes of the element's class: predefined type, long name,
+        a door's or window's size and a door's hinge."""
+        values = {}
+        if self.has(cls, "PredefinedType"):
+            values["PredefinedType"] = (part.predefined or "notdefined").upper()
+            if part.predefined == "userdefined":
+                values["ObjectType"] = part.long_name or part.name
+        if part.long_name:
+            values["LongName" if self.has(cls, "LongName") else "Tag"] = part.long_name
+        if cls == "IfcSpace":
+            values["CompositionType"] = "ELEMENT"
+        if part.size is not None and self.has(cls, "OverallWidth"):
+            values["OverallWidth"], values["OverallHeight"] = map(float, part.size)
+        if cls == "IfcDoor":
+            hinge = dict(part.settings).get("hinge", "left")
+            values["OperationType"] = f"SINGLE_SWING_{hinge.upper()}"
+        return values
 
-    def style(m: int):
-        if m not in styles:
-            r, g, b = table[m].colour
-            shading = create("IfcSurfaceStyleShading",
-                             create("IfcColourRgb", None, float(r), float(g), float(b)), 0.0)
-            # both sides: a section box shows the inside faces in the same colour
-            styles[m] = create("IfcSurfaceStyle", table[m].name, "BOTH", [shading])
-        return styles[m]
+    def quantities(self, entity, key: str, qto) -> None:
+        create = self.create
+        listed = []
+        for q in qto.quantities:
+            kind = _QUANTITY[q.kind]
+            listed.append(create(kind, q.name, None, None, float(q.value), None))
+        method = None if qto.name.startswith("Castor") else "BaseQuantities"
+        quantities = create("IfcElementQuantity", self.guid(qto.name, key), None, qto.name,
+                            "exact, from castor's solids", method, listed)
+        create("IfcRelDefinesByProperties", self.guid("defines", qto.name, key), None, None,
+               None, [entity], quantities)
 
-    elements = []
-    for obj, source, name, material in zip(frame.objects, scene.objects, object_names(frame),
-                                           material_of):
-        if obj.polygon_count == 0:
-            continue  # nothing to show: an element without a body helps no one
-        items = _face_sets(built.f, obj, material, style)
-        shape = create("IfcProductDefinitionShape", None, None, [
-            create("IfcShapeRepresentation", body, "Body", "Tessellation", items)])
-        cls = classes.get(obj.name) or classes.get(name) or _annotated(scene, source) \
-            or DEFAULT_CLASS
-        element = create(cls, guid("element", name), None, name, source.where or frame.where,
-                         None, built.placement(storey_place), shape, None)
-        elements.append(element)
-        figures = object_figures(obj, name)
-        quantities = create("IfcElementQuantity", guid("quantities", name), None,
-                            "Castor_Quantities", "of castor's polygons, as --summary gives",
-                            "castor", [
-                                create("IfcQuantityVolume", "Volume", None, None,
-                                       max(figures.volume, 0.0), None),
-                                create("IfcQuantityArea", "SurfaceArea", None, None,
-                                       figures.area, None)])
-        create("IfcRelDefinesByProperties", guid("defines", "Castor_Quantities", name), None,
-               None, None, [element], quantities)
-    return elements
+    def properties(self, entity, key: str, name: str, values: dict) -> None:
+        create = self.create
+        pset = create("IfcPropertySet", self.guid(name, key), None, name, None, [
+            create("IfcPropertySingleValue", k, None, create("IfcIdentifier", v), None)
+            for k, v in values.items()])
+        create("IfcRelDefinesByProperties", self.guid("defines", name, key), None, None, None,
+               [entity], pset)
 
+    def openings(self, elements: list) -> None:
+        """Each opening voiding its host (placed relative to it), filled by its
+        door or window."""
+        create, guid = self.create, self.guid
+        for void in self.building.openings:
+            host = elements[void.host]
+            host_place, level = self.placed[host.id()]
+            key = void.key.split("\0")
+            opening = create("IfcOpeningElement", guid(*key), None, f"{void.name} opening",
+                             None, None, self.placement(host_place),
+                             self.shape(void.solid, level), None, "OPENING")
+            create("IfcRelVoidsElement", guid("voids", *key), None, None, None, host, opening)
+            self.properties(opening, void.key, "Pset_OpeningElementCommon",
+                            {"Reference": void.name})
+            if void.filler is not None:
+                create("IfcRelFillsElement", guid("fills", *key), None, None, None, opening,
+                       elements[void.filler])
 
-def _annotated(scene: tree.FrameTree, source: tree.Object) -> str | None:
-    """The class an annotation gives the '>' object itself (LANGUAGE.md §11);
-    --ifc-class overrides it. (The elements inside it are the BIM handover's.)"""
-    root = source.root
-    if scene.classes is None or not isinstance(root, tree.Use):
-        return None
-    mark = scene.classes.of(root.shared.location)
-    return None if mark is None or mark.ifc_class not in ELEMENT_CLASSES else mark.ifc_class
-
-
-def _face_sets(f, obj, material: np.ndarray, style) -> list:
-    """The object's polygons as one IfcPolygonalFaceSet per colour, styled,
-    sharing one coordinate list; each polygon keeps its vertices (1-based)."""
-    create = f.create_entity
-    coordinates = create("IfcCartesianPointList3D", obj.vertices.tolist())
-    sizes = np.diff(obj.offsets)
-    ones = true_corner_first(obj.vertices, obj.offsets, obj.indices) + 1  # IFC counts from 1
-    colours = np.unique(material)
-    items = []
-    for m in colours.tolist():
-        chosen = np.flatnonzero(material == m)
-        faces = _faces(f, ones, obj.offsets, sizes, chosen)
-        face_set = create("IfcPolygonalFaceSet", coordinates, len(colours) == 1, faces, None)
-        create("IfcStyledItem", face_set, [style(m)], None)
-        items.append(face_set)
-    return items
-
-
-def true_corner_first(vertices: np.ndarray, offsets: np.ndarray,
-                      indices: np.ndarray) -> np.ndarray:
-    """The polygons' vertex numbers, each polygon turned (same vertices, same
-    order) so that its first three vertices make a true corner.
-
-    A castor polygon may have a straight corner, a vertex in the middle of an
-    edge that a neighbour ends at. A reader that takes a face's plane from its
-    first three vertices (a common shortcut) finds one this way."""
-    if len(indices) == 0:
-        return indices
-    from castor.formats._mesh import corner_turns
-
-    sizes = np.diff(offsets)
-    starts = offsets[:-1]
-    following, turn, lengths = corner_turns(vertices, offsets, indices)
-    true = turn > 1e-9 * lengths
-    position = np.arange(len(indices))
-    ready = true[following[starts]]  # the second vertex is a true corner already
-    if ready.all():
-        return indices
-    # the first true corner of each polygon (its second vertex if none is)
-    first = np.minimum.reduceat(np.where(true, position, len(indices)), starts)
-    first = np.where((first < offsets[1:]) & ~ready, first, starts + 1)
-    shift = np.repeat((first - starts - 1) % sizes, sizes)
-    local = position - np.repeat(starts, sizes)
-    return indices[np.repeat(starts, sizes) + (local + shift) % np.repeat(sizes, sizes)]
-
-
-def _faces(f, ones: np.ndarray, offsets: np.ndarray, sizes: np.ndarray,
-           chosen: np.ndarray) -> list:
-    """An IfcIndexedPolygonalFace for each chosen polygon: the vertex tuples are cut
-    from one list, a size at a time, so that Python makes no slice per polygon."""
-    faces = [None] * len(chosen)
-    chosen_sizes = sizes[chosen]
-    make = _face_maker(f)
-    for size in np.unique(chosen_sizes).tolist():
-        which = np.flatnonzero(chosen_sizes == size)
-        starts = offsets[chosen[which]]
-        rows = ones[starts[:, None] + np.arange(size)].tolist()
-        for place, row in zip(which.tolist(), rows):
-            faces[place] = make(row)
-    return faces
-
-
-def _face_maker(f):
-    """A function from a polygon's vertex numbers to a new IfcIndexedPolygonalFace.
-
-    ``create_entity`` spends three quarters of its time in Python (argument
-    checks, the undo journal); a face has one attribute, set here through the
-    two calls ``create_entity`` ends in (the same entity, the same file), which
-    is about three times as fast. Where an ifcopenshell lacks them, the public
-    call is used."""
-    import ifcopenshell
-
-    create = getattr(f, "create", None)
-    if (create is None or getattr(f, "transaction", None) is not None
-            or not hasattr(ifcopenshell.entity_instance, "set_attribute_value_py")):
-        return lambda row: f.create_entity("IfcIndexedPolygonalFace", row)
-
-    def make(row):
-        face = create("IfcIndexedPolygonalFace", -1)
-        face.set_attribute_value_py(0, row)
-        return face
-    return make
+    def relate(self, elements: list, spaces: list) -> None:
+        """Each storey contains its elements and aggregates its spaces."""
+        create, guid = self.create, self.guid
+        for k, (storey, _, _) in enumerate(self.storeys):
+            mine = [e for e, p in zip(elements, self.building.elements) if p.storey == k]
+            if mine:
+                create("IfcRelContainedInSpatialStructure", guid("contains", storey.Name),
+                       None, None, None, mine, storey)
+            rooms = [s for s, p in zip(spaces, self.building.spaces) if p.storey == k]
+            if rooms:
+                create("IfcRelAggregates", guid("aggregates", "spaces", storey.Name), None,
+                       None, None, storey, rooms)
 
 
 def write(building: BuildingModel, info: WriteInfo) -> Iterator[bytes]:
-    """The registry's writer (castor.formats): the building model as an IFC4 file,
-    titled by --title, of the classes --ifc-class gives."""
-    return iter([export(building.tree, building.frame, building.title, building.classes)])
+    """The registry's writer (castor.formats): the building model as an IFC4 file."""
+    return iter([model(building.building).to_string().encode("utf-8")])

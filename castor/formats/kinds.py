@@ -27,13 +27,11 @@ class Framing(NamedTuple):
 
 
 class BuildingModel(NamedTuple):
-    """What a building model's formats write: the frame's tree (its parameters,
-    each object's source), its polygons, the title and each object's class."""
+    """What a building model's formats write: the frame's storeys, elements,
+    openings and spaces (castor.bim.Building), made from its tree and polygons
+    with the title and each object's class (--ifc-class)."""
 
-    tree: object  # castor.csg.tree.FrameTree
-    frame: object  # castor.mesh.frame.Frame
-    title: str | None  # --title (None: the format's default)
-    classes: dict  # object name -> its class (--ifc-class)
+    building: object  # castor.bim.Building
 
 
 class Kind:
@@ -123,10 +121,16 @@ class Polygons(Kind):
     def __init__(self, name: str, plural: str, streamed: bool = False):
         self.name, self.plural, self.streamed = name, plural, streamed
 
+    options = ("--pixel-error",)
+
     def make(self, tree, settings, chosen, made):
         # a file of triangles skips merging them into polygons, unless the take-off
         # counts the frame's polygons
         merge = chosen is None or not chosen.triangles_only or settings.output.summary
+        if settings.mesh.pixel_error is not None:  # facets sized to the screen
+            from castor.mesh.screen import sized_to_screen
+
+            tree = sized_to_screen(tree, settings.picture, settings.mesh.pixel_error)
         frame, facetizer = _polygons(tree, settings, made, merge)
         _figures(settings, made, frame, facetizer, tree)
         return frame
@@ -183,38 +187,57 @@ class Drawings(Kind):
     """A plan, section or elevation laid on its sheet (castor.drawings)."""
 
     name, plural = "drawing", "drawings"
-    options = ("--view", "--section", "--scale", "--sheet", "--title")
+    options = ("--view", "--section", "--scale", "--sheet", "--title", "--project", "--number",
+               "--revision", "--drawn", "--checked", "--sheets")
 
     def make(self, tree, settings, chosen, made):
         from castor.drawings import sheet_of
 
         frame, facetizer = _polygons(tree, settings, made)
-        sheet = sheet_of(tree, frame, settings.drawing, settings.output.title,
-                         lambda message: made.warnings.append((message, tree.location)))
+        warn = lambda message: made.warnings.append((message, tree.location))  # noqa: E731
+        if settings.drawing.register is not None:
+            from castor.drawings import set_of
+
+            sheet = set_of(tree, frame, settings.drawing, settings.output.title, warn,
+                           facetizer, settings.output.target)
+        else:
+            sheet = sheet_of(tree, frame, settings.drawing, settings.output.title, warn,
+                             facetizer)
         _figures(settings, made, frame, facetizer, tree)
         return sheet
 
 
 class BuildingModels(Kind):
-    """A building model: one element per object, of the class --ifc-class gives."""
+    """A building model (castor.bim): storeys, the elements of the classes the
+    annotations (or --ifc-class) give, openings filled by doors and windows, spaces."""
 
     name, plural = "bim", "building models"
     options = ("--title", "--ifc-class")
 
     def make(self, tree, settings, chosen, made):
+        from castor.bim import build
+
         frame, facetizer = _polygons(tree, settings, made)
-        model = BuildingModel(tree, frame, settings.output.title, dict(settings.bim.classes))
+        building = build(tree, frame, facetizer, settings.output.title,
+                         dict(settings.bim.classes),
+                         lambda message: made.warnings.append((message, tree.location)))
         _figures(settings, made, frame, facetizer, tree)
-        return model
+        return BuildingModel(building)
 
     def after_run(self, settings, objects: set[str]) -> list[str]:
         """An --ifc-class NAME=CLASS whose NAME is no object of the scene gives no
-        element its class: most likely a typo."""
+        element its class: most likely a typo; a CLASS the Reference View leaves
+        out is written as the class it has instead."""
+        from castor.bim.model import OUTSIDE_REFERENCE_VIEW
         from castor.language.parse import suggestion
 
-        return [f"--ifc-class {name}: the scene has no object '{name}', so nothing is made "
+        said = [f"--ifc-class {name}: the scene has no object '{name}', so nothing is made "
                 f"an {cls}{suggestion(name, objects)}"
                 for name, cls in settings.bim.classes if name not in objects]
+        return said + [f"--ifc-class {name}={cls}: buildingSMART's IFC4 Reference View has no "
+                       f"{cls} (it implies material layers or a parametric shape); '{name}' is "
+                       f"written as an {OUTSIDE_REFERENCE_VIEW[cls]}"
+                       for name, cls in settings.bim.classes if cls in OUTSIDE_REFERENCE_VIEW]
 
 
 STREAM = Polygons("stream", "the polygon stream", streamed=True)

@@ -20,9 +20,13 @@ from __future__ import annotations
 
 import math
 import re
+from typing import TYPE_CHECKING
 from dataclasses import dataclass, field
 
 from castor.diagnostics import Location
+
+if TYPE_CHECKING:  # the classes' reader imports this module's comment finder
+    from castor.language.classes import Classification, Problem
 
 HIDDEN = "Hidden"
 
@@ -423,3 +427,30 @@ def annotate(definitions, source_text) -> tuple[list[Parameter], list[Malformed]
                                     expression_text(lines, location.line, location.column),
                                     location, group, annotation, storey))
     return parameters, warnings
+
+
+def object_classes(definitions, line_of) -> list[tuple[str, Location, Classification | None,
+                                                       Problem | None]]:
+    """The class of each object definition of a scene, for an editor (hover,
+    outline, completion, warnings as you type): ``definitions`` are (name,
+    location of the name) of the object definitions, ``line_of(file, number)``
+    a line's text as written. Only the definitions with a bracketed annotation
+    are listed, with what it says or what is wrong with it."""
+    from castor.language.classes import Problem, read_object_annotation
+
+    found = []
+    for name, location in definitions:
+        comment = definition_comment(line_of, location)
+        if comment is None or not comment[0].lstrip().startswith("["):
+            continue
+        text, at, crowded = comment
+        if crowded:
+            lead = len(text) - len(text.lstrip())
+            found.append((name, location, None, Problem(
+                f"annotation: this line holds more than one statement, so the annotation does "
+                f"not say which it is for; put the definition of '{name}' on a line of its own",
+                at._replace(column=at.column + lead))))
+            continue
+        classification, problem = read_object_annotation(text, at)
+        found.append((name, location, classification, problem))
+    return found

@@ -329,30 +329,3 @@ def read_parameter_annotation(name: str, text: str, location: Location) -> tuple
     return None, Problem(f"annotation: unknown word '{head}' in a parameter's annotation"
                          f"{_closest(head, [STOREY])}; write [MIN:MAX], [A, B, C] or "
                          f"[storey \"Name\"]", at)
-
-
-def object_classes(definitions, line_of) -> list[tuple[str, Location, Classification | None,
-                                                       Problem | None]]:
-    """The class of each object definition of a scene, for an editor (hover,
-    outline, completion, warnings as you type): ``definitions`` are (name,
-    location of the name) of the object definitions, ``line_of(file, number)``
-    a line's text as written. Only the definitions with a bracketed annotation
-    are listed, with what it says or what is wrong with it."""
-    from castor.language.annotations import definition_comment
-
-    found = []
-    for name, location in definitions:
-        comment = definition_comment(line_of, location)
-        if comment is None or not comment[0].lstrip().startswith("["):
-            continue
-        text, at, crowded = comment
-        if crowded:
-            lead = len(text) - len(text.lstrip())
-            found.append((name, location, None, Problem(
-                f"annotation: this line holds more than one statement, so the annotation does "
-                f"not say which it is for; put the definition of '{name}' on a line of its own",
-                at._replace(column=at.column + lead))))
-            continue
-        classification, problem = read_object_annotation(text, at)
-        found.append((name, location, classification, problem))
-    return found

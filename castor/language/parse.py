@@ -15,14 +15,17 @@ import threading
 from functools import lru_cache
 from typing import Iterator
 
+from castor.booleans import BOOLEANS
 from castor.diagnostics import (ArgumentCountError, CastorError, EvaluationError, LimitError,
                                 Location, SceneError, UndefinedObject)
 from castor.language.expressions import FUNCTIONS, arity_message, evaluate
 from castor.language.lalr import Failed, Token
 from castor.language.reader import Chunk
-from castor.language.vocabulary import PRIMITIVES, TRANSFORMS
-from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, Facetize, NamedNode, Number, ObjectDef, Param,
-                    ParamDef, PrimitiveNode, Repeat, Step, Tables, TransformedNode, Unary)
+from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, FrameCommand, NamedNode,
+                                   Number, ObjectDef, Param, ParamDef, PrimitiveNode, Repeat,
+                                   Step, Tables, TransformedNode, Unary, UndefinedReference)
+from castor.primitives import PRIMITIVES
+from castor.transformations import TRANSFORMS
 
 # how many arguments each primitive takes (without coordinate pairs)
 _COUNTS = {name: declared.count for name, declared in PRIMITIVES.items()}
@@ -134,7 +137,7 @@ class Builder:
         mark, rest = children[0], children[1:]
         repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
         objects = rest[1:] if repeat else rest
-        return self._statement(Facetize(tuple(objects), repeat, self._at(mark)))
+        return self._statement(FrameCommand(tuple(objects), repeat, self._at(mark)))
 
     def program(self, children):
         return None
@@ -204,10 +207,10 @@ class Builder:
         repeat = rest[0] if rest and isinstance(rest[0], Repeat) else None
         operands = rest[1:] if repeat else rest
         op = token[1:]
-        if op not in ("U", "I", "D"):
-            self.faults.append(SceneError(
-                f"unknown boolean operator '{token}' (known: $U union, $I intersection, $D difference)",
-                location))
+        if op not in BOOLEANS:
+            known = ", ".join(f"${name} {meaning}" for name, meaning in BOOLEANS.items())
+            self.faults.append(SceneError(f"unknown boolean operator '{token}' (known: {known})",
+                                          location))
         elif op == "D" and repeat is not None:
             self.faults.append(SceneError(
                 "'$D' cannot repeat; subtract a repeated union instead: $D(a, $U[I = ...](b))", location))
@@ -238,7 +241,7 @@ class Builder:
                 hint = _suggest(name, self.tables.objects)
                 self.faults.append(UndefinedObject(f"object '{name}' is not defined{hint}",
                                                    location, name))
-            return PrimitiveNode("cu", (), location)  # placeholder; the statement is dropped
+            return UndefinedReference(name, location)  # the statement is dropped
         return node
 
     def repeat(self, children):
@@ -385,7 +388,7 @@ class Parser:
         """Every parameter name the statements parsed so far assign or use."""
         return set(self.param_sets)
 
-    def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | Facetize | CastorError"]:
+    def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | FrameCommand | CastorError"]:
         """Parse one chunk. A missing ';' is reported, the statement is taken as if it
         were there, and parsing resumes with the next line."""
         parser = self._ready()

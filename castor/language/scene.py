@@ -178,6 +178,21 @@ class NamedNode(Identified):
 SceneNode = PrimitiveNode | TransformedNode | BooleanNode | NamedNode
 
 
+class UndefinedReference(Identified):
+    """Where a statement names an object that is not defined. The parser has
+    reported it; the node stands in the graph only so that the rest of the
+    statement is built and checked (its other faults reported with it), and
+    the statement is dropped: no stage ever evaluates it."""
+
+    __slots__ = ("name", "location", "params", "depth")
+
+    def __init__(self, name: str, location: Location):
+        self.name = name
+        self.location = location
+        self.params = EMPTY
+        self.depth = 1
+
+
 # --- statements ------------------------------------------------------------
 
 
@@ -199,7 +214,12 @@ class ObjectDef(Record):
         self.location = location
 
 
-class Facetize(Record):
+class FrameCommand(Record):
+    """A '>' command (LANGUAGE.md §3): its objects, evaluated with the parameters
+    in force, make one frame, or one for each value of its repetition; what a
+    frame becomes (polygons, a picture, a drawing, a building model) the output
+    says, not the command."""
+
     __slots__ = ("objects", "repeat", "location")
 
     def __init__(self, objects: tuple[SceneNode, ...], repeat: Repeat | None, location: Location):
@@ -208,7 +228,7 @@ class Facetize(Record):
         self.location = location
 
 
-Statement = ParamDef | ObjectDef | Facetize
+Statement = ParamDef | ObjectDef | FrameCommand
 
 
 class Tables:

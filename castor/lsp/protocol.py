@@ -24,6 +24,7 @@ from castor.analysis.classes import ANNOTATION_TRIGGERS
 from castor.analysis.documents import Document, Documents
 from castor.analysis.scene import object_figures, shown_name
 from castor.diagnostics import Location
+from castor.lsp.editing import EditingFeatures
 
 FIRST_ANALYSIS_SECONDS = 15.0
 
@@ -100,8 +101,8 @@ def _nowhere() -> types.Range:
                        end=types.Position(line=0, character=1))
 
 
-class CastorServer(LanguageServer):
-    """castor's language server."""
+class CastorServer(EditingFeatures, LanguageServer):
+    """castor's language server (its editing on screen: castor.lsp.editing)."""
 
     def __init__(self):
         from castor import __version__
@@ -129,6 +130,7 @@ class CastorServer(LanguageServer):
                 (types.TEXT_DOCUMENT_DOCUMENT_SYMBOL, self.document_symbol, None),
                 (types.SHUTDOWN, self.on_shutdown, None)]:
             self.feature(method, options)(_function(handler))
+        self._register_editing()
 
     # --- the session
     def initialize(self, params: types.InitializeParams) -> None:
@@ -140,6 +142,7 @@ class CastorServer(LanguageServer):
 
     def on_shutdown(self, params) -> None:
         self.documents.stop()
+        self.stop_preview()
 
     # --- the buffers
     def did_open(self, params: types.DidOpenTextDocumentParams) -> None:
@@ -162,6 +165,7 @@ class CastorServer(LanguageServer):
         if self.event_loop is None:
             self.event_loop = asyncio.get_event_loop()
         document, problem = self.documents.opened(uri, path_of(uri), version, text, opening)
+        self.preview_follows(document)
         if problem is None:
             return
         document.analysed = True

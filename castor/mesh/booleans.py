@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from castor.mesh import adapter
+from castor.mesh import adapter, keys
 from castor.mesh.arrays import row_hash, shared_across
 from castor.mesh.broadphase import apart, overlap_groups
 from castor.mesh.caches import PROCESS
@@ -172,24 +172,43 @@ def union(solids: list[Solid], counter: Counter) -> Solid:
 def _union(solids: list[Solid], counter: Counter) -> Solid:
     """The union of operands whose twins are told apart."""
     parts = [part for s in solids for part in s.parts]
+    known = [s.key(i) for s in solids for i in range(len(s.parts))]
     fill_boxes(parts)
     boxes = np.array([part.bounding_box() for part in parts], dtype=np.float64).reshape(-1, 2, 3)
     origins = merged_origins(solids)
-    result, result_boxes = [], []
+    result, result_boxes, result_keys = [], [], []
     for group in overlap_groups(boxes):
         if len(group) == 1:
             result.append(parts[group[0]])
             result_boxes.append(boxes[group[0]])
-        else:
-            counter.booleans += 1
-            operands = _distinct([in_engine(parts[i]) for i in group])
-            united = regular(_united(operands))
-            if all(type(parts[i]) is Placed for i in group) and not planes_meet(
-                    [parts[i] for i in group]):
-                mark_plain(united)
-            result.append(united)
-            result_boxes.append(np.array([boxes[group, 0].min(axis=0), boxes[group, 1].max(axis=0)]))
-    return of_parts(_fewer_parts(result, np.array(result_boxes)), origins)
+            result_keys.append(known[group[0]])
+            continue
+        key = keys.derived(b"U", [known[i] for i in group])
+        united = _reused(key, lambda: regular(_united(_distinct(
+            [in_engine(parts[i]) for i in group]))), counter)
+        if all(type(parts[i]) is Placed for i in group) and not planes_meet(
+                [parts[i] for i in group]):
+            mark_plain(united)
+        result.append(united)
+        result_boxes.append(np.array([boxes[group, 0].min(axis=0), boxes[group, 1].max(axis=0)]))
+        result_keys.append(key)
+    fewer = _fewer_parts(result, np.array(result_boxes))
+    return of_parts(fewer, origins, result_keys if fewer is result else None)
+
+
+def _reused(key, make, counter: Counter) -> adapter.Manifold:
+    """``make()``, the engine's regularized result of a boolean whose content
+    key is ``key`` (castor.mesh.keys), or the result made before for that key
+    (caches.PROCESS.booleans: operands that did not change since the last
+    frame); the engine's calls counted."""
+    found = None if key is None else PROCESS.booleans.get(key)
+    if found is not None:
+        return found
+    counter.booleans += 1
+    made = make()
+    if key is not None:
+        PROCESS.booleans.put(key, made, made.num_tri())
+    return made
 
 
 def _distinct(manifolds: list) -> list:
@@ -279,7 +298,6 @@ def intersection(solids: list[Solid], counter: Counter) -> Solid:
     lo, hi = boxes[:, 0, :].max(axis=0), boxes[:, 1, :].min(axis=0)
     if np.any(lo >= hi):
         return EMPTY
-    counter.booleans += 1
 
     def made(operands):
         operands = [s.in_engine() for s in operands]
@@ -288,11 +306,13 @@ def intersection(solids: list[Solid], counter: Counter) -> Solid:
                        lambda: adapter.intersect_all(wholes[::-1])), operands
 
     distinguished = _distinguished(solids)
-    if _twins_renamed(solids, distinguished):
-        manifold, solids = _better(lambda: made(distinguished),
-                                   lambda: made(_distinguished(solids, rename=False)))
-    else:
-        manifold, solids = made(distinguished)
+    if not _twins_renamed(solids, distinguished):
+        key = keys.derived(b"I", [s.whole_key() for s in distinguished])
+        result = _reused(key, lambda: regular(made(distinguished)[0]), counter)
+        return of_parts([result], merged_origins(distinguished), [key])
+    counter.booleans += 1
+    manifold, solids = _better(lambda: made(distinguished),
+                               lambda: made(_distinguished(solids, rename=False)))
     return of_parts([regular(manifold)], merged_origins(solids))
 
 
@@ -305,7 +325,6 @@ def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
     touched = [i for i in range(len(a.parts)) if not apart(boxes[i], box_b)]
     if not touched:
         return a
-    counter.booleans += 1
 
     def made(operands):
         a, b = operands
@@ -321,12 +340,34 @@ def difference(a: Solid, b: Solid, counter: Counter) -> Solid:
         return parts, (a, b)
 
     distinguished = _distinguished([a, b])
-    if _twins_renamed([a, b], distinguished):
-        parts, operands = _better(lambda: made(distinguished),
-                                  lambda: made(_distinguished([a, b], rename=False)),
-                                  lambda parts: [parts[i] for i in touched])
-    else:
-        parts, operands = made(distinguished)
+    if not _twins_renamed([a, b], distinguished):
+        return _reused_difference(distinguished, touched, counter)
+    counter.booleans += 1
+    parts, operands = _better(lambda: made(distinguished),
+                              lambda: made(_distinguished([a, b], rename=False)),
+                              lambda parts: [parts[i] for i in touched])
     for i in touched:
         parts[i] = regular(parts[i])
     return of_parts(parts, merged_origins(operands))
+
+
+def _reused_difference(operands: list, touched: list, counter: Counter) -> Solid:
+    """a - b part by part (the parts of a numbered in ``touched``), each part's
+    result the one made before for the same part and cutter if there is one
+    (``_reused``); one engine call counted for the difference."""
+    a, b = operands
+    known = [a.key(i) for i in range(len(a.parts))]
+    cutter_key = b.whole_key()
+    a, b = a.in_engine(touched), b.in_engine()
+    cutter = b.whole()
+    parts = list(a.parts)
+    calls = Counter()
+    for i in touched:
+        part = parts[i]
+        known[i] = keys.derived(b"D", [known[i], cutter_key])
+        # (A + B) - B is A - B, computed otherwise
+        parts[i] = _reused(known[i], lambda part=part: regular(checked(
+            adapter.subtract(part, cutter),
+            lambda: adapter.subtract(adapter.add(part, cutter), cutter))), calls)
+    counter.booleans += min(calls.booleans, 1)
+    return of_parts(parts, merged_origins((a, b)), known)

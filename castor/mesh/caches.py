@@ -67,6 +67,10 @@ class Caches:
         self.templates = Bounded(max_entries=4096)
         # engine ID -> template, for every ID a template's runs carry (checks.off_faces)
         self.engine_ids: "weakref.WeakValueDictionary[int, object]" = weakref.WeakValueDictionary()
+        # content key of a boolean (castor.mesh.keys) -> the engine's result,
+        # regularized: the same operands met again (the next frame, a slider's
+        # next value) go to the engine no more; weighed in triangles
+        self.booleans = Bounded(max_entries=10_000, max_weight=1_000_000)
         # id() of a union's result no two of whose primitives' planes meet -> that
         # result (held, so that its id is not reused): no sheet can be in it
         self.plain = Bounded(max_entries=1000)
@@ -79,16 +83,32 @@ class Caches:
         # regularized again (the live preview, the language server); weighed
         # in triangles
         self.regular = Bounded(max_entries=10_000, max_weight=4_000_000)
+        # digest of one plane's triangles where a sheet is cut out -> what
+        # cutting it did (castor.mesh.sheets): the planes a change did not
+        # touch, inside a part that did change; weighed in triangles
+        self.planes = Bounded(max_entries=20_000, max_weight=500_000)
         # a part's triangles and faces -> (its polygons, its vertices): copies of
         # one object merged once (merge.Merger); weighed in triangles, emptied
         # at each frame
         self.patterns = Bounded(max_entries=10_000, max_weight=2_000_000)
+        # digest of a part's vertices, triangles and faces -> its polygons
+        # (merge.Merger): a part that did not change since the last frame is
+        # not merged again; weighed in triangles
+        self.merged = Bounded(max_entries=10_000, max_weight=1_000_000)
+        # digest of one face's group of triangles, on its own vertices -> its
+        # polygons (merge._group_polygons): the faces a change did not touch,
+        # inside a part that did change; weighed in triangles
+        self.groups = Bounded(max_entries=100_000, max_weight=500_000)
 
     def new_facetizer(self) -> None:
         """A new facetizer starts from nothing built (what benchmarks measure)."""
         self.solids.clear()
         self.templates.clear()
         self.regular.clear()
+        self.booleans.clear()
+        self.planes.clear()
+        self.merged.clear()
+        self.groups.clear()
 
 
 PROCESS = Caches()

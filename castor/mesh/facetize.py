@@ -25,7 +25,7 @@ from castor.mesh.frame import (FaceSurfaces, Frame, Origin, compact, curved_orig
                                polygon_surfaces)
 from castor.mesh.regularize import regular_triangles
 from castor.mesh.solid import EMPTY, Solid, instance
-from castor.options import DEFAULT_MAX_POLYGONS
+from castor.settings import DEFAULT_MAX_POLYGONS
 
 # A frame whose estimate is this many times --max-polygons is refused before
 # it is built (operands of a union add up; their overlap would only remove).
@@ -55,25 +55,25 @@ class Facetizer:
         self.stats = FrameStats()
 
     # --- a whole frame
-    def frame(self, scene: tree.FrameTree) -> Frame:
+    def frame(self, frame_tree: tree.FrameTree) -> Frame:
         started = time.perf_counter()
         self.counter.booleans = 0
         self.primitive_count = 0
-        estimate, booleans = tree_figures(scene)
+        estimate, booleans = tree_figures(frame_tree)
         if estimate > ESTIMATE_SLACK * self.max_polygons:
             raise LimitError(f"the frame would need about {estimate:,} polygons, more than "
                              f"--max-polygons {self.max_polygons:,}; is an object used twice "
-                             "at every level of a deep chain?", scene.location)
+                             "at every level of a deep chain?", frame_tree.location)
         short = memory.too_big(estimate)
         if short is not None:
             raise LimitError(f"the frame would need about {short[0] / 2 ** 30:.1f} GB of memory, "
                              f"more than the {short[1] / 2 ** 30:.1f} GB available; simplify the "
-                             "scene or raise TOLERANCE", scene.location)
+                             "scene or raise TOLERANCE", frame_tree.location)
         total = 0
         self.caches.patterns.clear()  # patterns of this frame's parts only
-        merger = merge.Merger(self.caches.patterns)
-        frame = Frame(scene.number, scene.where)
-        for obj in scene.objects:
+        merger = merge.Merger(self.caches.patterns, self.caches.merged, self.caches.groups)
+        frame = Frame(frame_tree.number, frame_tree.where)
+        for obj in frame_tree.objects:
             solid = self.solid(obj.root) if obj.root is not None else EMPTY
             pieces = []
             curved = curved_origins(solid.origins)
@@ -84,7 +84,7 @@ class Facetizer:
                 else:
                     merged = merge.as_triangles(tri.triangles, tri.origin_ids)
                 total += len(merged.offsets) - 1  # the limit counts polygons (CLI.md)
-                self._check_count(total, scene)
+                self._check_count(total, frame_tree)
                 surfaces = polygon_surfaces(solid.origins, curved, merged.origin_ids,
                                             tri.face_ids[merged.source])
                 pieces.append((tri.vertices, merged, surfaces))
@@ -189,7 +189,7 @@ class Facetizer:
         return instance(template, origin, None if leaf.matrix == tree.IDENTITY else leaf.matrix)
 
 
-def tree_figures(scene: tree.FrameTree) -> tuple[int, int]:
+def tree_figures(frame_tree: tree.FrameTree) -> tuple[int, int]:
     """About how many triangles the frame gives, and its boolean operations,
     without building anything: operands add up, primitives count their facets,
     a shared subtree counts its triangles once per use and its booleans once.
@@ -215,5 +215,5 @@ def tree_figures(scene: tree.FrameTree) -> tuple[int, int]:
             known[shared.key] = count(shared.child) if shared.child is not None else 0
         return known[shared.key]
 
-    triangles = sum(count(o.root) for o in scene.objects if o.root is not None)
+    triangles = sum(count(o.root) for o in frame_tree.objects if o.root is not None)
     return triangles, booleans

@@ -114,6 +114,37 @@ def _merge_group(v: np.ndarray, tris: np.ndarray) -> list[list[int]]:
     return list(polys.values())
 
 
+def _digest(*arrays) -> bytes:
+    try:  # hashlib's own BLAKE2, without hashlib's 16 ms of OpenSSL set-up at start
+        from _blake2 import blake2b
+    except ImportError:
+        from hashlib import blake2b
+
+    digest = blake2b(digest_size=16)
+    for array in arrays:
+        digest.update(np.ascontiguousarray(array).data)
+    return digest.digest()
+
+
+def _group_polygons(vertices: np.ndarray, tris: np.ndarray, known: Bounded | None) -> list:
+    """``_merge_group`` of one group, on its own vertices numbered in their
+    order (so the same polygons, whatever the other groups' vertices), or the
+    polygons of a group with the same points and triangles merged before
+    (``known``, caches.PROCESS.groups: a face that a parameter change did not
+    touch, from one frame to the next)."""
+    ids, local = np.unique(tris, return_inverse=True)
+    points = vertices[ids]
+    local = local.reshape(-1, 3)
+    key = None if known is None else _digest(points, local.astype(np.int64, copy=False))
+    polygons = None if key is None else known.get(key)
+    if polygons is None:
+        polygons = _merge_group(points, local)
+        if key is not None:
+            known.put(key, polygons, len(local))
+    numbers = ids.tolist()
+    return [[numbers[i] for i in poly] for poly in polygons]
+
+
 def _sub(p, q):
     return (p[0] - q[0], p[1] - q[1], p[2] - q[2])
 
@@ -221,8 +252,9 @@ def _split_off_plane(vertices: np.ndarray, triangles: np.ndarray, group: np.ndar
 
 
 def merge(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
-          face_ids: np.ndarray) -> Polygons:
-    """Convex polygons made of the triangles, one origin each."""
+          face_ids: np.ndarray, groups: Bounded | None = None) -> Polygons:
+    """Convex polygons made of the triangles, one origin each; ``groups``: the
+    polygons of groups merged before, by their content (``_group_polygons``)."""
     if len(triangles) == 0:
         return Polygons(np.zeros(1, np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64),
                         np.zeros(0, np.int64))
@@ -264,7 +296,7 @@ def merge(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
         bounds = np.flatnonzero(np.diff(big_groups)) + 1
         sizes, indices, sources = [], [], []
         for members in np.split(big, bounds):
-            for poly in _merge_group(vertices, triangles[members]):
+            for poly in _group_polygons(vertices, triangles[members], groups):
                 sizes.append(len(poly))
                 indices.extend(poly)
                 sources.append(members[0])
@@ -327,14 +359,20 @@ class Merger:
 
     LARGEST = 200_000  # triangles: bigger parts are merged afresh, not remembered
 
-    def __init__(self, known: Bounded):
+    def __init__(self, known: Bounded, parts: Bounded | None = None,
+                 groups: Bounded | None = None):
         # the triangles and faces of a part -> its polygons and its vertices
         # (the process's cache, castor.mesh.caches: emptied for each frame)
         self.known = known
+        # kept across frames (caches.PROCESS.merged, .groups): the polygons of
+        # a part, and of a group, with the very same vertices, triangles and
+        # faces (what merge gives for them, whatever was merged before)
+        self.parts = parts
+        self.groups = groups
 
     def merge(self, vertices, triangles, origin_ids, face_ids) -> Polygons:
         if len(triangles) > self.LARGEST or len(triangles) == 0:
-            return merge(vertices, triangles, origin_ids, face_ids)
+            return merge(vertices, triangles, origin_ids, face_ids, self.groups)
         key = (triangles.tobytes(), face_ids.tobytes())
         known = self.known.get(key)
         if known is not None:
@@ -343,8 +381,22 @@ class Merger:
                                                               polygons.indices):
                 return Polygons(polygons.offsets, polygons.indices, origin_ids[polygons.source],
                                 polygons.source)
-        polygons = merge(vertices, triangles, origin_ids, face_ids)
+        polygons = self._same(vertices, triangles, origin_ids, face_ids)
         self.known.put(key, (polygons, vertices), len(triangles))
+        return polygons
+
+    def _same(self, vertices, triangles, origin_ids, face_ids) -> Polygons:
+        """merge's polygons, or those of a part merged before with the same arrays."""
+        if self.parts is None:
+            return merge(vertices, triangles, origin_ids, face_ids, self.groups)
+        key = _digest(vertices, triangles, face_ids)
+        found = self.parts.get(key)
+        if found is not None:
+            offsets, indices, source = found
+            return Polygons(offsets, indices, origin_ids[source], source)
+        polygons = merge(vertices, triangles, origin_ids, face_ids, self.groups)
+        self.parts.put(key, (polygons.offsets, polygons.indices, polygons.source),
+                       len(triangles))
         return polygons
 
 

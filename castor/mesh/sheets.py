@@ -12,6 +12,7 @@ import math
 import numpy as np
 
 from castor.mesh.arrays import cross, largest_of_each, norm, plane_sign
+from castor.mesh.caches import PROCESS
 from castor.mesh.seams import welded_seams, without_t_junctions
 
 
@@ -119,16 +120,21 @@ class _Resolver:
         self.new_points: list[np.ndarray] = []
         self.crossings: dict[tuple, int] = {}
         self.on_edge: dict[tuple[int, int], set[int]] = {}
+        self.log: _Log | None = None  # what the plane being resolved did (_Log)
 
     # points: original vertices keep their numbers; new ones follow
     def point(self, v: int) -> np.ndarray:
         n = len(self.vertices)
-        return self.vertices[v] if v < n else self.new_points[v - n]
+        if v < n:
+            return self.vertices[v]
+        if self.log is not None and v < self.log.first:
+            self.log.foreign = True  # a point of another plane
+        return self.new_points[v - n]
 
     def resolve(self, planes):
         replaced: dict[int, list[list[int]]] = {}
         for normal, members, up in planes:
-            self._plane(normal, members, up, replaced)
+            self._plane_again(normal, members, up, replaced)
         if not replaced:
             return self.vertices, self.triangles, self.origin_ids, self.face_ids
         # every triangle along an edge that gained points gets them too
@@ -158,6 +164,56 @@ class _Resolver:
         origin_ids = np.concatenate([self.origin_ids[keep], np.array(origin, np.int64)])
         face_ids = np.concatenate([self.face_ids[keep], np.array(face, np.int64)])
         return without_t_junctions(vertices, triangles, origin_ids, face_ids, self.eps)
+
+    # --- a plane resolved in an earlier frame, as it was (caches.PROCESS.planes)
+
+    def _plane_again(self, normal, members, up, replaced):
+        """``_plane``, or what it did to a plane with the same triangles (their
+        points and numbering, their turn), in the same frame of the same size,
+        in an earlier frame: the surfaces a change did not touch are not
+        resolved again. What it did is kept only if it did not use what
+        another plane had made (a crossing, a point), and given again only if
+        it would not have found any made so far (a point within eps, a
+        crossing of the same edges); else the plane is resolved here."""
+        ids, local = np.unique(self.triangles[members], return_inverse=True)
+        key = _digest(np.asarray(normal, np.float64), np.asarray(up, bool),
+                      local.astype(np.int64), self.vertices[ids],
+                      np.array([self.scale], np.float64))
+        known = PROCESS.planes.get(key)
+        if known is not None and self._replayed(known, ids, members, replaced):
+            return
+        self.log = _Log(len(self.vertices) + len(self.new_points))
+        try:
+            self._plane(normal, members, up, replaced)
+            done = self.log.record(self, ids, members, replaced)
+        finally:
+            self.log = None
+        if done is not None:
+            PROCESS.planes.put(key, done, len(members))
+
+    def _replayed(self, done: "_Done", ids, members, replaced) -> bool:
+        first = len(self.vertices) + len(self.new_points)
+
+        def number(v: int) -> int:
+            return int(ids[v]) if v >= 0 else first - 1 - v
+
+        crossings = [((tuple(map(number, a)), tuple(map(number, b))), number(v))
+                     for (a, b), v in done.crossings]
+        if any(key in self.crossings for key, _ in crossings):
+            return False
+        if len(done.probes) and self.new_points:
+            made = np.array(self.new_points).reshape(-1, 3)
+            for point in done.probes:
+                if (np.abs(made - point).max(axis=1) <= self.eps).any():
+                    return False
+        self.new_points.extend(done.points)
+        for key, vertex in crossings:
+            self.crossings[key] = vertex
+        for (a, b), vertex in done.on_edge:
+            self.on_edge.setdefault((number(a), number(b)), set()).add(number(vertex))
+        for k, outlines in done.replaced:
+            replaced[int(members[k])] = [[number(v) for v in outline] for outline in outlines]
+        return True
 
     def _plane(self, normal, members, up, replaced):
         # a 2D frame in the plane, turned so that x, y, normal is right-handed
@@ -268,7 +324,10 @@ class _Resolver:
         """The point where the edges s1 and s2 (as lines) cross, numbered once."""
         key = (s1, s2) if s1 <= s2 else (s2, s1)
         known = self.crossings.get(key)
+        log = self.log
         if known is not None:
+            if log is not None and key not in log.mine:
+                log.foreign = True  # found by another plane
             return known
         (i, j), (k, l) = key
         p, q = self.point(i), self.point(j)
@@ -284,6 +343,8 @@ class _Resolver:
                 vertex = candidate
                 break
         if vertex is None:  # three lines through one point: one point
+            if log is not None:
+                log.probes.append(point)
             for k, known_point in enumerate(self.new_points):
                 if np.abs(known_point - point).max() <= self.eps:
                     vertex = len(self.vertices) + k
@@ -292,9 +353,14 @@ class _Resolver:
             vertex = len(self.vertices) + len(self.new_points)
             self.new_points.append(point)
         self.crossings[key] = vertex
+        if log is not None:
+            log.mine.add(key)
+            log.crossings.append((key, vertex))
         for s in key:
             if vertex not in s:
                 self.on_edge.setdefault(s, set()).add(vertex)
+                if log is not None:
+                    log.on_edge.append((s, vertex))
         return vertex
 
     def _with_edge_points(self, outline: list[int]) -> list[int]:
@@ -337,6 +403,70 @@ class _Resolver:
         c = len(self.vertices) + len(self.new_points)
         self.new_points.append(centre)
         return [[outline[k], outline[(k + 1) % len(outline)], c] for k in range(len(outline))]
+
+
+class _Done(tuple):
+    """What resolving a plane did, its vertices numbered within the plane
+    (0, 1, … its triangles' vertices in order; -1, -2, … the points it made):
+    points, probes (points it looked for among those made before),
+    crossings, points put on edges, and its triangles' new outlines."""
+
+    __slots__ = ()
+    points = property(lambda self: self[0])
+    probes = property(lambda self: self[1])
+    crossings = property(lambda self: self[2])
+    on_edge = property(lambda self: self[3])
+    replaced = property(lambda self: self[4])
+
+
+class _Log:
+    """What ``_Resolver._plane`` does, noted as it does it."""
+
+    def __init__(self, first: int):
+        self.first = first  # the number of the first point this plane makes
+        self.foreign = False  # it used a crossing or a point of another plane
+        self.mine: set = set()
+        self.probes: list = []
+        self.crossings: list = []
+        self.on_edge: list = []
+
+    def record(self, resolver, ids: np.ndarray, members, replaced) -> _Done | None:
+        if self.foreign:
+            return None
+        count = len(resolver.vertices)
+        made = len(resolver.vertices) + len(resolver.new_points) - self.first
+        where = {int(v): k for k, v in enumerate(ids.tolist())}
+
+        def local(v: int) -> int:
+            if v < count:
+                return where[v]  # (a KeyError: a vertex of no triangle of the plane)
+            if not self.first <= v < self.first + made:
+                raise KeyError(v)
+            return self.first - 1 - v
+
+        try:
+            crossings = tuple(((tuple(map(local, a)), tuple(map(local, b))), local(v))
+                              for (a, b), v in self.crossings)
+            on_edge = tuple((tuple(map(local, s)), local(v)) for s, v in self.on_edge)
+            outlines = tuple((k, tuple(tuple(local(v) for v in outline)
+                                       for outline in replaced[i]))
+                             for k, i in enumerate(members.tolist()) if i in replaced)
+        except KeyError:
+            return None
+        points = tuple(resolver.new_points[self.first - count:])
+        return _Done((points, tuple(self.probes), crossings, on_edge, outlines))
+
+
+def _digest(*arrays) -> bytes:
+    try:  # hashlib's own BLAKE2, without hashlib's 16 ms of OpenSSL set-up at start
+        from _blake2 import blake2b
+    except ImportError:
+        from hashlib import blake2b
+
+    digest = blake2b(digest_size=16)
+    for array in arrays:
+        digest.update(np.ascontiguousarray(array).data)
+    return digest.digest()
 
 
 class _Cancels:

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from castor.mesh import adapter
+from castor.mesh import adapter, keys
 from castor.mesh.frame import Origin
 from castor.mesh.instances import Placed, Template, fill_boxes, in_engine
 from castor.mesh.provenance import NO_ORIGINS, Origins
@@ -28,6 +28,21 @@ class Solid:
 
     parts: tuple  # never empty: manifolds, and primitives not yet in the engine (Placed)
     origins: Origins
+    # each part's content key (castor.mesh.keys), None where not known; None: none known
+    keys: tuple | None = None
+
+    def key(self, i: int) -> bytes | None:
+        """The content key of part ``i`` (castor.mesh.keys), or None."""
+        part = self.parts[i]
+        if type(part) is Placed:
+            return keys.placed(part.id, part.matrix)
+        return None if self.keys is None else self.keys[i]
+
+    def whole_key(self) -> bytes | None:
+        """The key of ``whole()``: of its parts, in order."""
+        if len(self.parts) == 1:
+            return self.key(0)
+        return keys.derived(b"W", [self.key(i) for i in range(len(self.parts))])
 
     @property
     def empty(self) -> bool:
@@ -61,13 +76,14 @@ class Solid:
         if not any(type(p) is Placed for p in self.parts):
             return self
         parts = list(self.parts)
+        known = [self.key(i) for i in range(len(parts))]
         for i in range(len(parts)) if which is None else which:
             parts[i] = in_engine(parts[i])
-        return Solid(tuple(parts), self.origins)
+        return Solid(tuple(parts), self.origins, tuple(known))
 
     def prefixed(self, prefix: str) -> "Solid":
         """The same solid with ``prefix`` put in front of every path."""
-        return Solid(self.parts, self.origins.prefixed(prefix))
+        return Solid(self.parts, self.origins.prefixed(prefix), self.keys)
 
     def transformed(self, matrix) -> "Solid":
         """Moved by an affine map: a 3x4 or 4x4 matrix, or its 12 numbers row by row."""
@@ -75,13 +91,21 @@ class Solid:
         full = np.eye(4)
         full[:3] = rows
         m = np.ascontiguousarray(rows)
+        moved = None
+        if self.keys is not None:
+            moved = tuple(None if type(part) is Placed else keys.derived(b"T", [key], m.tobytes())
+                          for part, key in zip(self.parts, self.keys))
         return Solid(tuple(part.moved(full) if type(part) is Placed else adapter.transform(part, m)
-                           for part in self.parts), self.origins.transformed(m))
+                           for part in self.parts), self.origins.transformed(m), moved)
 
 
-def of_parts(manifolds, origins: Origins) -> Solid:
-    """The solid of the engine's results (those not empty) and their origins."""
-    return Solid(tuple(m for m in manifolds if not m.is_empty()), origins)
+def of_parts(manifolds, origins: Origins, known=None) -> Solid:
+    """The solid of the engine's results (those not empty) and their origins;
+    ``known``: their content keys, in order (castor.mesh.keys), if known."""
+    if known is None:
+        return Solid(tuple(m for m in manifolds if not m.is_empty()), origins)
+    kept = [(m, key) for m, key in zip(manifolds, known) if not m.is_empty()]
+    return Solid(tuple(m for m, _ in kept), origins, tuple(key for _, key in kept))
 
 
 EMPTY = Solid((), NO_ORIGINS)

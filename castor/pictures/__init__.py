@@ -1,6 +1,6 @@
 """Pictures of the exact solids: rays cast against a frame's evaluated CSG tree.
 
-``picture(frame, spec)`` gives an (H, W, 3) uint8 image (OUTPUT.md, "Pictures").
+``picture(tree, spec)`` gives an (H, W, 3) uint8 image (OUTPUT.md, "Pictures").
 One ray through each pixel's centre finds the visible surface, its normal, its
 colour and whether the sun reaches it; pixels that differ from a neighbour (an
 outline, a crease, a change of colour or of shadow) are traced again with
@@ -15,25 +15,25 @@ import numpy as np
 
 from castor.pictures import shade
 from castor.pictures.camera import Camera, make_camera
-from castor.pictures.trace import Projection, Scene, compile_frame
+from castor.pictures.trace import Projection, TracedTree, compile_frame
 
 TILE = 64  # pixels on a side of a tile of rays
 CHUNK = 16384  # rays traced at once
 
-__all__ = ["draw", "draw_tree", "framing", "picture", "probe", "render_scene", "sample_offsets"]
+__all__ = ["draw", "draw_tree", "framing", "picture", "probe", "render_traced", "sample_offsets"]
 
 
-def picture(frame, spec) -> np.ndarray:
+def picture(tree, spec) -> np.ndarray:
     """The frame drawn with the picture settings ``spec`` (castor.settings.PictureSettings)."""
-    return draw(compile_frame(frame), spec)
+    return draw(compile_frame(tree), spec)
 
 
-def draw(scene: Scene, spec) -> np.ndarray:
+def draw(traced: TracedTree, spec) -> np.ndarray:
     """A compiled frame (castor.pictures.trace.compile_frame) drawn with the
     picture settings ``spec``, its camera framing it."""
-    low, high = scene.box
+    low, high = traced.box
     camera = make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)
-    return render_scene(scene, camera, spec.sun, spec.samples, spec.edges)
+    return render_traced(traced, camera, spec.sun, spec.samples, spec.edges)
 
 
 def framing(boxes: list, spec) -> tuple[Camera, float]:
@@ -45,24 +45,24 @@ def framing(boxes: list, spec) -> tuple[Camera, float]:
     return make_camera(low, high, spec.size, spec.view, spec.eye, spec.look), float(low[2])
 
 
-def draw_tree(frame, camera: Camera, spec, ground: float) -> np.ndarray:
+def draw_tree(tree, camera: Camera, spec, ground: float) -> np.ndarray:
     """A frame's evaluated tree drawn from ``camera`` (an animation's frame, in
     whatever process draws it: the picture comes back as an array)."""
-    return render_scene(compile_frame(frame), camera, spec.sun, spec.samples, spec.edges,
+    return render_traced(compile_frame(tree), camera, spec.sun, spec.samples, spec.edges,
                         ground=ground)
 
 
 PROBES = 32  # rays on a side of the grid that looks for something in a frame
 
 
-def probe(scene: Scene) -> bool | None:
+def probe(traced: TracedTree) -> bool | None:
     """Whether a compiled frame draws nothing: True when it has no solid or a flat
     box, False as soon as one of the rays along each axis through a grid over its
     box meets a solid (almost every frame, at once); None when they all miss
     (only its polygons can tell then)."""
-    if scene.root is None:
+    if traced.root is None:
         return True
-    low, high = (np.asarray(corner, float) for corner in scene.box)
+    low, high = (np.asarray(corner, float) for corner in traced.box)
     if not np.all(high > low):
         return True
     steps = (np.arange(PROBES) + 0.5) / PROBES
@@ -75,7 +75,7 @@ def probe(scene: Scene) -> bool | None:
         origins[:, axis] = low[axis] - 1.0
         directions = np.zeros_like(origins)
         directions[:, axis] = 1.0
-        t = scene.spans(origins, directions)[0]
+        t = traced.spans(origins, directions)[0]
         with np.errstate(invalid="ignore"):
             if np.any(t[:, 1::2] - t[:, 0::2] > 0):
                 return False
@@ -112,18 +112,18 @@ class _Samples:
         self.lit = np.ones(n, bool)
 
 
-def render_scene(scene: Scene, camera: Camera, sun, samples: int, edges: bool,
+def render_traced(traced: TracedTree, camera: Camera, sun, samples: int, edges: bool,
                  ground: float | None = None) -> np.ndarray:
-    """The picture of a compiled scene from ``camera``: sun ``(az, el)``, None or a
-    castor.options.CameraSun beside the camera (castor.pictures.shade.sun_light);
+    """The picture of a compiled frame (a TracedTree) from ``camera``: sun ``(az, el)``, None or a
+    castor.settings.CameraSun beside the camera (castor.pictures.shade.sun_light);
     the ground at height ``ground`` (by default, the foot of the scene)."""
     width, height = camera.width, camera.height
-    low, high = scene.box
+    low, high = traced.box
     if ground is None:
         ground = float(low[2])
     size = float(np.linalg.norm(high - low)) or 1.0
     light, shadows = shade.sun_light(sun, camera)
-    tracer = _Tracer(scene, camera, light, shadows, ground, size)
+    tracer = _Tracer(traced, camera, light, shadows, ground, size)
     # one ray through each pixel's centre, tile by tile
     order = _tile_order(width, height)
     xs = (order % width) + 0.5
@@ -222,9 +222,9 @@ def _differs(key, lit, depth, normal) -> np.ndarray:
 
 
 class _Tracer:
-    def __init__(self, scene: Scene, camera: Camera, light, shadows: bool, ground: float,
+    def __init__(self, traced: TracedTree, camera: Camera, light, shadows: bool, ground: float,
                  size: float):
-        self.scene, self.camera = scene, camera
+        self.traced, self.camera = traced, camera
         self.light, self.shadows = light, shadows
         self.ground, self.size = ground, size
         if camera.orthographic:
@@ -241,9 +241,9 @@ class _Tracer:
         return out
 
     def _trace(self, xs, ys, out: _Samples, part: slice) -> None:
-        scene = self.scene
+        traced = self.traced
         origins, directions = self.camera.rays(xs, ys)
-        t, face = scene.first_hit(origins, directions, 0.0, self.view)
+        t, face = traced.first_hit(origins, directions, 0.0, self.view)
         n = len(xs)
         colour = np.tile(shade.BACKGROUND, (n, 1))
         key = np.full(n, -1, np.int64)
@@ -251,7 +251,7 @@ class _Tracer:
         lit = np.ones(n, bool)
         hit = np.flatnonzero(np.isfinite(t))
         points = origins[hit] + t[hit, None] * directions[hit]
-        normals = scene.normals(points, face[hit])
+        normals = traced.normals(points, face[hit])
         facing = np.einsum("ij,ij->i", normals, directions[hit])
         normals[facing > 0] *= -1
         # the ground at the foot of the scene, where the rays miss the solids
@@ -275,8 +275,8 @@ class _Tracer:
         else:
             lit_hit = np.ones(len(hit), bool)
         strength = shade.intensity(normals, -directions[hit], self.light, lit_hit)
-        colour[hit] = scene.colours(face[hit]) * strength[:, None]
-        key[hit] = scene.surface_keys(face[hit])
+        colour[hit] = traced.colours(face[hit]) * strength[:, None]
+        key[hit] = traced.surface_keys(face[hit])
         normal[hit] = normals
         depth = np.full(n, np.inf)
         depth[hit] = t[hit]
@@ -287,4 +287,4 @@ class _Tracer:
         if len(points) == 0:
             return np.zeros(0, bool)
         directions = np.broadcast_to(self.light, points.shape).copy()
-        return self.scene.blocked(points, directions, 0.0, self.sun)
+        return self.traced.blocked(points, directions, 0.0, self.sun)

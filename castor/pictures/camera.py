@@ -87,11 +87,11 @@ def _corners(low, high) -> np.ndarray:
 
 
 def make_camera(low, high, size: tuple[int, int], view=None, eye=None, look=None) -> Camera:
-    """The camera of the picture options: ``view`` a castor.options.View (or
+    """The camera of the picture options: ``view`` a castor.settings.View (or
     None: the default direction), or an explicit ``eye`` and ``look``; the
     named views are orthographic, every camera but --eye frames the box
     (``low``, ``high``) of the scene."""
-    from castor.options import DEFAULT_VIEW, ORTHOGRAPHIC
+    from castor.settings import DEFAULT_VIEW, ORTHOGRAPHIC
 
     width, height = size
     low = np.asarray(low, dtype=np.float64)

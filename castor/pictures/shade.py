@@ -34,7 +34,7 @@ def sun_light(sun, camera) -> tuple[np.ndarray, bool]:
     """The unit vector towards the light of a picture, and whether it casts shadows.
 
     ``sun`` is ``(azimuth, elevation)`` (``--sun AZ,EL``), None (``--sun none``:
-    a light over the viewer's shoulder, no shadows) or a castor.options.CameraSun,
+    a light over the viewer's shoulder, no shadows) or a castor.settings.CameraSun,
     the default: the sun ``turn`` degrees beside the camera's azimuth, so that every
     face the camera sees is lit and the shadows fall back and to the side. The
     camera's azimuth is that of the direction from the point looked at to the eye,

@@ -1,6 +1,7 @@
 """Rays against the evaluated CSG tree of a frame: the booleans taken on spans.
 
-``Scene`` compiles a ``castor.csg.tree.FrameTree`` once: every primitive with the
+``compile_frame`` compiles a ``castor.csg.tree.FrameTree`` once into a
+``TracedTree`` of ``TracedLeaf`` and ``TracedBoolean`` nodes: every primitive with the
 inverse of its matrix to the scene (shared subtrees expanded for each use),
 every node with its bounding box in the scene. ``spans`` gives, for a batch of
 rays, the spans where each ray is inside the frame's solids: a primitive's
@@ -29,7 +30,7 @@ FACE_MASK = (1 << FACE_BITS) - 1
 
 
 @dataclass
-class Leaf:
+class TracedLeaf:
     number: int
     kind: str
     shape: tuple
@@ -51,8 +52,8 @@ class TracedBoolean:
 
 
 @dataclass
-class Scene:
-    root: object  # Leaf, TracedBoolean or None (nothing to draw)
+class TracedTree:
+    root: object  # TracedLeaf, TracedBoolean or None (nothing to draw)
     leaves: list = field(default_factory=list)
 
     @property
@@ -193,17 +194,17 @@ class Projection:
         return rect
 
 
-def compile_frame(frame: tree.FrameTree) -> Scene:
+def compile_frame(frame_tree: tree.FrameTree) -> TracedTree:
     """The frame's objects as one scene of primitives placed in the scene."""
-    scene = Scene(None)
+    traced = TracedTree(None)
     roots = []
-    for obj in frame.objects:
+    for obj in frame_tree.objects:
         if obj.root is not None:
-            node = _compile(obj.root, np.eye(4), scene.leaves, "")
+            node = _compile(obj.root, np.eye(4), traced.leaves, "")
             if node is not None:
                 roots.append(node)
-    scene.root = _grouped(_make("U", roots))
-    return scene
+    traced.root = _grouped(_make("U", roots))
+    return traced
 
 
 GROUP = 4  # operands of a union beyond which they are grouped by place
@@ -254,7 +255,7 @@ def _compile(node, matrix: np.ndarray, leaves: list, above: str):
                         join((above, node.path, f"({node.shared.name})")))
     if isinstance(node, tree.Smooth):  # traced through its refined facets
         first = len(leaves)
-        made = smooth_leaf(node, matrix, leaves, Leaf)
+        made = smooth_leaf(node, matrix, leaves, TracedLeaf)
         for leaf in leaves[first:]:
             leaf.origin = (node, above)
         return made
@@ -304,7 +305,7 @@ def _leaf(primitive: tree.Primitive, matrix: np.ndarray, leaves: list, above: st
                         for z in (low[2], high[2])])
     placed = corners @ matrix[:3, :].T
     pad = 1e-9 * (1 + np.abs(placed).max())
-    leaf = Leaf(len(leaves), primitive.kind, tuple(primitive.shape), primitive.colour,
+    leaf = TracedLeaf(len(leaves), primitive.kind, tuple(primitive.shape), primitive.colour,
                 inverse, placed.min(axis=0) - pad, placed.max(axis=0) + pad, (primitive, above))
     leaves.append(leaf)
     return leaf
@@ -333,7 +334,7 @@ def _evaluate(node, rays: _Rays, rows: np.ndarray):
     if len(hit) == 0:
         return np.full((n, 0), INF), np.zeros((n, 0), np.int64)
     inner = rows[hit]
-    if isinstance(node, Leaf):
+    if isinstance(node, TracedLeaf):
         t, face = _leaf_spans(node, rays, inner)
     elif node.op == "D":
         t, face = _difference(node, rays, inner)
@@ -396,7 +397,7 @@ def _blocked(node, rays: _Rays, rows: np.ndarray) -> np.ndarray:
     return np.any(np.isfinite(exits) & (exits > rays.near), axis=1)
 
 
-def _leaf_spans(leaf: Leaf, rays: _Rays, rows: np.ndarray):
+def _leaf_spans(leaf: TracedLeaf, rays: _Rays, rows: np.ndarray):
     linear, shift = leaf.inverse[:, :3], leaf.inverse[:, 3]
     o = rays.origins[rows] @ linear.T + shift
     d = rays.directions[rows] @ linear.T

@@ -1,8 +1,8 @@
 """The primitives of the language, one module each (LANGUAGE.md §4.1).
 
-Each module of this package that defines ``PRIMITIVE`` (a ``base.Primitive``)
+Each module of this package that defines ``PRIMITIVE`` (a ``base.PrimitiveKind``)
 declares one primitive: its name, arguments, checks, unit box, mesh and ray
-spans. ``PRIMITIVES`` (name → Primitive) is gathered from the modules found
+spans. ``PRIMITIVES`` (name → PrimitiveKind) is gathered from the modules found
 here, so adding a primitive is adding its file: the parser, the evaluator,
 the facetizer (castor.mesh.primitives), the ray tracer (castor.pictures.spans)
 and the editor files read this table and keep none of their own.
@@ -13,7 +13,7 @@ from __future__ import annotations
 import importlib
 import os
 
-from castor.primitives.base import FLAT, Argument, Mesh, Primitive
+from castor.primitives.base import FLAT, Argument, Mesh, PrimitiveKind
 
 
 def _module_names() -> list[str]:
@@ -28,15 +28,15 @@ def _module_names() -> list[str]:
     return sorted(names)
 
 
-def _gathered() -> dict[str, Primitive]:
+def _gathered() -> dict[str, PrimitiveKind]:
     found = []
     for name in _module_names():
         declared = getattr(importlib.import_module(f"{__name__}.{name}"), "PRIMITIVE", None)
-        if isinstance(declared, Primitive):
+        if isinstance(declared, PrimitiveKind):
             found.append(declared)
     return {p.name: p for p in sorted(found, key=lambda p: p.place)}
 
 
-PRIMITIVES: dict[str, Primitive] = _gathered()
+PRIMITIVES: dict[str, PrimitiveKind] = _gathered()
 
-__all__ = ["FLAT", "PRIMITIVES", "Argument", "Mesh", "Primitive"]
+__all__ = ["FLAT", "PRIMITIVES", "Argument", "Mesh", "PrimitiveKind"]

@@ -1,6 +1,6 @@
 """What a primitive is, declared once: the class every primitive module fills in.
 
-One ``Primitive`` holds everything a stage needs to know about one kind of
+One ``PrimitiveKind`` holds everything a stage needs to know about one kind of
 solid (LANGUAGE.md §4.1): how it is written (name, arguments, coordinate
 pairs), how its values are checked, its unit box (the evaluator's reach
 check, the ray tracer's boxes), whether its facets depend on the tolerance,
@@ -41,7 +41,7 @@ class Mesh(NamedTuple):
 Box = tuple[tuple[float, float, float], tuple[float, float, float]]
 
 
-class Primitive(NamedTuple):
+class PrimitiveKind(NamedTuple):
     """One kind of primitive, as every stage reads it.
 
     ``shape`` below is the tuple of its evaluated arguments after the colour,

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from castor.primitives import rays
-from castor.primitives.base import Primitive
+from castor.primitives.base import PrimitiveKind
 from castor.primitives.cylinder import ROUND, facets
 from castor.primitives.facets import spire
 
@@ -52,7 +52,7 @@ def spans(shape, o, d):
     return rays.single(best_in, best_out, face_in, face_out)
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=40, name="co", title="cone", solid="base of radius 1 in z = 0, apex (0, 0, 1)",
     arguments=(), pair_names=None, curved=True, check=None, box=lambda shape: ROUND,
     mesh=lambda shape, facets: spire(facets[0], surface=0),

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from castor.primitives import rays
-from castor.primitives.base import Mesh, Primitive
+from castor.primitives.base import Mesh, PrimitiveKind
 from castor.primitives.facets import quads
 
 # outward normals and offsets (numbers, not arrays: reading a scene imports no numpy)
@@ -26,7 +26,7 @@ def spans(shape, o, d):
     return rays.halfspaces(*_PLANES, o, d)
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=10, name="cu", title="cube", solid="the unit cube [0,1]^3", arguments=(), pair_names=None,
     curved=False, check=None, box=lambda shape: _UNIT, mesh=mesh,
     triangles=lambda shape, facets: 12, spans=spans,

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from castor.primitives import rays
-from castor.primitives.base import Primitive
+from castor.primitives.base import PrimitiveKind
 from castor.primitives.facets import circle_segments, column, plane_stretch, quantize
 
 INF = math.inf
@@ -39,7 +39,7 @@ def facets(shape, linear, tolerance) -> tuple[int]:
     return (circle_segments(1.0, quantize(tolerance / plane_stretch(linear))),)
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=30, name="cy", title="cylinder", solid="radius 1 about the z axis, from z = 0 to z = 1",
     arguments=(), pair_names=None, curved=True, check=None, box=lambda shape: ROUND,
     mesh=lambda shape, facets: column(facets[0], surface=0),

@@ -9,14 +9,14 @@ import math
 
 from castor.diagnostics import Location
 from castor.primitives import rays
-from castor.primitives.base import Mesh, Primitive
+from castor.primitives.base import Mesh, PrimitiveKind
 from castor.primitives.facets import joined, quads
 
 INF = math.inf
 
 
 def check(shape: tuple, location: Location, path: object) -> None:
-    from castor.language.outline import polygon
+    from castor.primitives.simple_polygon import polygon
 
     polygon(shape, "polygon", location, path)
 
@@ -25,7 +25,7 @@ def extrusion(values: tuple) -> Mesh:
     """The simple polygon (x1, y1, ...) in z = 0 swept to z = 1."""
     import numpy as np
 
-    from castor.language.outline import polygon, signed_area
+    from castor.primitives.simple_polygon import polygon, signed_area
     from castor.mesh.adapter import triangulate
 
     points = polygon(values, "polygon", None, "")
@@ -147,7 +147,7 @@ def normal(shape, p, face):
 
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=90, name="ex", title="extrusion", solid="a simple polygon in z = 0 swept to z = 1",
     arguments=(), pair_names=("x", "y"), curved=False, check=check, box=box,
     mesh=lambda shape, facets: extrusion(shape),

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from castor.diagnostics import GeometryError, Location
 from castor.primitives import rays
-from castor.primitives.base import Argument, Primitive
+from castor.primitives.base import Argument, PrimitiveKind
 from castor.primitives.cylinder import ROUND
 from castor.primitives.facets import column
 
@@ -23,7 +23,7 @@ def check_sides(shape: tuple, location: Location, path: object) -> None:
         raise GeometryError(f"the number of sides N of {path} is too large ({n:g})", location)
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=60, name="pr", title="prism", solid="a regular N-gon of circumradius 1 swept from z = 0 to 1",
     arguments=(SIDES,), pair_names=None, curved=False, check=check_sides,
     box=lambda shape: ROUND, mesh=lambda shape, facets: column(int(shape[0])),

@@ -4,13 +4,13 @@
 from __future__ import annotations
 
 from castor.primitives import rays
-from castor.primitives.base import Primitive
+from castor.primitives.base import PrimitiveKind
 from castor.primitives.cylinder import ROUND
 from castor.primitives.facets import spire
 from castor.primitives.prism import SIDES, check_sides
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=70, name="py", title="pyramid", solid="a regular N-gon base of circumradius 1, apex (0, 0, 1)",
     arguments=(SIDES,), pair_names=None, curved=False, check=check_sides,
     box=lambda shape: ROUND, mesh=lambda shape, facets: spire(int(shape[0])),

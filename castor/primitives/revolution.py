@@ -10,14 +10,14 @@ import math
 
 from castor.diagnostics import Location
 from castor.primitives import rays
-from castor.primitives.base import FLAT, Mesh, Primitive
+from castor.primitives.base import FLAT, Mesh, PrimitiveKind
 from castor.primitives.facets import circle_segments, joined, plane_stretch, quantize, signed_volume
 
 INF = math.inf
 
 
 def check(shape: tuple, location: Location, path: object) -> None:
-    from castor.language.outline import profile
+    from castor.primitives.simple_polygon import profile
 
     profile(shape, location, path)
 
@@ -26,7 +26,7 @@ def revolution(values: tuple, segments: int) -> Mesh:
     """The simple profile (r1, z1, ...) turned a full circle about the z axis."""
     import numpy as np
 
-    from castor.language.outline import profile, signed_area
+    from castor.primitives.simple_polygon import profile, signed_area
 
     outline = profile(values, None, "")
     if signed_area(outline) < 0:
@@ -155,7 +155,7 @@ def normal(shape, p, face):
 
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=95, name="rv", title="revolution", solid="a simple profile (r, z), r >= 0, turned about z",
     arguments=(), pair_names=("r", "z"), curved=True, check=check, box=box,
     mesh=lambda shape, facets: revolution(shape, facets[0]),

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from castor.primitives import rays
-from castor.primitives.base import Mesh, Primitive
+from castor.primitives.base import Mesh, PrimitiveKind
 from castor.primitives.facets import (joined, largest_stretch, plane_stretch, quads, quantize,
                                      ring, sphere_segments)
 
@@ -66,7 +66,7 @@ def normal(shape, p, face):
     return p
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=20, name="sp", title="sphere", solid="the sphere of radius 1 centred at the origin",
     arguments=(), pair_names=None, curved=True, check=None,
     box=lambda shape: ((-1.0,) * 3, (1.0,) * 3),

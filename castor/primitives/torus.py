@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from castor.diagnostics import GeometryError, Location
-from castor.primitives.base import Argument, Mesh, Primitive
+from castor.primitives.base import Argument, Mesh, PrimitiveKind
 from castor.primitives.facets import (circle_segments, largest_stretch, plane_stretch, quads,
                                      quantize)
 
@@ -100,7 +100,7 @@ def normal(shape, p, face):
     return n
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=50, name="to", title="torus", solid="centre circle of radius 1 in z = 0, tube radius K",
     arguments=(Argument("K", "the tube radius, 0 < K < 1"),), pair_names=None, curved=True,
     check=check,

@@ -6,7 +6,7 @@ five half-spaces."""
 from __future__ import annotations
 
 from castor.primitives import rays
-from castor.primitives.base import FLAT, Mesh, Primitive
+from castor.primitives.base import FLAT, Mesh, PrimitiveKind
 
 # outward normals and offsets: z >= 0, x >= 0, y >= 0, y <= 1, x + z <= 1
 _PLANES = (((0, 0, -1), (-1, 0, 0), (0, -1, 0), (0, 1, 0), (1, 0, 1)), (0, 0, 0, 1, 1))
@@ -32,7 +32,7 @@ def spans(shape, o, d):
     return rays.halfspaces(*_PLANES, o, d)
 
 
-PRIMITIVE = Primitive(
+PRIMITIVE = PrimitiveKind(
     place=75, name="we", title="wedge",
     solid="the triangle (0, 0), (1, 0), (0, 1) of the xz plane swept along y from 0 to 1",
     arguments=(), pair_names=None, curved=False, check=None, box=lambda shape: _UNIT,

@@ -132,15 +132,15 @@ class _Walker:
         return placed.min(axis=0), placed.max(axis=0)
 
 
-def classified(frame, scene: tree.FrameTree):
-    """``frame`` (castor.serve.scene.DrawnFrame) with each face's element and
+def classified(frame, frame_tree: tree.FrameTree):
+    """``frame`` (castor.serve.evaluation.DrawnFrame) with each face's element and
     class: its origins split by element where a primitive's faces lie on
     several, ``layers`` giving each origin's (element, class short name or None)."""
     import numpy as np
 
-    walker = _Walker(scene.classes)
+    walker = _Walker(frame_tree.classes)
     try:
-        for obj in scene.objects:
+        for obj in frame_tree.objects:
             if obj.root is not None:
                 walker.walk(obj.root, (obj.name, UNCLASSED))
     except RecursionError:

@@ -5,7 +5,9 @@ Routes (anything else is 404; no path of the disk is ever looked up):
 - ``/``, ``/viewer.js``, ``/style.css``: the page, read from the package once;
 - ``/scene.json``: the frames' descriptions, the diagnostics, the state;
 - ``/frames/ID/N.bin``: frame N of the frames numbered ID, as triangles;
-- ``/events``: server-sent events, one each time the state changes.
+- ``/events``: server-sent events, one each time the state changes;
+- ``/editing.js``, ``/editing.json``, ``POST /gesture``: editing on screen
+  (castor.serve.gestures).
 
 Threads: one evaluates (cancelled when a newer save overtakes it), one polls
 the files, one accepts connections, and at most MAX_REQUESTS serve them (of
@@ -29,7 +31,7 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
 
 from castor.diagnostics import UsageError
-from castor.serve.scene import Diagnostic, DrawnFrame, Evaluation, Overtaken, Watched, evaluate
+from castor.serve.evaluation import Diagnostic, DrawnFrame, Evaluation, Overtaken, Watched, evaluate
 from castor.serve.watch import Watcher
 
 POLL_SECONDS = 0.05  # how often the files are looked at
@@ -42,7 +44,8 @@ PORTS_TRIED = 50
 
 _STATIC = {"/": ("index.html", "text/html; charset=utf-8"),
            "/viewer.js": ("viewer.js", "text/javascript; charset=utf-8"),
-           "/style.css": ("style.css", "text/css; charset=utf-8")}
+           "/style.css": ("style.css", "text/css; charset=utf-8"),
+           "/editing.js": ("editing.js", "text/javascript; charset=utf-8")}
 _FRAME = re.compile(r"/frames/(\d{1,9})/(\d{1,9})\.bin")
 _LOOPBACK_HOSTS = {"localhost", "127.0.0.1", "[::1]"}
 _HEADERS = {
@@ -164,7 +167,7 @@ class Preview:
                 try:
                     if stale():  # asked for again before begin(): not stopped
                         raise Overtaken()
-                    result = evaluate(self.job, stale)
+                    result = self.evaluation(self.job, stale)
                 finally:
                     self._stopper.end()
             except Overtaken:
@@ -179,6 +182,10 @@ class Preview:
             self._publish(result, overtaken=self._wanted != generation)
             if self.report is not None:
                 self.report(result)
+
+    def evaluation(self, job: Watched, stale) -> Evaluation:
+        """One evaluation of the scene (castor.serve.buffers reads an editor's buffers)."""
+        return evaluate(job, stale)
 
     def _publish(self, result: Evaluation, overtaken: bool) -> None:
         with self.state:
@@ -234,6 +241,10 @@ class _Handler(BaseHTTPRequestHandler):
         elif path == "/parameters.json":
             self._send(200, json.dumps(preview.panel.as_json()).encode(), "application/json",
                        head)
+        elif path == "/editing.json":
+            from castor.serve.gestures import description
+
+            self._send(200, description(self.server.gestures), "application/json", head)
         elif path == "/events" and not head:
             self._events()
         elif match := _FRAME.fullmatch(path):
@@ -256,6 +267,9 @@ class _Handler(BaseHTTPRequestHandler):
             return
         kind = self.headers.get("Content-Type", "").partition(";")[0].strip().lower()
         length = self.headers.get("Content-Length", "")
+        if self.path == "/gesture":
+            self._gesture(kind, length)
+            return
         if self.path != "/parameters":
             self._send(404, b"not found\n", "text/plain; charset=utf-8", False)
             return
@@ -274,6 +288,17 @@ class _Handler(BaseHTTPRequestHandler):
         if not (isinstance(request, dict) and "save" in request):
             preview.apply(overrides, tolerance)
         self._send(200, json.dumps(preview.panel.as_json()).encode(), "application/json", False)
+
+    def _gesture(self, kind: str, length: str) -> None:
+        """``/gesture``: a gesture of the page (castor.serve.gestures)."""
+        from castor.serve.gestures import MAX_BODY, answer_post
+
+        if kind != "application/json" or not length.isdigit() or int(length) > MAX_BODY:
+            self._send(400, b"send JSON (application/json), at most 64 kB\n",
+                       "text/plain; charset=utf-8", False)
+            return
+        status, body = answer_post(self.server.gestures, self.rfile.read(int(length)))
+        self._send(status, body, "application/json", False)
 
     def _same_origin(self) -> bool:
         """A POST from another site's page is refused (its Origin is not ours)."""
@@ -349,6 +374,7 @@ class _Server(ThreadingHTTPServer):
         self.slots = threading.BoundedSemaphore(MAX_REQUESTS)
         self.streams = threading.BoundedSemaphore(MAX_STREAMS)
         self.loopback = _is_loopback(address[0])
+        self.gestures = None  # castor.serve.gestures.Gestures: editing on screen
         super().__init__(address, _Handler)
 
     def server_bind(self):
@@ -398,8 +424,13 @@ def _pages() -> dict[str, bytes]:
 class PreviewServer:
     """The preview and its server, started and stopped together."""
 
-    def __init__(self, job: Watched, bind: str = "127.0.0.1", port: int = 0, report=None):
-        self.preview = Preview(job, report)
+    def __init__(self, job: Watched, bind: str = "127.0.0.1", port: int = 0, report=None,
+                 preview: Preview | None = None, gestures=None):
+        """``preview``: another kind of Preview (an editor's buffers); ``gestures``:
+        where the page's edits go (castor.serve.gestures; by default the file's)."""
+        from castor.serve.gestures import file_gestures
+
+        self.preview = preview if preview is not None else Preview(job, report)
         kind = _Server6 if ":" in bind else _Server
         pages = _pages()
         candidates = [port] if port == 0 else range(port, min(port + PORTS_TRIED, 65536))
@@ -410,6 +441,7 @@ class PreviewServer:
             except OSError as exc:
                 if exc.errno != errno.EADDRINUSE or candidate == candidates[-1]:
                     raise
+        self.httpd.gestures = gestures if gestures is not None else file_gestures(job)
         self.threads: list[threading.Thread] = []
 
     @property

@@ -30,10 +30,22 @@ def _triple(text: str, parser, option: str):
     return values
 
 
+def readable_suffixes(streams: bool = True) -> list[str]:
+    """The endings of the files of polygons castor-view reads, as the registry
+    of formats declares their readers (the stream's too, with ``streams``)."""
+    from castor.formats import registry
+
+    suffixes: list[str] = []
+    for f in registry().values():
+        if f.read is not None and f.kind.polygons and (streams or not f.kind.streamed):
+            suffixes.extend(s for s in f.suffixes + f.reads_also if s not in suffixes)
+    return suffixes
+
+
 def _arguments(argv):
     from castor import __version__
-    from castor.options import VIEW_NAMES, parse_view
-    from castor.view.scene import readable_suffixes
+    from castor.options import parse_view
+    from castor.settings import VIEW_NAMES
 
     mesh_suffixes = " ".join(readable_suffixes(streams=False))
     p = _Parser(prog="castor-view", description="Draw castor's polygon stream or a mesh file.",
@@ -94,10 +106,10 @@ def _pictures(args):
     """The frames of the input: the stream as it arrives (standard input, or a
     file of no other format), else the file through its format's reader."""
     from castor.formats import format_for_suffix, reader_for
-    from castor.view.scene import read_stream, readable_suffixes
+    from castor.formats.cps import load
 
     if args.file == "-":
-        yield from read_stream(iter(sys.stdin.readline, ""), "<stdin>")
+        yield from load(iter(sys.stdin.readline, ""), "<stdin>")
         return
     if not os.path.exists(args.file) or os.path.isdir(args.file) \
             or not os.access(args.file, os.R_OK):  # a usage error, as castor's (exit 2)
@@ -122,7 +134,7 @@ def _pictures(args):
                          f"{(exc.strerror or str(exc)).lower()}\n")
         sys.exit(USAGE_ERROR)
     with handle:
-        yield from read_stream(handle, args.file)
+        yield from load(handle, args.file)
 
 
 def _camera(args, points):
@@ -159,7 +171,7 @@ def _save(image, path, **options):
 
 def run(args) -> int:
     from castor.formats.output import frame_path
-    from castor.view.scene import ViewError
+    from castor.formats.cps import StreamError
 
     pattern = bool(_PATTERN.search(args.output))
     gif = args.output.lower().endswith(".gif")
@@ -178,7 +190,7 @@ def run(args) -> int:
             pictures.append(picture)
             if not gif:
                 break  # one .png: the first frame (or --frame N)
-    except ViewError as exc:
+    except StreamError as exc:
         sys.stderr.write(f"castor-view: error: {exc}\n")
         if not pictures:
             return 1

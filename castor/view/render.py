@@ -27,7 +27,7 @@ import numpy as np
 
 from castor.mesh.creases import COPLANAR, curved_kinds, guessed_same_surface
 from castor.pictures.camera import Camera
-from castor.view.scene import Picture
+from castor.formats.cps import StreamFrame
 
 BACKGROUND = np.array([1.0, 1.0, 1.0])
 EDGE_COLOUR = np.array([0.12, 0.12, 0.14])
@@ -36,7 +36,7 @@ _BATCH_PIXELS = 400_000
 SMOOTH_CORNERS = 8  # see _smooth_paths
 
 
-def _normals(picture: Picture) -> np.ndarray:
+def _normals(picture: StreamFrame) -> np.ndarray:
     pts = picture.points
     normals = np.zeros((picture.polygon_count, 3))
     starts = picture.offsets[:-1]
@@ -50,7 +50,8 @@ def _normals(picture: Picture) -> np.ndarray:
     return np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
 
 
-def _shade(picture: Picture, camera: Camera, normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _shade(picture: StreamFrame, camera: Camera,
+           normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Polygon colours lit as castor's pictures are (castor.pictures.shade), by
     the default sun, without shadows; the normals are turned to the viewer, and
     which were is returned beside the colours."""
@@ -67,7 +68,7 @@ def _lit(colours: np.ndarray, normals: np.ndarray, camera: Camera) -> np.ndarray
     """Colours lit by the default sun for unit normals turned to the viewer,
     with one direction to the viewer for all, so that the pieces of a flat face
     are lit alike."""
-    from castor.options import DEFAULT_SUN
+    from castor.settings import DEFAULT_SUN
     from castor.pictures.shade import intensity, sun_light
 
     towards = np.broadcast_to(-camera.forward, normals.shape)
@@ -76,7 +77,7 @@ def _lit(colours: np.ndarray, normals: np.ndarray, camera: Camera) -> np.ndarray
     return np.clip(colours * strength[:, None], 0, 1)
 
 
-def render(picture: Picture, camera: Camera, width: int, height: int,
+def render(picture: StreamFrame, camera: Camera, width: int, height: int,
            mode: str = "shaded") -> np.ndarray:
     """An (height, width, 3) uint8 image of the picture: ``mode`` "shaded",
     "edges" (shaded with outline edges) or "wire"."""
@@ -137,7 +138,7 @@ def render(picture: Picture, camera: Camera, width: int, height: int,
     return out
 
 
-def _corner_normals(picture: Picture, tris: np.ndarray, polygon: np.ndarray,
+def _corner_normals(picture: StreamFrame, tris: np.ndarray, polygon: np.ndarray,
                     surfaces: np.ndarray) -> np.ndarray | None:
     """(T, 3, 3) unit normals at the corners of the triangles, of the facets of
     curved surfaces (as castor.pictures.mesh_rays.corner_normals, from the
@@ -157,7 +158,7 @@ def _corner_normals(picture: Picture, tris: np.ndarray, polygon: np.ndarray,
 
 
 def _shade_smoothly(image, hit, triangle, polygon, tris, corners, back, screen, z,
-                    picture: Picture, camera: Camera) -> None:
+                    picture: StreamFrame, camera: Camera) -> None:
     """The pixels ``hit`` (of the triangles ``triangle``) of curved surfaces lit
     with the normal interpolated at each from the corners of its triangle, in
     the scene (perspective-correct), turned as its polygon was to the viewer."""
@@ -194,7 +195,7 @@ def _screen_weights(centre: np.ndarray, corners: np.ndarray, z: np.ndarray,
     return np.where(total > 0, weights / np.where(total > 0, total, 1), 1 / 3)
 
 
-def _outline_edges(picture: Picture, normals: np.ndarray) -> np.ndarray:
+def _outline_edges(picture: StreamFrame, normals: np.ndarray) -> np.ndarray:
     """For each polygon edge (point i to the next), whether it is drawn: not
     when the polygon across it lies in the same plane."""
     count = len(picture.points)
@@ -209,7 +210,7 @@ def _outline_edges(picture: Picture, normals: np.ndarray) -> np.ndarray:
     return draw
 
 
-def _surfaces(picture: Picture, normals: np.ndarray) -> np.ndarray:
+def _surfaces(picture: StreamFrame, normals: np.ndarray) -> np.ndarray:
     """Each polygon's surface number: neighbouring polygons that are facets of
     one curved surface of one primitive share one. The stream gives each
     polygon's path, not its surface: castor.mesh.creases guesses it from the
@@ -264,7 +265,7 @@ def _smooth_paths(path_a, path_b, ends, normal_a, normal_b, count: int) -> np.nd
     return np.bincount(corners, minlength=count)[:count] >= SMOOTH_CORNERS
 
 
-def _unmerged_paths(picture: Picture, first, second, normals, count: int) -> np.ndarray:
+def _unmerged_paths(picture: StreamFrame, first, second, normals, count: int) -> np.ndarray:
     """For each path, whether it holds ``SMOOTH_CORNERS`` pairs of neighbouring
     polygons that lie in one plane, have one colour and would make a convex
     polygon together: castor merges the pieces of a flat face while the
@@ -301,7 +302,7 @@ def _unmerged_paths(picture: Picture, first, second, normals, count: int) -> np.
     return np.bincount(path[p][union], minlength=count)[:count] >= SMOOTH_CORNERS
 
 
-def _shared_edges(picture: Picture):
+def _shared_edges(picture: StreamFrame):
     """The edges two polygons share: for each, the point that starts it in
     one polygon and in the other, every point's polygon, and the edges' two
     vertices (points numbered once for all the polygons they are in)."""
@@ -324,7 +325,7 @@ def _shared_edges(picture: Picture):
     return first, order[pair + 1], polygon, np.column_stack([a[first], b[first]])
 
 
-def _vertex_numbers(picture: Picture) -> np.ndarray:
+def _vertex_numbers(picture: StreamFrame) -> np.ndarray:
     """For each point of each polygon, a number for its place: equal for the
     points where polygons meet (to 1e-9 of the picture's size)."""
     scale = max(float(np.abs(picture.points).max()), 1.0) * 1e-9

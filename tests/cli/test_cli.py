@@ -2,7 +2,8 @@
 
 import pytest
 
-from meshcheck import parse_stream, run
+from tests.support.cli import run
+from tests.support.stream import parse_stream
 
 CUBE = "!cu(0.5, 0.5, 0.5)"
 

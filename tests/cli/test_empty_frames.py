@@ -3,7 +3,7 @@ a drawing, a picture (a blank picture says why)."""
 
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
 
 EMPTY = "> $I(!cu(1, 0, 0), @t(5, 0, 0) !cu(1, 0, 0));\n> $D(!cu(1, 0, 0), !cu(1, 0, 0));\n"
 FULL = "> !cu(1, 0, 0);\n> @h(0.01, 0.01, 0.01) !sp(1, 0, 0);\n"

@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from meshcheck import hear_ctrl_c
+from tests.support.cli import hear_ctrl_c
 
 # two frames, each long enough to be caught in the middle of its making
 BIG = "a = $U(" + ", ".join(f"@t({i * 0.7:g}, 0, 0) !sp(1, 0, 0)" for i in range(41)) + ");\n" \

@@ -1,6 +1,7 @@
 """Frames made in other processes (--jobs) or on a Dask cluster (--scheduler)
 are written exactly as one process writes them."""
 
+import importlib.util
 import re
 import subprocess
 import sys
@@ -8,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from meshcheck import run
+from tests.support.cli import OUTSIDE, run, run_once
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.cas"))
@@ -24,15 +25,16 @@ L = 2;
 """
 
 
-def _outputs(*args, stdin=None):
-    """castor's status, output and messages, less the seconds of --stats lines."""
-    status, out, err = run(*args, stdin=stdin)
+def _outputs(*args, stdin=None, once=False):
+    """castor's status, output and messages, less the seconds of --stats lines;
+    ``once``: the session's one run of these arguments (tests.support.cli.run_once)."""
+    status, out, err = run_once(*args) if once else run(*args, stdin=stdin)
     return status, out, re.sub(r", \d+\.\d+ s$", ", (seconds)", err, flags=re.M)
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.name)
 def test_two_jobs_write_what_one_writes(path):
-    assert _outputs("--jobs", "2", str(path)) == _outputs(str(path))
+    assert _outputs("--jobs", "2", str(path)) == _outputs(str(path), once=True)
 
 
 def test_two_jobs_with_errors_say_and_write_the_same_in_the_same_order():
@@ -69,15 +71,34 @@ def test_a_dask_cluster_writes_what_one_process_writes():
                                   dashboard_address=None) as cluster:
         for path in [ROOT / "examples" / "door.cas", ROOT / "examples" / "house.cas"]:
             assert (_outputs("--scheduler", cluster.scheduler_address, str(path))
-                    == _outputs(str(path)))
+                    == _outputs(str(path), once=True))
         with_errors = _outputs("--no-cpp", "--scheduler", cluster.scheduler_address,
                                stdin=WITH_ERRORS)
         assert with_errors == _outputs("--no-cpp", stdin=WITH_ERRORS)
 
 
-def test_an_unreachable_scheduler_is_a_usage_error():
+@pytest.fixture(scope="module", autouse=True)
+def unreachable_scheduler():
+    """castor told of a Dask scheduler nobody answers for, started with the
+    module's first test: it waits out Dask's connection timeout (10 s) while
+    the other tests run, rather than on its own."""
+    if importlib.util.find_spec("distributed") is None:
+        yield None
+        return
+    castor = subprocess.Popen([sys.executable, "-m", "castor", "--scheduler", "tcp://127.0.0.1:9",
+                               str(ROOT / "examples" / "car.cas")], stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True, cwd=OUTSIDE)
+    yield castor
+    if castor.poll() is None:
+        castor.kill()
+    castor.communicate()
+
+
+def test_an_unreachable_scheduler_is_a_usage_error(unreachable_scheduler):
     pytest.importorskip("distributed", reason="Dask's distributed is not installed")
-    status, out, err = run("--scheduler", "tcp://127.0.0.1:9", str(ROOT / "examples" / "car.cas"))
+    out, err = unreachable_scheduler.communicate(timeout=600)
+    status = unreachable_scheduler.returncode
+    assert "Traceback" not in err, err
     assert status == 2
     assert "castor: error: cannot reach the Dask scheduler at 'tcp://127.0.0.1:9'" in err
 
@@ -87,6 +108,6 @@ def test_a_closed_pipe_ends_two_jobs_quietly():
     tracker (leaked semaphores) once castor has gone (CLI.md: a closed pipe ends quietly)."""
     door = ROOT / "examples" / "door.cas"
     result = subprocess.run(f"'{sys.executable}' -m castor --jobs 2 '{door}' | head -1",
-                            shell=True, capture_output=True, text=True, timeout=120, cwd=ROOT.parent)
+                            shell=True, capture_output=True, text=True, timeout=120, cwd=OUTSIDE)
     assert result.stdout == "castor-polygons 1\n"
     assert result.stderr == ""

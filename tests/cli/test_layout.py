@@ -9,15 +9,17 @@ PACKAGE = Path(__file__).resolve().parents[2] / "castor"
 
 # stage of each top-level module or folder, in pipeline order
 STAGES = {
-    "castor": 0, "castor.diagnostics": 0, "castor.options": 0, "castor.progress": 0,
+    "castor": 0, "castor.diagnostics": 0, "castor.progress": 0,
     "castor.settings": 0,
-    "castor.language": 1, "castor.primitives": 1, "castor.transformations": 1,
+    "castor.language": 1, "castor.primitives": 1, "castor.transformations": 1, "castor.booleans": 1,
     "castor.csg": 2,
     "castor.mesh": 3, "castor.pictures": 3,
-    "castor.formats": 4, "castor.drawings": 4, "castor.quantities": 4,
+    "castor.formats": 4, "castor.drawings": 4, "castor.quantities": 4, "castor.bim": 4,
     "castor.jobs": 5, "castor.interpreter": 5,
     "castor.pipeline": 6, "castor.run": 6, "castor.editing": 6,
-    "castor.cli": 7, "castor.serve": 7, "castor.view": 7, "castor.__main__": 7, "castor.lsp": 7,
+    # the command lines: castor.options parses their text into castor.settings' records
+    "castor.cli": 7, "castor.options": 7, "castor.serve": 7, "castor.view": 7,
+    "castor.__main__": 7, "castor.lsp": 7,
     "castor.analysis": 7,
 }
 

@@ -3,7 +3,8 @@
 import pytest
 
 from castor.mesh import memory
-from meshcheck import parse_stream, run
+from tests.support.cli import run
+from tests.support.stream import parse_stream
 
 CUBES = "> $U[I = 0, 99](@t(2 * I, 0, 0) !cu(1, 1, 1));\n"  # 600 quads, 1,200 triangles
 

@@ -8,7 +8,7 @@ import zipfile
 import numpy as np
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
 
 CUBE = "> !cu(1, 1, 1);\n> @t(1, 0, 0) !cu(1, 1, 1);\n"
 

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = "maison = !cu(1, 0, 0);\n> maison;\n"

@@ -5,7 +5,7 @@ import json
 
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
 
 SCENE = "> !cu(1, 1, 1);\n>[T = 0, 1] @t(T, 0, 0) @h(2, 1, 1) !cu(1, 0, 0);\n"
 

@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
 
 
 @pytest.mark.parametrize("path, reason", [("/etc", "it is a directory"),

@@ -3,7 +3,7 @@ instead`, then at most a one-line hint, never the usage text (CLI.md)."""
 
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
 
 CUBE = "> !cu(1, 1, 1);\n"
 

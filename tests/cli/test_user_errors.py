@@ -12,7 +12,8 @@ import tempfile
 import pytest
 from hypothesis import HealthCheck, event, given, settings, strategies as st
 
-from meshcheck import parse_stream, run, run_here, write
+from tests.support.cli import OUTSIDE, run, run_here, write
+from tests.support.stream import parse_stream
 
 CUBE = "!cu(0.5, 0.5, 0.5)"
 SCENE = f"> {CUBE};\n"
@@ -29,7 +30,7 @@ def last_line(err):
 def run_briefly(*args, stdin=None, cwd=None, seconds=30):
     """Run castor with a time limit: a hang is a failure, not a stuck suite."""
     result = subprocess.run([sys.executable, "-m", "castor", *args], input=stdin,
-                            cwd=cwd or tempfile.gettempdir(), capture_output=True, text=True,
+                            cwd=cwd or OUTSIDE, capture_output=True, text=True,
                             timeout=seconds)
     assert "Traceback" not in result.stderr, result.stderr
     return result.returncode, result.stdout, result.stderr
@@ -37,7 +38,7 @@ def run_briefly(*args, stdin=None, cwd=None, seconds=30):
 
 def run_view(*args, stdin=None, cwd=None):
     result = subprocess.run([sys.executable, "-m", "castor.view.cli", *args], input=stdin,
-                            capture_output=True, text=True, cwd=cwd or tempfile.gettempdir(),
+                            capture_output=True, text=True, cwd=cwd or OUTSIDE,
                             timeout=120)
     assert "Traceback" not in result.stderr, result.stderr
     return result.returncode, result.stdout, result.stderr
@@ -113,7 +114,7 @@ def test_full_disk_on_standard_output():
     with open("/dev/full", "w") as full:
         result = subprocess.run([sys.executable, "-m", "castor", "--no-cpp"], input=SCENE,
                                 stdout=full, stderr=subprocess.PIPE, text=True, timeout=60,
-                                cwd=tempfile.gettempdir())
+                                cwd=OUTSIDE)
     assert result.returncode == 2
     assert result.stderr == "castor: error: cannot write to standard output: no space left on device\n"
 

@@ -12,8 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from meshcheck import run
-from test_drawings import SVG, Drawn
+from tests.support.cli import run
+from tests.support.drawings import Drawn, SVG
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

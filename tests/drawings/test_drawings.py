@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import re
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET
@@ -11,9 +10,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
+from tests.support.drawings import draw_svg, Drawn
 
-SVG = "{http://www.w3.org/2000/svg}"
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 # a room of 4 x 3 m, walls 0.2 m thick, a door 0.9 m wide in the south wall,
@@ -35,113 +34,8 @@ derriere = @t(1, 3, 0) @h(2, 1, 2) !cu(0, 0, 1);
 """
 
 
-def _path_points(d: str) -> list[list[tuple[float, float]]]:
-    """The subpaths of an SVG path made of M, L and Z, as lists of points."""
-    subpaths = []
-    for command, numbers in re.findall(r"([MLZ])([^MLZ]*)", d):
-        values = [float(v) for v in numbers.replace(",", " ").split()]
-        points = list(zip(values[0::2], values[1::2]))
-        if command == "M":
-            subpaths.append(points)
-        elif command == "L":
-            subpaths[-1].extend(points)
-    return subpaths
-
-
-class Drawn:
-    """An SVG drawing read back: its cut loops and seen segments per object's
-    group, in scene metres on the page (x right, y up), through the paper
-    origin and scale the drawing's group declares (which must be the scale
-    asked for); also the sheet's texts, and the pens of each kind of line."""
-
-    def __init__(self, svg: bytes, scale: float):
-        root = ET.fromstring(svg)
-        self.root = root
-        self.width_mm = float(root.get("width").removesuffix("mm"))
-        self.height_mm = float(root.get("height").removesuffix("mm"))
-        assert root.get("viewBox") == f"0 0 {root.get('width')[:-2]} {root.get('height')[:-2]}"
-        drawing = root.find(f"{SVG}g[@id='drawing']")
-        ox, oy = (float(v) for v in drawing.get("data-origin").split())
-        mm = float(drawing.get("data-mm-per-metre"))
-        assert mm == pytest.approx(1000 / scale)
-        self.cuts, self.lines, self.pens = {}, {}, {}
-        for group in drawing.findall(SVG + "g"):
-            name = group.get("id")
-            self.cuts[name], self.lines[name] = [], []
-            for path in group.iter(SVG + "path"):
-                self.pens.setdefault(path.get("class"), set()).add(float(path.get("stroke-width")))
-                for sub in _path_points(path.get("d")):
-                    p = np.array(sub)
-                    p = np.column_stack([(p[:, 0] - ox) / mm, (oy - p[:, 1]) / mm])
-                    if path.get("class") == "cut":
-                        self.cuts[name].append(p)
-                    else:
-                        self.lines[name].append(p)
-        self.texts = {group.get("id"): ["".join(t.itertext()) for t in group.iter(SVG + "text")]
-                      for group in root.findall(SVG + "g")}
-
-    def extent(self, name: str) -> np.ndarray:
-        """(2, 2): the corners of what the group draws, in metres."""
-        points = np.concatenate(self.lines[name] + self.cuts[name])
-        return np.array([points.min(axis=0), points.max(axis=0)])
-
-    def cut_area(self, name: str) -> float:
-        total = 0.0
-        for loop in self.cuts[name]:
-            x, y = loop[:, 0], loop[:, 1]
-            total += np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) / 2
-        return total
-
-    def in_poche(self, name: str, x: float, y: float) -> bool:
-        inside = False
-        for loop in self.cuts[name]:
-            a, b = loop, np.roll(loop, -1, axis=0)
-            crosses = (a[:, 1] > y) != (b[:, 1] > y)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                at = a[:, 0] + (y - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
-            inside ^= bool(np.sum(crosses & (at > x)) % 2)
-        return inside
-
-    def has_line(self, name: str, p, q, tol=1e-3) -> bool:
-        """Whether a seen segment goes from p to q (either way)."""
-        p, q = np.array(p), np.array(q)
-        for s in self.lines[name]:
-            a, b = s[0], s[-1]
-            if (np.allclose(a, p, atol=tol) and np.allclose(b, q, atol=tol)) or \
-               (np.allclose(a, q, atol=tol) and np.allclose(b, p, atol=tol)):
-                return True
-        return False
-
-    def covered(self, name: str, p, q, tol=1e-3) -> float:
-        """The length of the segment p→q covered by seen lines lying along it."""
-        p, q = np.array(p, float), np.array(q, float)
-        d = q - p
-        length = np.linalg.norm(d)
-        u = d / length
-        pieces = []
-        for s in self.lines[name]:
-            a, b = s[0] - p, s[-1] - p
-            if abs(u[0] * a[1] - u[1] * a[0]) < tol and abs(u[0] * b[1] - u[1] * b[0]) < tol:
-                t = sorted((a @ u, b @ u))
-                pieces.append((max(t[0], 0), min(t[1], length)))
-        covered, reach = 0.0, 0.0
-        for lo, hi in sorted(pieces):
-            lo = max(lo, reach)
-            if hi > lo:
-                covered += hi - lo
-                reach = hi
-        return covered
-
-
-def _draw(tmp_path, scene: str, *options, name="d.svg") -> bytes:
-    (tmp_path / "s.cas").write_text(scene)
-    out = tmp_path / name
-    run(*options, "-o", str(out), str(tmp_path / "s.cas"), check_status=0)
-    return b"" if "%" in name else out.read_bytes()
-
-
 def test_plan_of_a_room_with_a_door(tmp_path):
-    svg = _draw(tmp_path, ROOM, "--section", "z=1.2")
+    svg = draw_svg(tmp_path, ROOM, "--section", "z=1.2")
     drawn = Drawn(svg, 100)
     # the floor slab is the drawing's extent
     assert drawn.extent("piece") == pytest.approx(np.array([[-0.5, -0.5], [4.5, 3.5]]))
@@ -161,7 +55,7 @@ def test_plan_of_a_room_with_a_door(tmp_path):
 
 def test_vertical_section_cuts_the_floor_and_the_walls(tmp_path):
     # x = 1.5 through the door, seen looking towards +x: y goes to the left
-    svg = _draw(tmp_path, ROOM, "--section", "x=1.5")
+    svg = draw_svg(tmp_path, ROOM, "--section", "x=1.5")
     drawn = Drawn(svg, 100)  # page x is -y: the slab spans -3.5 .. 0.5
     section = 4 * 0.1 + 2 * 0.2 * 2.5 - 0.2 * 2.1  # floor, north and south walls, less the door
     assert drawn.cut_area("piece") == pytest.approx(section, abs=1e-4)
@@ -170,7 +64,7 @@ def test_vertical_section_cuts_the_floor_and_the_walls(tmp_path):
 
 
 def test_elevation_hides_what_is_behind(tmp_path):
-    svg = _draw(tmp_path, TWO_BOXES, "--view", "front")
+    svg = draw_svg(tmp_path, TWO_BOXES, "--view", "front")
     drawn = Drawn(svg, 100)
     assert not drawn.cuts["devant"] and not drawn.cuts["derriere"]
     # the front box: its outline, whole
@@ -189,7 +83,7 @@ def test_elevation_hides_what_is_behind(tmp_path):
 
 
 def test_curved_surfaces_are_drawn_by_their_silhouettes(tmp_path):
-    svg = _draw(tmp_path, "tube = @h(0.5, 0.5, 2) !cy(0.5, 0.5, 0.5);\n> tube;\n", "--view", "front")
+    svg = draw_svg(tmp_path, "tube = @h(0.5, 0.5, 2) !cy(0.5, 0.5, 0.5);\n> tube;\n", "--view", "front")
     drawn = Drawn(svg, 100)
     # a cylinder seen from the side: a rectangle, not a line per facet
     vertical = [s for s in drawn.lines["tube"] if abs(s[0, 0] - s[-1, 0]) < 1e-6]
@@ -202,7 +96,7 @@ def test_curved_surfaces_are_drawn_by_their_silhouettes(tmp_path):
 
 
 def test_scale_sets_the_printed_size(tmp_path):
-    svg = _draw(tmp_path, TWO_BOXES, "--view", "front", "--scale", "1:50")
+    svg = draw_svg(tmp_path, TWO_BOXES, "--view", "front", "--scale", "1:50")
     drawn = Drawn(svg, 50)  # 20 mm of paper a metre
     assert drawn.extent("devant") == pytest.approx(np.array([[0, 0], [2, 1]]))
     # the sheet holds the drawing (3 x 2 m, 60 x 40 mm) and its title block below it
@@ -211,7 +105,7 @@ def test_scale_sets_the_printed_size(tmp_path):
 
 def test_dxf_in_metres_with_a_layer_per_object(tmp_path):
     ezdxf = pytest.importorskip("ezdxf")
-    _draw(tmp_path, ROOM + "lampe = @t(2, 1.5, 0) @h(0.3, 0.3, 1.5) !cu(1, 1, 0);\n> lampe;\n",
+    draw_svg(tmp_path, ROOM + "lampe = @t(2, 1.5, 0) @h(0.3, 0.3, 1.5) !cu(1, 1, 0);\n> lampe;\n",
           "--section", "z=1.2", name="p%d.dxf")
     doc = ezdxf.readfile(tmp_path / "p1.dxf")
     auditor = doc.audit()

@@ -4,7 +4,7 @@ says -7."""
 
 import re
 
-from meshcheck import run
+from tests.support.cli import run
 
 
 def _header_point(text: str, name: str) -> tuple[float, float, float]:

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

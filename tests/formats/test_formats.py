@@ -6,7 +6,8 @@ import pytest
 import trimesh
 
 from castor.formats import FORMATS as REGISTRY, of_kind
-from meshcheck import parse_stream, run
+from tests.support.cli import run
+from tests.support.stream import parse_stream
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 # every mesh format castor writes, but 3MF, which trimesh reads only with networkx

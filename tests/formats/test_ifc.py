@@ -8,11 +8,12 @@ import json
 import os
 import shutil
 import subprocess
+from collections import Counter
 from pathlib import Path
 
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
 
 ROOT = Path(__file__).resolve().parents[2]
 HOUSE = ROOT / "examples" / "house.cas"
@@ -49,8 +50,9 @@ def _issues(model, express_rules=True):
 
 
 def _volumes_and_colours(model):
-    """Per element name: the volume and the colours ifcopenshell's geometry
-    (OpenCASCADE, with the placements applied) finds."""
+    """Per element name (the elements of one name summed: a row of windows):
+    the volume and the colours ifcopenshell's geometry (OpenCASCADE, with the
+    placements and the openings applied) finds."""
     import ifcopenshell.geom
     import ifcopenshell.util.shape
 
@@ -58,10 +60,14 @@ def _volumes_and_colours(model):
     settings.set("use-world-coords", True)
     found = {}
     for element in model.by_type("IfcElement"):
+        if element.is_a("IfcOpeningElement"):
+            continue
         shape = ifcopenshell.geom.create_shape(settings, element)
         colours = {tuple(round(c, 6) for c in (m.diffuse.r(), m.diffuse.g(), m.diffuse.b()))
                    for m in shape.geometry.materials}
-        found[element.Name] = (ifcopenshell.util.shape.get_volume(shape.geometry), colours)
+        volume, seen = found.get(element.Name, (0.0, set()))
+        found[element.Name] = (volume + ifcopenshell.util.shape.get_volume(shape.geometry),
+                               seen | colours)
     return found
 
 
@@ -95,20 +101,29 @@ def test_the_house_is_ifc4_with_the_spatial_structure(house):
     assert project.Name == "maison"  # the '>' object's name, with no --title
     (site,) = model.by_type("IfcSite")
     (building,) = model.by_type("IfcBuilding")
-    (storey,) = model.by_type("IfcBuildingStorey")
+    (storey,) = model.by_type("IfcBuildingStorey")  # no storey, no floor slab: Level 0
+    assert (storey.Name, storey.Elevation) == ("Level 0", 0.0)
     for whole, part in ((project, site), (site, building), (building, storey)):
         (rel,) = whole.IsDecomposedBy
         assert rel.is_a("IfcRelAggregates") and list(rel.RelatedObjects) == [part]
     (contained,) = storey.ContainsElements
-    elements = model.by_type("IfcElement")
+    elements = [e for e in model.by_type("IfcElement") if not e.is_a("IfcOpeningElement")]
     assert set(contained.RelatedElements) == set(elements)
-    assert [e.Name for e in elements] == ["maison"]
-    assert elements[0].is_a() == "IfcBuildingElementProxy"
+    # the classed objects of its annotations, and the rest of maison (the door leaf)
+    assert Counter((e.is_a(), e.Name) for e in elements) == Counter({
+        ("IfcBuildingElementProxy", "maison"): 1, ("IfcWall", "murs"): 1,
+        ("IfcWall", "pignons"): 1, ("IfcRoof", "toit"): 1, ("IfcChimney", "cheminee"): 1,
+        ("IfcSlab", "socle"): 1, ("IfcDoor", "porte_trou"): 1, ("IfcWindow", "fenetres_sud"): 2,
+        ("IfcWindow", "fenetres_nord"): 2, ("IfcWindow", "fenetres_pignon"): 4})
+    assert len(model.by_type("IfcOpeningElement")) == 9
     # its source: the definition of maison; the frame's, the '>' that names it
     lines = HOUSE.read_text().splitlines()
     defined = 1 + next(i for i, line in enumerate(lines) if line.startswith("maison ="))
     written = 1 + next(i for i, line in enumerate(lines) if line.startswith("> maison"))
-    assert elements[0].Description == f"{HOUSE}:{defined}"
+    by_name = {e.Name: e for e in elements}
+    assert by_name["maison"].Description == f"{HOUSE}:{defined}"
+    murs = 1 + next(i for i, line in enumerate(lines) if line.startswith("murs ="))
+    assert by_name["murs"].Description == f"the four walls ({HOUSE}:{murs})"
     assert summary["where"].endswith(f"house.cas:{written}")
 
 
@@ -128,38 +143,57 @@ def test_the_house_validates_without_an_issue(house):
     assert _issues(model) == []
 
 
+def _fillers_and_openings(element) -> bool:
+    return element.is_a("IfcOpeningElement") or bool(element.FillsVoids)
+
+
 def test_volumes_and_colours_read_back_as_summary_gives(house):
     model, summary, _ = house
     found = _volumes_and_colours(model)
     (maison,) = summary["objects"]
-    volume, colours = found["maison"]
-    assert volume == pytest.approx(maison["volume"], rel=1e-9)
-    assert colours == {tuple(c["rgb"]) for c in maison["colours"]}
-    assert len(colours) == 6
+    # the elements share the object's solid out; the doors and windows are what
+    # was cut from it
+    parts = {e.Name for e in model.by_type("IfcElement") if not _fillers_and_openings(e)}
+    assert sum(found[name][0] for name in parts) == pytest.approx(maison["volume"], rel=1e-9)
+    # each element in its largest colour (ifcopenshell's geometry applies the
+    # style, not the colour map); together, the house's colours but its blue
+    # reveals, which are in the walls' colour maps
+    colours = set().union(*(found[name][1] for name in parts))
+    assert colours == {tuple(c["rgb"]) for c in maison["colours"]} - {(0.25, 0.45, 0.85)}
+    assert all(len(found[name][1]) == 1 for name in parts)
+    mapped = set()
+    for element in model.by_type("IfcElement"):
+        if element.is_a("IfcOpeningElement"):
+            continue
+        (item,) = element.Representation.Representations[0].Items
+        (colour_map,) = item.HasColours
+        mapped |= {tuple(round(c, 9) for c in rgb) for rgb in colour_map.Colours.ColourList}
+    assert mapped == {tuple(c["rgb"]) for c in maison["colours"]}
+    assert len(mapped) == 6
 
 
-def test_the_body_is_castors_polygons_one_face_set_per_colour(house):
+def test_the_body_is_castors_polygons_one_closed_face_set(house):
     model, summary, _ = house
-    (maison,) = summary["objects"]
-    (element,) = model.by_type("IfcElement")
-    (representation,) = element.Representation.Representations
-    assert (representation.RepresentationIdentifier, representation.RepresentationType) == (
-        "Body", "Tessellation")
-    sets = representation.Items
-    assert all(s.is_a("IfcPolygonalFaceSet") for s in sets) and len(sets) == 6
-    assert len({s.Coordinates.id() for s in sets}) == 1  # one coordinate list
-    faces = [f for s in sets for f in s.Faces]
-    assert len(faces) == maison["polygons"]  # no triangle added
-    assert max(len(f.CoordIndex) for f in faces) > 3
-    assert not any(s.Closed for s in sets)  # each is part of the closed surface
-    styles = model.by_type("IfcSurfaceStyle")
-    assert len(styles) == 6 and len({s.Name for s in styles}) == 6
-    assert {s.Side for s in styles} == {"BOTH"}
-    assert {s.Name for s in styles} >= {"dessus", "socle", "battant"}  # named as in OBJ
-    for face_set in sets:
+    for element in model.by_type("IfcElement"):
+        (representation,) = element.Representation.Representations
+        assert (representation.RepresentationIdentifier, representation.RepresentationType) \
+            == ("Body", "Tessellation")
+        (face_set,) = representation.Items
+        assert face_set.is_a("IfcPolygonalFaceSet") and face_set.Closed
+        edges = Counter((f.CoordIndex[k], f.CoordIndex[(k + 1) % len(f.CoordIndex)])
+                        for f in face_set.Faces for k in range(len(f.CoordIndex)))
+        assert set(edges.values()) == {1} and all((b, a) in edges for a, b in edges)
+        if element.is_a("IfcOpeningElement"):
+            assert not face_set.StyledByItem  # an opening is not drawn
+            continue
         (styled,) = face_set.StyledByItem
         (style,) = styled.Styles
-        assert style.is_a("IfcSurfaceStyle")
+        assert style.is_a("IfcSurfaceStyle") and style.Side == "BOTH"
+    faces = [f for s in model.by_type("IfcPolygonalFaceSet") for f in s.Faces]
+    assert max(len(f.CoordIndex) for f in faces) > 3  # polygons, not triangles
+    styles = model.by_type("IfcSurfaceStyle")
+    assert len({s.Name for s in styles}) == len(styles)
+    assert {s.Name for s in styles} >= {"dessus", "socle", "battant"}  # named as in OBJ
 
 
 def test_the_parameters_are_a_property_set_on_the_project(house):
@@ -170,9 +204,10 @@ def test_the_parameters_are_a_property_set_on_the_project(house):
     values = ifcopenshell.util.element.get_psets(project)["Castor_Parameters"]
     assert values["L"] == 9 and values["P"] == 6.5 and values["PENTE"] == 35
     assert values["TOLERANCE"] == 0.01 and "PI" not in values
-    (element,) = model.by_type("IfcElement")
+    # the rest of maison, the door leaf, a proxy: castor's own volume and area
+    (element,) = [e for e in model.by_type("IfcBuildingElementProxy")]
     quantities = ifcopenshell.util.element.get_psets(element)["Castor_Quantities"]
-    assert quantities["Volume"] == pytest.approx(house[1]["objects"][0]["volume"], rel=1e-9)
+    assert quantities["Volume"] == pytest.approx(1.0 * 0.05 * 2.15, rel=1e-9)
 
 
 def test_several_objects_classes_parameters_and_frames(scene):
@@ -197,15 +232,18 @@ def test_several_objects_classes_parameters_and_frames(scene):
         assert elements["object3"].is_a() == "IfcBuildingElementProxy"
         assert elements["mur"].Description == "scene.cas:2"
         assert elements["object3"].Description == "scene.cas:7"  # the >
-        (wall_body,) = elements["mur"].Representation.Representations[0].Items
-        assert wall_body.Closed  # one colour: the whole closed surface
         found = _volumes_and_colours(model)
         for obj in record["objects"]:
             if obj["polygons"] == 0:
                 continue
+            (body,) = elements[obj["name"]].Representation.Representations[0].Items
+            assert body.Closed  # one closed surface, whatever its colours
             volume, colours = found[obj["name"]]
             assert volume == pytest.approx(obj["volume"], rel=1e-9)
-            assert colours == {tuple(c["rgb"]) for c in obj["colours"]}
+            assert colours == {tuple(obj["colours"][0]["rgb"])}  # the largest: the style
+            (colour_map,) = body.HasColours
+            assert {tuple(round(c, 9) for c in rgb) for rgb in colour_map.Colours.ColourList} \
+                == {tuple(c["rgb"]) for c in obj["colours"]}
         box = found["object3"]
         assert box[0] == pytest.approx(2.7 * 6 * 0.5 * 1 * 1 * (3 ** 0.5 / 2) * 0.2 ** 2, rel=1e-6)
 
@@ -328,12 +366,16 @@ def test_web_ifc_reads_the_house_as_ifcopenshell_does(house, tmp_path):
                              str(where / "house.ifc"), str(tmp_path / "house.obj")],
                             capture_output=True, text=True, cwd=_web_ifc(), timeout=300)
     assert result.returncode == 0, result.stderr
-    (element,) = json.loads(result.stdout)
-    (maison,) = summary["objects"]
-    assert element["name"] == "maison" and element["class"] == "IfcBuildingElementProxy"
-    # web-ifc's vertices are single precision
-    assert element["volume"] == pytest.approx(maison["volume"], rel=1e-5)
-    assert {tuple(c) for c in element["colours"]} == {tuple(c["rgb"]) for c in maison["colours"]}
+    read = {e["name"]: e for e in json.loads(result.stdout)}  # (by name: windows summed)
+    found = _volumes_and_colours(model)
+    assert read.keys() == {e.Name for e in model.by_type("IfcElement")
+                           if not e.is_a("IfcOpeningElement")}
+    for name, element in read.items():
+        (cls,) = {e.is_a() for e in model.by_type("IfcElement") if e.Name == name}
+        assert element["class"] == cls
+        # web-ifc's vertices are single precision; its colour the style's
+        assert element["volume"] == pytest.approx(found[name][0], rel=1e-5)
+        assert {tuple(c) for c in element["colours"]} == found[name][1]
 
 
 def test_each_face_starts_at_a_true_corner():
@@ -356,17 +398,21 @@ def test_each_face_starts_at_a_true_corner():
     assert turned[8:].tolist() == [8, 0, 1]
 
 
-def test_the_quick_faces_are_create_entitys(house, monkeypatch):
-    from castor.formats import ifc
+def test_the_quick_entities_are_create_entitys(tmp_path, monkeypatch):
+    """The writer's quick entities (ifc_body.entity_maker) give the bytes that
+    ifcopenshell's create_entity gives."""
+    from castor.formats import ifc, ifc_body
     from castor.mesh.facetize import Facetizer
     from castor.pipeline import evaluated_frames
 
-    (scene, _), said = evaluated_frames(SCENE, "scene.cas")
-    frame = Facetizer().frame(scene)
-    quick = ifc.export(scene, frame)
-    monkeypatch.setattr(ifc, "_face_maker", lambda f: lambda row: f.create_entity(
-        "IfcIndexedPolygonalFace", row))
-    assert ifc.export(scene, frame) == quick
+    pavilion = ROOT / "examples" / "pavilion.cas"
+    for text, name in ((SCENE, "scene.cas"), (pavilion.read_text(), str(pavilion))):
+        (scene, *_), said = evaluated_frames(text, name)
+        frame = Facetizer().frame(scene)
+        quick = ifc.export(scene, frame)
+        with monkeypatch.context() as patched:
+            patched.setattr(ifc_body, "entity_maker", lambda f: f.create_entity)
+            assert ifc.export(scene, frame, facetizer=Facetizer()) == quick
 
 
 def test_an_empty_frame_is_a_valid_model_without_elements():

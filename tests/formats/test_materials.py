@@ -17,7 +17,7 @@ from xml.etree import ElementTree
 
 import pytest
 
-from meshcheck import run
+from tests.support.cli import run
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

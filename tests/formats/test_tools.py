@@ -14,7 +14,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from meshcheck import parse_stream, run
+from tests.support.cli import run
+from tests.support.stream import parse_stream
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 CROSS = "> $U(@h(3,0.2,0.3) !cu(1,0,0), @t(1,-1,0.3) @h(0.1,2,0.2) !cu(0,1,0));\n"

@@ -6,14 +6,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from meshcheck import run
+from tests.support.cli import run
 
 
 def pictures(scene: str, mode: str, view=(-60.0, 25.0)):
     """castor's stream of ``scene``, drawn by castor-view's renderer: one
     image per frame, 240 x 180."""
     from castor.formats.cps import load
-    from castor.options import View
+    from castor.settings import View
     from castor.pictures.camera import make_camera
     from castor.view.render import render
 
@@ -118,7 +118,7 @@ def test_flat_faces_stay_flat_and_creases_sharp():
 
 
 def test_the_help_names_every_view_of_the_table():
-    from castor.options import VIEW_NAMES
+    from castor.settings import VIEW_NAMES
 
     status, out, _ = run_view("--help")
     assert status == 0

@@ -15,8 +15,8 @@ import sys
 import numpy as np
 import pytest
 
-from meshcheck import run
-from test_drawings import Drawn, _draw
+from tests.support.cli import run
+from tests.support.drawings import Drawn, draw_svg
 
 LINES = {6: 4, 10: 6, 12: 7, 16: 9}
 
@@ -39,7 +39,7 @@ def _vertical_xs(segments, top=3.0) -> list[float]:
 
 @pytest.mark.parametrize("n", sorted(LINES))
 def test_a_prism_column_in_elevation_shows_each_edge_in_front_svg(tmp_path, n):
-    drawn = Drawn(_draw(tmp_path, column(n), "--view", "front"), 100)
+    drawn = Drawn(draw_svg(tmp_path, column(n), "--view", "front"), 100)
     xs = _vertical_xs([(s[0], s[-1]) for s in drawn.lines["colonne"]])
     assert len(xs) == LINES[n]
     # the corners of the N-gon in front, first vertex at (1, 0)
@@ -50,14 +50,14 @@ def test_a_prism_column_in_elevation_shows_each_edge_in_front_svg(tmp_path, n):
 @pytest.mark.parametrize("n", sorted(LINES))
 def test_a_prism_column_in_elevation_shows_each_edge_in_front_dxf(tmp_path, n):
     ezdxf = pytest.importorskip("ezdxf")
-    _draw(tmp_path, column(n), "--view", "front", name="e.dxf")
+    draw_svg(tmp_path, column(n), "--view", "front", name="e.dxf")
     lines = ezdxf.readfile(tmp_path / "e.dxf").modelspace().query("LINE")
     segments = [((l.dxf.start.x, l.dxf.start.y), (l.dxf.end.x, l.dxf.end.y)) for l in lines]
     assert len(_vertical_xs(segments)) == LINES[n]
 
 
 def test_a_cylinder_in_elevation_shows_its_outlines_only(tmp_path):
-    drawn = Drawn(_draw(tmp_path, TUBE, "--view", "front"), 100)
+    drawn = Drawn(draw_svg(tmp_path, TUBE, "--view", "front"), 100)
     assert len(_vertical_xs([(s[0], s[-1]) for s in drawn.lines["colonne"]])) == 2
 
 

@@ -10,15 +10,17 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from meshcheck import check_solid, parse_stream, run
+from tests.support.checks import check_solid
+from tests.support.cli import run, run_once
+from tests.support.stream import parse_stream
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.cas"))
 
 
 @pytest.mark.parametrize("example", EXAMPLES, ids=lambda p: p.name)
-def test_example_frames_are_closed_solids(example, tmp_path):
-    status, out, err = run(str(example), cwd=tmp_path)
+def test_example_frames_are_closed_solids(example):
+    status, out, err = run_once(str(example))
     assert status == 0, err
     assert "warning" not in err
     frames = parse_stream(out)
@@ -29,7 +31,7 @@ def test_example_frames_are_closed_solids(example, tmp_path):
 
 
 def test_door_animation_has_nine_frames():
-    status, out, err = run(str(ROOT / "examples" / "door.cas"))
+    status, out, err = run_once(str(ROOT / "examples" / "door.cas"))
     frames = parse_stream(out)
     assert len(frames) == 9
     # the door leaf moves: the frames differ, the wall does not

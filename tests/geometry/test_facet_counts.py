@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from meshcheck import frames_of
+from tests.support.cli import frames_of
 
 W = "1, 1, 1"
 

@@ -5,7 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from meshcheck import check_solid, frames_of, run, parse_stream
+from tests.support.checks import check_solid
+from tests.support.cli import frames_of, run
+from tests.support.stream import parse_stream
 
 W = "1, 1, 1"
 

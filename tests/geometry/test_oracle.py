@@ -1,18 +1,18 @@
-"""castor against the differential oracle (tests/oracle.py): a few hundred
+"""castor against the differential oracle (tests/oracle/): a few hundred
 random scenes, many per castor process; the long run is
-`python tests/oracle.py --cases 3000`."""
+`python -m tests.oracle --cases 3000`."""
 
 import numpy as np
 import pytest
 
-import exact
-import oracle
-from meshcheck import parse_stream
+from tests import oracle
+from tests.oracle import exact
+from tests.support.stream import parse_stream
 
 @pytest.mark.parametrize("seed", [11, 12, 13, 14, 15])
 def test_random_scenes_agree_with_the_oracle(seed):
     """Where castor and manifold3d disagree on a volume, exact booleans decide
-    (tests/exact.py, with pymeshlab from the test extra)."""
+    (tests/oracle/exact.py, with pymeshlab from the test extra)."""
     if not exact.available():
         pytest.skip("pymeshlab (the test extra) is not installed: no exact booleans "
                     "to decide where castor and manifold3d disagree")
@@ -50,7 +50,9 @@ def _cube_faces(size):
 def test_sheets_left_by_the_engine_are_taken_out():
     """Where faces only touch, manifold3d can leave a fold or an inner sheet;
     castor takes the overlap out of both faces (sheets.without_sheets)."""
-    from meshcheck import check_convex_planar, frames_of, regularity_defects
+    from tests.support.checks import check_convex_planar
+    from tests.support.cli import frames_of
+    from tests.support.regularity import regularity_defects
     (frame,) = frames_of("x = $U(!py(1,0,0,4), @ry(45) !cu(1,0,0), @t(-0.5,-0.9,-0.1) "
                          "!cu(1,0,0), @t(-0.6,0,-1) !cu(1,0,0)); > x;\n")
     assert regularity_defects(frame) == []
@@ -67,7 +69,8 @@ def test_sheets_left_by_the_engine_are_taken_out():
 
 def test_a_line_contact_is_no_sheet():
     """A cube's edge in a face of a turned prism: the solids touch along a line."""
-    from meshcheck import frames_of, regularity_defects
+    from tests.support.cli import frames_of
+    from tests.support.regularity import regularity_defects
     (frame,) = frames_of("s = @ry(180) @ry(45) !pr(0.5, 0.5, 0, 3); > $U(!cu(0, 1, 0.5), s);\n")
     assert regularity_defects(frame) == []
 
@@ -76,9 +79,10 @@ def test_a_union_the_engine_gets_wrong_is_computed_the_other_way_round():
     """Left by the long oracle run (3000 scenes): manifold3d's union of these
     operands, whose faces coincide exactly, moved three vertices off their
     faces and lost 0.0516 of volume (40.6975627); the other way round it is
-    right. Exact booleans (tests/exact.py) give 40.7491591. castor checks
+    right. Exact booleans (tests/oracle/exact.py) give 40.7491591. castor checks
     every result's triangles against their faces (checks.off_faces)."""
-    from meshcheck import frames_of, regularity_defects
+    from tests.support.cli import frames_of
+    from tests.support.regularity import regularity_defects
     (frame,) = frames_of(
         "a = !ex(0.25, 1, 1, 0,0, 0,2, 1,2, 1,1, 2,1, 2,0);\n"
         "b = $U($U($U(@h(-2, 0.5, -2) a, @r(1, 1, -1, 90) !py(0.25, 1, 1, 6), @h(2) a), "

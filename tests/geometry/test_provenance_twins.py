@@ -13,8 +13,10 @@ import sys
 
 import numpy as np
 
-from meshcheck import _newell, check_closed, check_convex_planar, frames_of, parse_stream, \
-    regularity_defects
+from tests.support.checks import check_closed, check_convex_planar
+from tests.support.cli import frames_of
+from tests.support.regularity import regularity_defects
+from tests.support.stream import newell, parse_stream
 
 # (P ∪ cube) − (P' ∪ a turned row): every face of the prism left is cut by P'
 PRISM_TWINS = """
@@ -55,7 +57,7 @@ def test_the_prisms_cut_faces_are_the_cutters():
     # the prism's axis is x after the turn: its faces' normals have no x part,
     # and they face the axis (y = 1.5, z = 0), into the cavity
     for p in prism:
-        normal = _newell(p.points)
+        normal = newell(p.points)
         centre = p.points.mean(axis=0)
         assert abs(normal[0]) < 1e-9 * np.linalg.norm(normal)
         assert np.dot(normal[1:], np.array([1.5, 0.0]) - centre[1:]) > 0
@@ -76,7 +78,7 @@ def test_twins_renamed_apart_leave_the_engines_volume_alone():
     assert wedge
     for p in wedge:
         assert any(np.abs(p.points @ np.array(n) - d).max() < 1e-9
-                   and _newell(p.points) @ np.array(n) > 0 for n, d in planes), p.points
+                   and newell(p.points) @ np.array(n) > 0 for n, d in planes), p.points
 
 
 _NOT_RENAMED = ("import sys, castor.mesh.adapter as a; a.with_run_ids = lambda m, ids: None; "
@@ -97,7 +99,7 @@ def test_twins_the_engine_keeps_under_one_id_are_named_by_the_way_they_face():
     _solid(frame)
     cut = []
     for p in frame.polygons:
-        n = _newell(p.points)
+        n = newell(p.points)
         for axis in range(3):
             if np.allclose(p.points[:, axis], 1.0, atol=1e-9) and n[axis] < -0.5 * np.linalg.norm(n):
                 cut.append(p)

@@ -6,8 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from meshcheck import (check_closed, frames_of, parse_stream, polygon_defects, regularity_defects,
-                       run)
+from tests.support.checks import check_closed
+from tests.support.cli import frames_of, run, run_once
+from tests.support.regularity import polygon_defects, regularity_defects
+from tests.support.stream import parse_stream
 
 REUSED = ("x = $U(!py(1,0,0,4), @ry(45) !cu(1,0,0), @t(-0.5,-0.9,-0.1) !cu(1,0,0), "
           "@t(-0.6,0,-1) !cu(1,0,0));\n")
@@ -139,8 +141,8 @@ EXAMPLES = sorted((__import__("pathlib").Path(__file__).resolve().parents[2] / "
 
 
 @pytest.mark.parametrize("example", EXAMPLES, ids=lambda p: p.name)
-def test_every_example_frame_has_the_volume_of_a_fresh_evaluation(example, monkeypatch, tmp_path):
-    status, out, err = run(str(example), cwd=tmp_path)
+def test_every_example_frame_has_the_volume_of_a_fresh_evaluation(example, monkeypatch):
+    status, out, err = run_once(str(example))
     assert status == 0, err
     reused = parse_stream(out)
     fresh = _fresh_frames(example, monkeypatch)
@@ -189,7 +191,7 @@ s4o1 = $U($U(@h(-2, 0.5, -2) s4o0, @r(1, 1, -1, 90) !py(0.25, 1, 1, 6), @h(2) s4
 
 
 # --- the smallest failures of the long oracle run (seed 11, 2,000 scenes), each
-# checked against exact booleans (tests/exact.py) where castor and manifold3d differ
+# checked against exact booleans (tests/oracle/exact.py) where castor and manifold3d differ
 
 def test_an_object_used_twice_in_one_union_is_the_engines_own_solid_moved():
     """Its second use was a copy rebuilt from the engine's mesh, which the

@@ -8,15 +8,17 @@ import sys
 
 import numpy as np
 
-from meshcheck import _newell, check_closed, check_convex_planar, frames_of, polygon_defects, \
-    regularity_defects
+from tests.support.checks import check_closed, check_convex_planar
+from tests.support.cli import frames_of
+from tests.support.regularity import polygon_defects, regularity_defects
+from tests.support.stream import newell
 
 
 def _thinness(polygon) -> float:
     """Twice the polygon's area over the square of its extent: about zero for
     a needle, 1 for a square."""
     size = float(np.ptp(polygon.points, axis=0).max())
-    return float(np.linalg.norm(_newell(polygon.points))) / size ** 2
+    return float(np.linalg.norm(newell(polygon.points))) / size ** 2
 
 
 def test_a_turned_row_of_overlapping_cubes_has_no_needle():

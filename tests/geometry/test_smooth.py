@@ -1,5 +1,5 @@
 """Smooth solids (LANGUAGE.md §7.1): castor.mesh.subdivide on its own, checked
-against tests/reference_subdivision.py (written apart), and the ray–mesh spans
+against tests/oracle/reference_subdivision.py (written apart), and the ray–mesh spans
 that pictures use for them."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import pytest
 
 from castor.mesh import subdivide
 
-import reference_subdivision as reference
+from tests.oracle import reference_subdivision as reference
 
 
 SMOOTH_VOLUME = 0.32747  # the Catmull–Clark limit of the unit cube
@@ -318,7 +318,8 @@ def test_a_smooth_cube_within_the_tolerance_measured_with_rays():
 
 # --- @s in the language: meshes, booleans, errors, pictures, drawings ----------------
 
-from meshcheck import frames_of, regularity_defects, run  # noqa: E402
+from tests.support.cli import frames_of, run  # noqa: E402
+from tests.support.regularity import regularity_defects  # noqa: E402
 
 def test_a_cube_smoothed_at_60_degrees_is_the_cube_and_at_0_nothing_changes():
     plain, creased, zero = (frames_of(f"> {prefix}!cu(1, 0, 0);")[0]
@@ -509,7 +510,7 @@ def scene_frames(text):
 
 
 def test_a_smoothed_box_seen_from_above_is_rounded():
-    from castor.options import View
+    from castor.settings import View
     from castor.pictures import picture
     from castor.settings import PictureSettings
 
@@ -533,7 +534,7 @@ def test_a_smoothed_box_seen_from_above_is_rounded():
 def test_its_front_elevation_has_no_facet_lines():
     from castor.drawings import draw
     from castor.mesh.facetize import Facetizer
-    from castor.options import View
+    from castor.settings import View
 
     frame = scene_frames("> @s(120) @h(2, 1, 1) !cu(0.8, 0.6, 0.4);")[0]
     meshes = Facetizer().frame(frame)
@@ -549,7 +550,7 @@ def test_its_front_elevation_has_no_facet_lines():
 
 
 def test_the_oracles_smooth_solids_agree_with_castors():
-    import oracle
+    from tests import oracle
 
     for prim, angle in ((oracle.Prim("cu", (1.0, 0.0, 0.0), ()), 135.0),
                         (oracle.Prim("pr", (1.0, 0.0, 0.0), (6.0,)), 100.0),
@@ -569,7 +570,7 @@ def test_the_oracle_looks_for_sheets_in_its_smooth_objects_too():
     # castor's 33.69): its area and box are not the truth, and the frame is
     # judged on castor's surface. It was reported as castor's failure, and
     # asking exact.py (which knows no smooth solid) about it crashed the run
-    import oracle
+    from tests import oracle
 
     scene = oracle.scenes(50, 11 * 1_000_003 + 50, False, True)[14]
     assert oracle.check_scenes([scene], exact=True) == []
@@ -582,14 +583,14 @@ def test_the_oracle_allows_a_thin_smooth_intersection_its_tolerance():
     # thick; at the tolerance 0.01 castor's area is 0.4323, converging to
     # the limit's 0.4663 (0.4614 at 0.001), the oracle's four levels 0.4575:
     # 5.5 % apart, within what a cut face's edge moved by the tolerance makes
-    import oracle
+    from tests import oracle
 
     scene = oracle.scenes(50, 42 * 1_000_003 + 50, False, True)[3]
     assert oracle.check_scenes([scene], exact=True) == []
 
 
 def test_its_picture_with_edges_has_no_facet_lines():
-    from castor.options import View
+    from castor.settings import View
     from castor.pictures import picture
     from castor.settings import PictureSettings
 

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from castor.mesh import crossings
-from meshcheck import frames_of, regularity_defects
+from tests.support.cli import frames_of
+from tests.support.regularity import regularity_defects
 
 
 def test_the_grid_pairs_every_two_boxes_that_meet():

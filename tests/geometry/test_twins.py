@@ -5,7 +5,9 @@ itself, or a cut face is named after (and coloured as) the wrong operand."""
 
 import numpy as np
 
-from meshcheck import _newell, frames_of, regularity_defects
+from tests.support.cli import frames_of
+from tests.support.regularity import regularity_defects
+from tests.support.stream import newell
 
 
 def _on_plane(frame, axis: int, value: float, normal_sign: float):
@@ -13,7 +15,7 @@ def _on_plane(frame, axis: int, value: float, normal_sign: float):
     along ``normal_sign`` of that axis."""
     found = []
     for p in frame.polygons:
-        n = _newell(p.points)
+        n = newell(p.points)
         if (np.allclose(p.points[:, axis], value, atol=1e-9)
                 and n[axis] * normal_sign > 0.5 * np.linalg.norm(n)):
             found.append(p)
@@ -50,7 +52,7 @@ def test_the_oracle_sees_a_cut_face_named_after_its_twin():
     """The oracle judges which way a polygon faces: a face of a use cut away
     an odd number of times faces inward. A polygon of the cutter's face named
     after the minuend's twin (the fault above) faces the other way."""
-    import oracle
+    from tests import oracle
 
     cube = oracle.Prim("cu", (0.1, 0.2, 0.9), ())
     twin = oracle.Prim("cu", (0.3, 0.5, 0.9), ())

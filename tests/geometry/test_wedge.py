@@ -6,10 +6,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from castor.options import View
-from meshcheck import check_closed, check_convex_planar, frames_of, run
-from test_drawings import Drawn, _draw
-from test_pictures import camera_of, covered, draw
+from castor.settings import View
+from tests.support.checks import check_closed, check_convex_planar
+from tests.support.cli import frames_of, run
+from tests.support.drawings import Drawn, draw_svg
+from tests.support.pictures import camera_of, covered, draw
 
 WEDGE = "> !we(0.8, 0.4, 0.2);\n"
 
@@ -57,7 +58,7 @@ def test_the_wedge_seen_from_the_front_is_its_triangle():
 
 
 def test_the_wedge_in_a_front_elevation_is_a_triangle(tmp_path):
-    svg = _draw(tmp_path, "rampe = " + WEDGE[2:].replace(";", ";\n> rampe;"), "--view", "front")
+    svg = draw_svg(tmp_path, "rampe = " + WEDGE[2:].replace(";", ";\n> rampe;"), "--view", "front")
     drawn = Drawn(svg, 100)
     assert drawn.covered("rampe", (0, 0), (1, 0)) == pytest.approx(1)
     assert drawn.covered("rampe", (0, 0), (0, 1)) == pytest.approx(1)
@@ -66,10 +67,10 @@ def test_the_wedge_in_a_front_elevation_is_a_triangle(tmp_path):
 
 
 def test_the_wedge_in_the_live_preview(tmp_path, monkeypatch):
-    from castor.serve.scene import Watched
+    from castor.serve.evaluation import Watched
     from castor.settings import Source
     from castor.serve.server import PreviewServer
-    from test_serve import get, triangles, volume, wait_for
+    from tests.support.serve import get, triangles, volume, wait_for
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / "scene.cas").write_text("rampe = @h(2, 1, 1) !we(0.8, 0.4, 0.2);\n> rampe;\n")
@@ -80,7 +81,8 @@ def test_the_wedge_in_the_live_preview(tmp_path, monkeypatch):
         _, _, scene = get(port, "/scene.json")
         [frame] = scene["frames"]
         assert frame["origins"] == [{"path": "(rampe)!we", "colour": [0.8, 0.4, 0.2],
-                                     "source": "scene.cas:1:21: !we"}]
+                                     "source": "scene.cas:1:21: !we", "element": "rampe",
+                                     "class": None}]
         assert frame["box"] == [[0, 0, 0], [2, 1, 1]]
         assert frame["triangles"] == 8
         _, _, data = get(port, frame["url"])

@@ -142,7 +142,7 @@ def test_params_lists_the_storeys(tmp_path: Path):
 
 
 def test_object_classes_for_an_editor():
-    from castor.language.classes import object_classes
+    from castor.language.annotations import object_classes
 
     lines = SCENE.split("\n")
     definitions = [("murs", Location("s.cas", 6, 1)), ("p", Location("s.cas", 7, 1)),

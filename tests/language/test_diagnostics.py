@@ -5,8 +5,10 @@ import subprocess
 
 import pytest
 
-from meshcheck import parse_stream, run, write
-from castor.language.vocabulary import TRANSFORMS
+from tests.support.cli import run, write
+from tests.support.stream import parse_stream
+from tests.support.vocabulary import primitive_names
+from castor.transformations import TRANSFORMS
 
 CUBE = "!cu(0.5, 0.5, 0.5)"
 
@@ -34,7 +36,7 @@ def test_error_between_two_good_frames(tmp_path):
     ("a = !cu(1, 1, 1) !cu(1, 1, 1);", "<stdin>:1:18: error: expected ';', found '!cu'"),
     ("> ! cu(1,1,1);", "<stdin>:1:3: error: '!' must be followed directly by a primitive name, such as !cu"),
     ("X = 3 ? 4;", "<stdin>:1:7: error: unexpected character '?'"),
-    ("> !cube(1, 1, 1);", "<stdin>:1:3: error: unknown primitive '!cube'; did you mean '!cu'? (known: !cu, !sp, !cy, !co, !to, !pr, !py, !we, !ex, !rv)"),
+    ("> !cube(1, 1, 1);", "<stdin>:1:3: error: unknown primitive '!cube'; did you mean '!cu'? (known: " + ", ".join("!" + p for p in primitive_names()) + ")"),
     ("> @tr(1, 0, 0) !cu(1, 1, 1);", "<stdin>:1:3: error: unknown transformation '@tr'; did you mean '@t'? (known: " + ", ".join("@" + t for t in TRANSFORMS) + ")"),
     ("> !cu(1, 1);", "<stdin>:1:3: error: '!cu' takes 3 arguments (R, G, B), but 2 were given"),
     ("> @t(1, 1) !cu(1, 1, 1);", "<stdin>:1:3: error: '@t' takes 3 arguments (X, Y, Z), but 2 were given"),

@@ -5,7 +5,7 @@ import math
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from meshcheck import frames_of, run
+from tests.support.cli import frames_of, run
 
 
 def value_of(expr: str) -> float:

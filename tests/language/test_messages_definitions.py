@@ -1,6 +1,6 @@
 """Messages about a faulty definition and a colour out of range (issue 18, item 15)."""
 
-from meshcheck import run
+from tests.support.cli import run
 
 
 def test_a_use_of_an_object_whose_definition_had_a_syntax_error_says_so():

@@ -16,7 +16,7 @@ import pytest
 from hypothesis import HealthCheck, example, given, settings, strategies as st
 
 from castor.pipeline import RECURSION_LIMIT
-from meshcheck import run_here
+from tests.support.cli import OUTSIDE, run_here
 
 # castor raises the recursion limit for deep scenes; raise it before hypothesis
 # looks, so that running castor in-process does not change it under its feet.
@@ -36,7 +36,7 @@ MESSAGE = re.compile(r"^(<stdin>|[^:\s]+):\d+:\d+: (error|warning): ", re.M)
 
 
 def run_inprocess(text: str, *args: str):
-    """castor in this process (meshcheck.run_here), and how long it took."""
+    """castor in this process (tests.support.cli.run_here), and how long it took."""
     started = time.perf_counter()
     status, out, err = run_here("--max-polygons", "20000", *args, stdin=text)
     return status, out, err, time.perf_counter() - started
@@ -172,7 +172,7 @@ def _castor(*args):
 def test_reader_closing_the_pipe_is_quiet():
     scene = "> $U[I = 0, 2000](@t(2 * I, 0, 0) !cu(1, 1, 1));\n" * 3
     castor = subprocess.Popen(_castor("--no-cpp"), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                              stderr=subprocess.PIPE, cwd=tempfile.gettempdir())
+                              stderr=subprocess.PIPE, cwd=OUTSIDE)
     castor.stdin.write(scene.encode())
     castor.stdin.close()
     head = castor.stdout.read(100)
@@ -187,7 +187,7 @@ def test_reader_closing_the_pipe_is_quiet():
 
 def test_statements_run_as_they_arrive_with_no_cpp():
     castor = subprocess.Popen(_castor("--no-cpp"), stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                              stderr=subprocess.PIPE, cwd=tempfile.gettempdir())
+                              stderr=subprocess.PIPE, cwd=OUTSIDE)
     castor.stdin.write(b"a = !cu(1, 0, 0);\n> a;\n")
     castor.stdin.flush()
     # the first frame comes out while the pipe is still open

@@ -2,7 +2,9 @@
 
 import pytest
 
-from meshcheck import check_solid, frames_of, run, parse_stream
+from tests.support.checks import check_solid
+from tests.support.cli import frames_of, run
+from tests.support.stream import parse_stream
 
 CUBE = "!cu(0.5, 0.5, 0.5)"
 

@@ -10,7 +10,8 @@ import pytest
 
 from castor.csg import tree
 from castor.run import evaluated_frames
-from meshcheck import frames_of, parse_stream, run
+from tests.support.cli import frames_of, run
+from tests.support.stream import parse_stream
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.cas"))

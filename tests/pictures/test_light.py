@@ -14,7 +14,7 @@ import sys
 import numpy as np
 import pytest
 
-from castor.options import DEFAULT_SUN, View
+from castor.settings import DEFAULT_SUN, View
 from castor.pictures import picture
 from castor.pictures.camera import make_camera
 from castor.pictures.shade import GROUND_SHADOW, sun_light

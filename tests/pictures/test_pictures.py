@@ -10,48 +10,26 @@ import sys
 import numpy as np
 import pytest
 
-from castor.settings import PictureSettings
-from castor.language.vocabulary import PRIMITIVES
-from castor.options import View
-from castor.pictures import picture
+from castor.primitives import PRIMITIVES
+from castor.settings import View
 from castor.pictures.camera import make_camera
-from castor.run import evaluated_frames
 from castor.pictures.spans import SPANS
 from castor.pictures.trace import compile_frame
-
-WHITE = 255
-
-
-def scene_frames(text, name="<scene>", defines=()):
-    """The frames' trees; the scene must have no error."""
-    frames, said = evaluated_frames(text, name, defines=defines)
-    assert "error" not in said, said
-    return frames
-
-
-def draw(text: str, **options) -> np.ndarray:
-    spec = PictureSettings(**{"size": (160, 120), "sun": None, **options})
-    return picture(scene_frames(text)[0], spec)
-
-
-def camera_of(text: str, **options):
-    spec = PictureSettings(**{"size": (160, 120), **options})
-    low, high = compile_frame(scene_frames(text)[0]).box
-    return make_camera(low, high, spec.size, spec.view, spec.eye, spec.look)
-
-
-def covered(image: np.ndarray) -> np.ndarray:
-    return np.any(image != WHITE, axis=2)
+from tests.support.pictures import camera_of, covered, draw, scene_frames, WHITE
+from tests.support.vocabulary import arguments_text, example_shape, primitive_names
 
 
 def test_every_primitive_has_its_spans():
     assert set(SPANS) == set(PRIMITIVES) | {"smooth"}  # smooth solids: castor.pictures.mesh_rays
 
 
+# shapes chosen for these; every other primitive with a shape its check accepts
+SHAPES = {"to": ", 0.3", "pr": ", 6", "py": ", 5", "ex": ", 0, 0, 1, 0, 1, 1, 0.5, 0.4, 0, 1",
+          "rv": ", 0, 0, 1, 0, 1, 0.3, 0.4, 0.5, 0.4, 1, 0, 1"}
+
+
 @pytest.mark.parametrize("kind, shape", [
-    ("cu", ""), ("sp", ""), ("cy", ""), ("co", ""), ("to", ", 0.3"), ("pr", ", 6"),
-    ("py", ", 5"), ("ex", ", 0, 0, 1, 0, 1, 1, 0.5, 0.4, 0, 1"),
-    ("rv", ", 0, 0, 1, 0, 1, 0.3, 0.4, 0.5, 0.4, 1, 0, 1"),
+    (kind, SHAPES.get(kind, arguments_text(example_shape(kind)))) for kind in primitive_names()
 ])
 def test_every_primitive_is_drawn_where_its_box_projects(kind, shape):
     """Seen from above, each unit primitive covers pixels, all inside its box."""
@@ -149,7 +127,7 @@ def test_castor_and_castor_view_cover_the_same_pixels():
     from scipy import ndimage
 
     from castor.view.render import render
-    from castor.view.scene import read_stream
+    from castor.formats.cps import load
 
     text = ("> $U($D(@h(3, 2, 1.5) !cu(0.8, 0.7, 0.5), @t(1.5, 1, 1.5) @h(0.8) !sp(0.2, 0.3, 0.9)),"
             " @t(4, 1, 0) @h(0.7, 0.7, 2) !cy(0.3, 0.6, 0.3));")
@@ -158,7 +136,7 @@ def test_castor_and_castor_view_cover_the_same_pixels():
         exact = covered(draw(text, **options, size=(320, 240)))
         stream = subprocess.run([sys.executable, "-m", "castor", "-t", "0.002"],
                                 input=text.encode(), capture_output=True, check=True).stdout
-        frame = next(read_stream(iter(io.StringIO(stream.decode()).readline, "")))
+        frame = next(load(iter(io.StringIO(stream.decode()).readline, "")))
         camera = camera_of(text, **options, size=(320, 240))
         facets = covered(render(frame, camera, 320, 240))
         differ = exact ^ facets
@@ -210,11 +188,11 @@ FRAME_WITH_A_HOLE = ("> $D(@h(4, 4, 1) !cu(0.8, 0.8, 0.8),"
 
 def _view(text: str, mode: str, view: View, size=(200, 200)) -> tuple[np.ndarray, object]:
     from castor.view.render import render
-    from castor.view.scene import read_stream
+    from castor.formats.cps import load
 
     stream = subprocess.run([sys.executable, "-m", "castor"], input=text.encode(),
                             capture_output=True, check=True).stdout
-    frame = next(read_stream(iter(io.StringIO(stream.decode()).readline, "")))
+    frame = next(load(iter(io.StringIO(stream.decode()).readline, "")))
     low, high = frame.points.min(axis=0), frame.points.max(axis=0)
     camera = make_camera(low, high, size, view)
     return render(frame, camera, size[0], size[1], mode), camera

@@ -9,7 +9,7 @@ import numpy as np
 
 
 def image(text: str, view=(-60.0, 25.0), size=(240, 180)) -> np.ndarray:
-    from castor.options import View
+    from castor.settings import View
     from castor.pictures import picture
     from castor.run import evaluated_frames
     from castor.settings import PictureSettings

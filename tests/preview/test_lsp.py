@@ -6,120 +6,18 @@ workspace, a buffer of 10 MB, a scene that explodes)."""
 
 from __future__ import annotations
 
-import json
 import os
-import queue
 import shutil
 import subprocess
 import sys
-import threading
 import time
 from pathlib import Path
 
 import pytest
+from tests.support.lsp import Client, line_of, started_client
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
-
-
-class Client:
-    """A language client reduced to what the tests need."""
-
-    def __init__(self, cwd: Path):
-        env = dict(os.environ, PYTHONPATH=str(ROOT))
-        self.process = subprocess.Popen([sys.executable, "-m", "castor", "--lsp"],
-                                        stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                        stderr=subprocess.PIPE, cwd=cwd, env=env)
-        self.messages: queue.Queue = queue.Queue()
-        self.number = 0
-        threading.Thread(target=self._read, daemon=True).start()
-
-    def _read(self) -> None:
-        stream = self.process.stdout
-        while True:
-            headers = {}
-            while True:
-                line = stream.readline()
-                if not line:
-                    self.messages.put(None)
-                    return
-                line = line.strip()
-                if not line:
-                    break
-                key, _, value = line.decode().partition(":")
-                headers[key.lower()] = value.strip()
-            self.messages.put(json.loads(stream.read(int(headers["content-length"]))))
-
-    def raw(self, data: bytes) -> None:
-        self.process.stdin.write(data)
-        self.process.stdin.flush()
-
-    def send(self, message: dict) -> None:
-        data = json.dumps(message).encode()
-        self.raw(b"Content-Length: %d\r\n\r\n" % len(data) + data)
-
-    def request(self, method: str, params, timeout: float = 20):
-        self.number += 1
-        number = self.number
-        self.send({"jsonrpc": "2.0", "id": number, "method": method, "params": params})
-        return self.wait(lambda m: m.get("id") == number and "method" not in m, timeout)
-
-    def notify(self, method: str, params) -> None:
-        self.send({"jsonrpc": "2.0", "method": method, "params": params})
-
-    def wait(self, wanted, timeout: float = 20):
-        end = time.monotonic() + timeout
-        while True:
-            left = end - time.monotonic()
-            if left <= 0:
-                raise TimeoutError("no answer from the server")
-            try:
-                message = self.messages.get(timeout=left)
-            except queue.Empty:
-                raise TimeoutError("no answer from the server") from None
-            if message is None:
-                raise EOFError("the server has gone")
-            if wanted(message):
-                return message
-
-    def diagnostics(self, uri: str, version: int | None = None, timeout: float = 20) -> list:
-        def wanted(m):
-            return (m.get("method") == "textDocument/publishDiagnostics"
-                    and m["params"]["uri"] == uri
-                    and (version is None or m["params"].get("version") == version))
-        return self.wait(wanted, timeout)["params"]["diagnostics"]
-
-    def start(self, root: Path) -> dict:
-        answer = self.request("initialize", {"processId": os.getpid(),
-                                             "rootUri": root.as_uri(), "capabilities": {}})
-        self.notify("initialized", {})
-        return answer["result"]["capabilities"]
-
-    def open(self, path: Path, text: str | None = None, version: int = 1) -> str:
-        uri = path.as_uri()
-        self.notify("textDocument/didOpen", {"textDocument": {
-            "uri": uri, "languageId": "castor", "version": version,
-            "text": path.read_text() if text is None else text}})
-        return uri
-
-    def change(self, uri: str, text: str, version: int) -> None:
-        self.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": version},
-                                               "contentChanges": [{"text": text}]})
-
-    def at(self, method: str, uri: str, line: int, character: int, **more):
-        return self.request(method, {"textDocument": {"uri": uri},
-                                     "position": {"line": line, "character": character},
-                                     **more})["result"]
-
-    def stop(self) -> int:
-        try:
-            self.request("shutdown", None, timeout=10)
-            self.notify("exit", None)
-            return self.process.wait(10)
-        finally:
-            if self.process.poll() is None:
-                self.process.kill()
-                self.process.wait()
 
 
 @pytest.fixture
@@ -131,24 +29,9 @@ def scene(tmp_path: Path) -> Path:
     return tmp_path
 
 
-def started_client(workspace: Path):
-    """A client of a server started in ``workspace``; the server killed after
-    the test if it has not ended (for a fixture to ``yield from``)."""
-    c = Client(workspace)
-    c.start(workspace)
-    yield c
-    if c.process.poll() is None:
-        c.process.kill()
-        c.process.wait()
-
-
 @pytest.fixture
 def client(scene: Path):
     yield from started_client(scene)
-
-
-def _line(text: str, start: str) -> int:
-    return next(i for i, line in enumerate(text.split("\n")) if line.startswith(start))
 
 
 def test_capabilities_and_clean_shutdown(scene: Path):
@@ -172,7 +55,7 @@ def test_diagnostics_appear_for_unsaved_text_and_clear(client: Client, scene: Pa
     found = client.diagnostics(uri, 2)
     first = found[0]
     assert first["message"] == "object 'dedan' is not defined; did you mean 'dedans'?"
-    line = _line(broken, "murs =")
+    line = line_of(broken, "murs =")
     column = broken.split("\n")[line].index("dedan")
     assert first["range"] == {"start": {"line": line, "character": column},
                               "end": {"line": line, "character": column + 5}}
@@ -266,13 +149,13 @@ def test_hover_object_box_and_volume_and_vocabulary(client: Client, scene: Path)
     text = path.read_text()
     uri = client.open(path)
     client.diagnostics(uri, 1)
-    line = _line(text, "murs =")
+    line = line_of(text, "murs =")
     shown = client.at("textDocument/hover", uri, line, 1)["contents"]["value"]
     assert shown.startswith("object murs, house.cas:%d" % (line + 1))
     assert "box 0 0 0 to 9 6.5 2.9" in shown
     assert "volume 25.926" in shown  # 9 x 6.5 x 2.9 less the inside
-    cube = client.at("textDocument/hover", uri, _line(text, "plein ="), text.split("\n")[
-        _line(text, "plein =")].index("!cu") + 1)["contents"]["value"]
+    cube = client.at("textDocument/hover", uri, line_of(text, "plein ="), text.split("\n")[
+        line_of(text, "plein =")].index("!cu") + 1)["contents"]["value"]
     assert cube.startswith("!cu(R, G, B): cube") and "unit cube" in cube
     rotation = "@rz(30) !cu(1, 0, 0);"
     client.change(uri, text + "\nz = " + rotation + "\n", 2)
@@ -288,7 +171,7 @@ def test_definition_and_references_across_includes(client: Client, scene: Path):
     text = path.read_text()
     uri = client.open(path)
     client.diagnostics(uri, 1)
-    line = _line(text, "decor =")
+    line = line_of(text, "decor =")
     column = text.split("\n")[line].index("abri")
     found = client.at("textDocument/definition", uri, line, column + 1)
     assert len(found) == 1
@@ -302,7 +185,7 @@ def test_definition_and_references_across_includes(client: Client, scene: Path):
     defining = Path(macro["uri"][len("file://"):]).read_text().split("\n")
     assert "#define PLACE_BUS" in defining[macro["range"]["start"]["line"]]
     # references of a parameter, in the files that use it
-    uses = client.at("textDocument/references", uri, _line(text, "PHASE ="), 1,
+    uses = client.at("textDocument/references", uri, line_of(text, "PHASE ="), 1,
                      context={"includeDeclaration": True})
     files = {u["uri"].rsplit("/", 1)[1] for u in uses}
     assert "bus_shelter.cas" in files and "traffic_light.cas" in files
@@ -313,7 +196,9 @@ def test_completion_lists(client: Client, scene: Path):
     text = path.read_text()
     uri = client.open(path)
     client.diagnostics(uri, 1)
-    from castor.language.vocabulary import BOOLEANS, PRIMITIVES, TRANSFORMS
+    from castor.booleans import BOOLEANS
+    from castor.primitives import PRIMITIVES
+    from castor.transformations import TRANSFORMS
 
     edited = text + "\nx = !"
     client.change(uri, edited, 2)
@@ -334,7 +219,7 @@ def test_completion_lists(client: Client, scene: Path):
     # names defined so far: before 'murs =' the walls' parts, not the roof
     client.change(uri, text, 5)
     client.diagnostics(uri, 5)
-    items = client.at("textDocument/completion", uri, _line(text, "murs ="), 0)["items"]
+    items = client.at("textDocument/completion", uri, line_of(text, "murs ="), 0)["items"]
     names = {i["label"] for i in items}
     assert {"H", "plein", "dedans", "ENDUIT", "TROU"} <= names
     assert "maison" not in names
@@ -350,7 +235,7 @@ def test_document_symbols(client: Client, scene: Path):
     assert names[:3] == ["L", "P", "H"]
     assert "murs" in names and "maison" in names
     murs = next(s for s in found if s["name"] == "murs")
-    assert murs["range"]["start"]["line"] == _line(text, "murs =")
+    assert murs["range"]["start"]["line"] == line_of(text, "murs =")
     assert murs["kind"] == 19  # Object
 
 
@@ -420,7 +305,7 @@ def test_an_included_file_opened_is_analysed_as_part_of_its_scene(client: Client
     client.change(shelter_uri, broken, 2)
     client.notify("textDocument/didSave", {"textDocument": {"uri": shelter_uri}})
     found = client.diagnostics(shelter_uri)
-    assert found[0]["range"]["start"]["line"] == _line(broken, "LA = 5 +;")
+    assert found[0]["range"]["start"]["line"] == line_of(broken, "LA = 5 +;")
     assert "expected" in found[0]["message"]
     assert not any("ACIER_VERT" in d["message"] for d in found)  # its macros are known
     shelter.write_text(text)
@@ -435,10 +320,10 @@ def test_hover_and_definition_inside_an_included_file(client: Client, scene: Pat
     shelter = scene / "bus_shelter" / "shelter.cas"
     text = shelter.read_text()
     shelter_uri = client.open(shelter)
-    line = _line(text, "LA = 5;")
+    line = line_of(text, "LA = 5;")
     assert client.at("textDocument/hover", shelter_uri, line, 0)["contents"]["value"] \
         .startswith("LA = 5 ")
-    use = _line(text, "tube =")
+    use = line_of(text, "tube =")
     column = text.split("\n")[use].index("ACIER_VERT")
     found = client.at("textDocument/definition", shelter_uri, use, column + 1)[0]
     assert found["uri"] == (scene / "bus_shelter" / "colours.cas").as_uri()

@@ -9,7 +9,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from test_lsp import EXAMPLES, Client, _line, started_client
+from tests.support.lsp import EXAMPLES, Client, line_of, started_client
 
 from castor.language.classes import BY_NAME, CLASSES
 
@@ -36,7 +36,7 @@ def _complete_at_end_of(client: Client, uri: str, text: str, start: str, version
                         **more) -> list[dict]:
     """The completions at the end of the line starting with ``start``."""
     client.change(uri, text, version)
-    line = _line(text, start)
+    line = line_of(text, start)
     column = len(text.split("\n")[line])
     return client.at("textDocument/completion", uri, line, column, **more)["items"]
 
@@ -109,24 +109,24 @@ def test_a_definition_over_several_lines_is_completed_on_its_last(client: Client
 
 def test_hover_shows_an_object_s_class(client: Client, house: Path):
     uri, text = _opened(client, house)
-    shown = client.at("textDocument/hover", uri, _line(text, "porte_trou ="), 2)
+    shown = client.at("textDocument/hover", uri, line_of(text, "porte_trou ="), 2)
     value = shown["contents"]["value"]
     assert "class: door (IfcDoor)" in value
     assert "settings: hinge=left, swing=in" in value
     assert "description: the front door" in value
-    value = client.at("textDocument/hover", uri, _line(text, "socle ="), 2)["contents"]["value"]
+    value = client.at("textDocument/hover", uri, line_of(text, "socle ="), 2)["contents"]["value"]
     assert "class: slab (IfcSlab)" in value and "predefined type: baseslab" in value
     # where the object is used, too
-    line = _line(text, "maison =") + 2
+    line = line_of(text, "maison =") + 2
     column = text.split("\n")[line].index("toit") + 1
     value = client.at("textDocument/hover", uri, line, column)["contents"]["value"]
     assert value.startswith("object toit") and "class: roof (IfcRoof)" in value
     assert "predefined type: gable_roof" in value
     # an unclassed object says nothing of a class
-    value = client.at("textDocument/hover", uri, _line(text, "battant ="), 2)["contents"]["value"]
+    value = client.at("textDocument/hover", uri, line_of(text, "battant ="), 2)["contents"]["value"]
     assert "class" not in value
     # the class's name in the annotation: what the class is
-    line = _line(text, "porte_trou =")
+    line = line_of(text, "porte_trou =")
     column = text.split("\n")[line].index("[door") + 2
     value = client.at("textDocument/hover", uri, line, column)["contents"]["value"]
     assert value.startswith("IfcDoor (door)") and "hinge=left|right (default left)" in value
@@ -155,7 +155,7 @@ def test_a_misspelt_class_is_a_warning_as_it_is_typed(client: Client, house: Pat
     edited = text.replace("// [wall] the four walls", "// [wal] the four walls")
     client.change(uri, edited, 2)
     found = client.diagnostics(uri, 2)
-    line = _line(edited, "murs =")
+    line = line_of(edited, "murs =")
     warnings = [d for d in found if d["range"]["start"]["line"] == line]
     assert len(warnings) == 1, found
     warning = warnings[0]
@@ -192,12 +192,12 @@ def test_a_room_s_name_and_a_storey_in_hover_and_outline():
     text = (EXAMPLES / "pavilion.cas").read_text()
     analysis = analyse(Source(text=text, name="pavilion.cas"))
     assert [d for d in analysis.diagnostics if d.kind == "error"] == []
-    line = _line(text, "sejour =") + 1
+    line = line_of(text, "sejour =") + 1
     shown, _ = knowledge.hover(analysis, "pavilion.cas", line, 2, figures=lambda *_: None)
     assert "class: space (IfcSpace)" in shown and "long name: Séjour" in shown
     detail = {s.name: s.detail for s in knowledge.symbols(analysis, "pavilion.cas")}
     assert detail["sejour"] == 'space ("Séjour")'
-    line = _line(text, "R1 =") + 1
+    line = line_of(text, "R1 =") + 1
     column = text.split("\n")[line - 1].index("storey") + 2
     shown, _ = knowledge.hover(analysis, "pavilion.cas", line, column)
     assert shown == "a storey: the parameter's value is its floor level"

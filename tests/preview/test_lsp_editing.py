@@ -11,9 +11,11 @@ import shutil
 from pathlib import Path
 
 import pytest
-from test_lsp import EXAMPLES, Client, _line, started_client
+from tests.support.lsp import EXAMPLES, Client, line_of, started_client
 
-from castor.language.vocabulary import BOOLEANS, PRIMITIVES, TRANSFORMS
+from castor.booleans import BOOLEANS
+from castor.primitives import PRIMITIVES
+from castor.transformations import TRANSFORMS
 
 
 @pytest.fixture
@@ -34,13 +36,13 @@ def test_a_part_opened_alone_is_analysed_with_the_scene_that_includes_it(
     text = part.read_text()
     uri = client.open(part)  # the scene that includes it is not open
     assert client.diagnostics(uri) == []  # alone: 40 errors (XA, LT, the colours)
-    line = _line(text, "X0 = XA + 0.5;")
+    line = line_of(text, "X0 = XA + 0.5;")
     hover = client.at("textDocument/hover", uri, line, 5)["contents"]["value"]
     assert hover.startswith("XA = ")  # defined by the scene before the #include
     broken = text.replace("LA = 5;", "LA = 5 +;")
     client.change(uri, broken, 2)
     found = client.diagnostics(uri, 2)
-    assert found[0]["range"]["start"]["line"] == _line(broken, "LA = 5 +;")
+    assert found[0]["range"]["start"]["line"] == line_of(broken, "LA = 5 +;")
     assert not [d for d in found if "'XA'" in d["message"] or "ACIER_VERT" in d["message"]]
     client.notify("textDocument/didClose", {"textDocument": {"uri": uri}})
     assert client.diagnostics(uri) == []  # cleared with the scene analysed for it
@@ -68,7 +70,7 @@ def small(tmp_path: Path):
 
 
 def _position(text: str, line_start: str, word: str, nth: int = 0) -> tuple[int, int]:
-    line = _line(text, line_start)
+    line = line_of(text, line_start)
     source = text.split("\n")[line]
     column = -1
     for _ in range(nth + 1):
@@ -86,7 +88,7 @@ def test_hover_and_definition_where_they_were_missing(small: Path):
         line, column = _position(SCENE, "auto =", "roue")
         found = c.at("textDocument/definition", uri, line, column)
         assert [(d["range"]["start"]["line"], d["range"]["start"]["character"]) for d in found] \
-            == [(_line(SCENE, "roue ="), 0)]
+            == [(line_of(SCENE, "roue ="), 0)]
         line, column = _position(SCENE, ">[T", "T", 1)
         assert c.at("textDocument/hover", uri, line, column)["contents"]["value"] \
             == "T: the variable of the repetition [T = 0, 1, 0.5]"
@@ -116,7 +118,7 @@ def test_requests_asked_at_once_are_answered_every_time(small: Path):
             uri = c.open(name)
             line, column = _position(SCENE, "auto =", "caisse")
             found = c.at("textDocument/definition", uri, line, column)
-            assert found and found[0]["range"]["start"]["line"] == _line(SCENE, "caisse ="), k
+            assert found and found[0]["range"]["start"]["line"] == line_of(SCENE, "caisse ="), k
 
 
 def _edits(answer: dict) -> dict[str, list[tuple[int, int, int]]]:

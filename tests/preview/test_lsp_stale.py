@@ -10,12 +10,10 @@ import threading
 
 from castor.analysis import reuse
 from castor.analysis.scene import analyse_buffers
-from castor.analysis.worker import Job, Worker
+from castor.analysis.worker import Submission, Worker
 from castor.language.parse import Parser
+from tests.support.scenes import LONG
 
-CUBES = 40_000
-LONG = "big = $U(" + ", ".join(f"@t({k % 200}, {k // 200}, 0) !cu(1, 0, 0)"
-                               for k in range(CUBES)) + ");\n> big;\n"
 SHORT = "small = !cu(0, 1, 0);\n> small;\n"
 
 
@@ -36,17 +34,17 @@ def test_a_newer_text_stops_the_analysis_inside_a_long_statement(monkeypatch, tm
     results: list[tuple[int, object]] = []
     done = threading.Event()
 
-    def finished(job, analysis, problem):
-        results.append((job.version, analysis, problem))
+    def finished(submission, analysis, problem):
+        results.append((submission.version, analysis, problem))
         done.set()
 
     name = str(tmp_path / "scene.cas")
     worker = Worker(lambda job, cancelled: analyse_buffers(job.text, job.name, {}, cancelled),
                     finished)
     try:
-        worker.submit(Job("scene", LONG, name, version=1))
+        worker.submit(Submission("scene", LONG, name, version=1))
         assert parsing.wait(120)
-        worker.submit(Job("scene", SHORT, name, version=2))  # typed meanwhile
+        worker.submit(Submission("scene", SHORT, name, version=2))  # typed meanwhile
         assert done.wait(120)
     finally:
         worker.stop()
@@ -74,8 +72,8 @@ def test_the_worker_goes_on_after_many_stops(tmp_path):
                     finished)
     try:
         for version in range(1, 41):
-            worker.submit(Job("scene", f"a = !cu(1, 0, 0);\n> @h({version}, 1, 1) a;\n", name,
-                              version=version))
+            worker.submit(Submission("scene", f"a = !cu(1, 0, 0);\n> @h({version}, 1, 1) a;\n",
+                                     name, version=version))
         assert done.wait(60)
     finally:
         worker.stop()
@@ -88,7 +86,7 @@ def test_the_last_of_many_quick_edits_is_answered(tmp_path):
     last text's diagnostics are published, for that version."""
     import shutil
 
-    from test_lsp import EXAMPLES, started_client
+    from tests.support.lsp import EXAMPLES, started_client
 
     shutil.copy(EXAMPLES / "bus_shelter.cas", tmp_path / "bus_shelter.cas")
     shutil.copytree(EXAMPLES / "bus_shelter", tmp_path / "bus_shelter")

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from test_lsp import Client, _line, started_client
+from tests.support.lsp import Client, line_of, started_client
 
 
 @pytest.fixture
@@ -65,7 +65,7 @@ def test_an_unsaved_included_file_changes_the_scene_s_diagnostics(client: Client
     broken = walls.read_text().replace("!cu(1, 0, 0)", "!cu(1, 0)")
     client.change(walls_uri, broken, 3)
     in_walls = _settled(client, walls_uri, lambda d: d != [])
-    assert in_walls[0]["range"]["start"]["line"] == _line(broken, "wall =")
+    assert in_walls[0]["range"]["start"]["line"] == line_of(broken, "wall =")
     assert "argument" in in_walls[0]["message"]
     # the buffer put right again: everything clears
     client.change(walls_uri, walls.read_text(), 4)

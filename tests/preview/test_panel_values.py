@@ -13,11 +13,13 @@ import sys
 
 import pytest
 
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.serve.server import PreviewServer
 from castor.settings import Source
 
-from test_serve_browser import CHROMIUM, FLAGS, HEIGHT, ROOT, WIDTH
+from tests.support.browser import CHROMIUM, FLAGS, HEIGHT, WIDTH
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 @pytest.fixture

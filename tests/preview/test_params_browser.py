@@ -15,11 +15,13 @@ import time
 import numpy as np
 import pytest
 
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.settings import Source
 from castor.serve.server import PreviewServer
 
-from test_serve_browser import CHROMIUM, FLAGS, HEIGHT, ROOF, ROOT, WIDTH, near, picture
+from tests.support.browser import CHROMIUM, FLAGS, HEIGHT, ROOF, WIDTH, near, painted, picture
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 playwright = pytest.importorskip("playwright.sync_api",
                                  reason="the playwright package is not installed")
@@ -40,18 +42,25 @@ def house(tmp_path, monkeypatch):
     server.close()
 
 
-@pytest.fixture
-def page(house):
+@pytest.fixture(scope="module")
+def browser():
+    """One chromium for the module's pages (each test opens a page of its own)."""
     with playwright.sync_playwright() as driver:
-        browser = driver.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
-        opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
-        problems = []
-        opened.on("pageerror", lambda error: problems.append(str(error)))
-        opened.goto(house[1].url)
-        opened.wait_for_selector("body[data-version]", timeout=15000)
-        yield opened
-        browser.close()
-        assert problems == []
+        launched = driver.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
+        yield launched
+        launched.close()
+
+
+@pytest.fixture
+def page(browser, house):
+    opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
+    problems = []
+    opened.on("pageerror", lambda error: problems.append(str(error)))
+    opened.goto(house[1].url)
+    opened.wait_for_selector("body[data-version]", timeout=15000)
+    yield opened
+    opened.close()
+    assert problems == []
 
 
 def roof_top(image: np.ndarray) -> int:
@@ -78,7 +87,10 @@ def test_the_h_slider_raises_the_roof_and_never_writes_the_scene(page, house):
     elapsed = time.monotonic() - started
     page.wait_for_function(
         "() => document.getElementById('parameters-command').textContent.includes('H=4')")
-    page.wait_for_timeout(300)  # the final value's evaluation after the draft
+    # the final value's evaluation after the draft: nothing left evaluating, then drawn
+    page.wait_for_function("() => !document.getElementById('status').textContent"
+                           ".includes('evaluating')", timeout=15000)
+    painted(page)
     after = picture(page, "params-after")
     right = slice(320, None)
     assert roof_top(after[:, right]) < roof_top(before[:, right]) - 10  # the roof is higher
@@ -90,6 +102,10 @@ def test_the_h_slider_raises_the_roof_and_never_writes_the_scene(page, house):
     page.click("#parameters-reset")
     page.wait_for_function("(seen) => document.body.dataset.version !== seen", arg=version,
                            timeout=15000)
+    # the panel shows the reset when the server's answer comes, not with the new frames
+    page.wait_for_function("() => document.getElementById('parameters-command').textContent"
+                           " === 'castor house.cas' && document.getElementById('parameter-H')"
+                           ".value === '2.9'", timeout=15000)
     assert page.inner_text("#parameters-command") == "castor house.cas"
     assert page.eval_on_selector("#parameter-H", "e => e.value") == "2.9"
 
@@ -152,7 +168,7 @@ def test_values_from_the_page_are_checked_numbers(house):
 def test_a_face_shows_where_its_primitive_is_written_and_a_click_copies_it(page, house):
     import re
 
-    from test_serve_browser import inside_reveal
+    from tests.support.browser import inside_reveal
 
     path, _ = house
     page.mouse.move(*inside_reveal(picture(page, "source")))

@@ -19,9 +19,10 @@ import pytest
 
 from castor.settings import Source
 from castor.serve import server as server_module
-from castor.serve.scene import Overtaken, Watched, evaluate
+from castor.serve.evaluation import Overtaken, Watched, evaluate
 from castor.serve.server import PreviewServer
-from meshcheck import hear_ctrl_c
+from tests.support.cli import hear_ctrl_c
+from tests.support.serve import get, raw, triangles, volume, wait_for
 
 BOX = "boite = @h({x}, 3, 4) !cu(0.25, 0.45, 0.85);\n> boite;\n"
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -55,45 +56,6 @@ def preview(scene):
 
 def port_of(server) -> int:
     return server.httpd.server_address[1]
-
-
-def wait_for(condition, seconds: float = 10.0):
-    deadline = time.monotonic() + seconds
-    while time.monotonic() < deadline:
-        value = condition()
-        if value:
-            return value
-        time.sleep(0.02)
-    raise AssertionError("timed out")
-
-
-def get(port: int, path: str, headers: dict | None = None):
-    connection = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
-    connection.request("GET", path, headers=headers or {})
-    answer = connection.getresponse()
-    body = answer.read()
-    connection.close()
-    content = json.loads(body) if answer.getheader("Content-Type") == "application/json" else body
-    return answer.status, answer.getheader("Content-Type"), content
-
-
-def raw(port: int, target: str, host: str = "127.0.0.1") -> tuple[int, bytes]:
-    """Send a request line exactly as written (no client tidies the path)."""
-    with socket.create_connection(("127.0.0.1", port), timeout=10) as s:
-        s.sendall(f"GET {target} HTTP/1.0\r\nHost: {host}\r\n\r\n".encode())
-        data = b""
-        while chunk := s.recv(65536):
-            data += chunk
-    head, _, body = data.partition(b"\r\n\r\n")
-    return int(head.split()[1]), body
-
-
-def triangles(data: bytes, count: int) -> np.ndarray:
-    return np.frombuffer(data[:count * 36], dtype="<f4").reshape(count, 3, 3).astype(float)
-
-
-def volume(tris: np.ndarray) -> float:
-    return float(np.einsum("ij,ij->i", tris[:, 0], np.cross(tris[:, 1], tris[:, 2])).sum() / 6)
 
 
 def test_the_page_and_its_scripts(preview):

@@ -6,87 +6,22 @@ the primitive it comes from."""
 
 from __future__ import annotations
 
-import io
 import os
 import shutil
 
 import numpy as np
 import pytest
 
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.settings import Source
 from castor.serve.server import PreviewServer
+from tests.support.preview_page import browser, house, page, skip_without_chromium  # noqa: F401
+from tests.support.browser import (CHROMIUM, FLAGS, GREEN, HEIGHT, REVEAL, ROOF, WIDTH, drawn,
+                                   inside_reveal, near, next_version, outline, painted, picture)
 
-CHROMIUM = "/usr/bin/chromium"
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-FLAGS = ["--headless", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync",
-         "--no-first-run", "--disable-gpu-sandbox"]
-WIDTH, HEIGHT, BAR = 900, 650, 38  # the page, and its bar of controls at the top
 
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"Debian's chromium is not installed ({CHROMIUM} is absent; "
-                "apt-get install chromium): the live preview is not tried in a browser",
-                allow_module_level=True)
-playwright = pytest.importorskip("playwright.sync_api",
-                                 reason="the playwright package is not installed")
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with playwright.sync_playwright() as driver:
-        launched = driver.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
-        yield launched
-        launched.close()
-
-
-@pytest.fixture
-def house(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    shutil.copy(os.path.join(ROOT, "examples", "house.cas"), tmp_path / "house.cas")
-    server = PreviewServer(Watched(Source(("house.cas",))), "127.0.0.1", 0).start()
-    yield tmp_path / "house.cas", server.url
-    server.close()
-
-
-@pytest.fixture
-def page(browser, house):
-    opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
-    problems = []
-    opened.on("pageerror", lambda error: problems.append(str(error)))
-    opened.goto(house[1])
-    opened.wait_for_selector("body[data-version]", timeout=15000)
-    yield opened
-    opened.close()
-    assert problems == []
-
-
-def picture(page, name: str) -> np.ndarray:
-    """The view (below the bar), as RGB; also kept in /tmp to be looked at."""
-    from PIL import Image
-
-    png = page.screenshot()
-    with open(f"/tmp/castor-serve-{name}.png", "wb") as handle:
-        handle.write(png)
-    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))[BAR:].astype(int)
-
-
-def drawn(image: np.ndarray) -> np.ndarray:
-    """Pixels that are not the white background."""
-    return np.any(image < 245, axis=2)
-
-
-def outline(image: np.ndarray, bottom: int = 0) -> np.ndarray:
-    """Drawn pixels, leaving out the status and the pointed face's box (at the top)
-    and ``bottom`` rows (where the list of errors is)."""
-    return drawn(image)[80:image.shape[0] - bottom]
-
-
-def near(image: np.ndarray, colour, tolerance: float = 0.1) -> np.ndarray:
-    """Pixels of this hue, at any light: their colour over its brightest channel."""
-    rgb = image / np.maximum(image.max(axis=2, keepdims=True), 1)
-    target = np.array(colour) / max(colour)
-    return np.all(np.abs(rgb - target) < tolerance, axis=2) & (image.max(axis=2) > 60)
+playwright = skip_without_chromium()
 
 
 def save(path, old: str, new: str) -> None:
@@ -96,15 +31,6 @@ def save(path, old: str, new: str) -> None:
     path.write_text(text.replace(old, new))
     if os.stat(path).st_mtime_ns == before:
         os.utime(path, ns=(before + 1_000_000, before + 1_000_000))
-
-
-def next_version(page, version: str, seconds: float = 10) -> str:
-    page.wait_for_function("(seen) => document.body.dataset.version !== seen", arg=version,
-                           timeout=seconds * 1000)
-    return page.evaluate("document.body.dataset.version")
-
-
-ROOF, REVEAL, GREEN = (0.70, 0.28, 0.18), (0.25, 0.45, 0.85), (0.15, 0.65, 0.25)
 
 
 def test_the_page_draws_the_house(page):
@@ -125,12 +51,12 @@ def test_a_save_changes_the_picture_without_a_reload(page, house):
     page.mouse.down()
     page.mouse.move(520, 380, steps=5)
     page.mouse.up()
-    page.wait_for_timeout(200)
+    painted(page)
     before = picture(page, "turned")
     version = page.evaluate("document.body.dataset.version")
     save(path, "#define TUILE    0.70, 0.28, 0.18", "#define TUILE    0.15, 0.65, 0.25")
     next_version(page, version)
-    page.wait_for_timeout(100)
+    painted(page)
     after = picture(page, "green-roof")
     assert page.evaluate("window.notReloaded") is True
     assert near(before, ROOF).sum() > 5000 and near(after, ROOF).sum() < 50
@@ -154,19 +80,6 @@ def test_an_error_is_listed_beside_the_last_good_picture(page, house):
     assert (outline(good, 200) != outline(shown, 200)).mean() < 0.002
 
 
-def inside_reveal(image: np.ndarray) -> tuple[int, int]:
-    """A point of the page well inside the blue window reveals of a picture of the
-    view (away from their edges), in page pixels."""
-    blue = near(image, REVEAL)
-    inner = blue.copy()
-    for dy in (-2, 0, 2):
-        for dx in (-2, 0, 2):
-            inner &= np.roll(np.roll(blue, dy, axis=0), dx, axis=1)
-    ys, xs = np.nonzero(inner)
-    assert len(ys) > 20
-    return int(xs[len(xs) // 2]), int(ys[len(ys) // 2]) + BAR
-
-
 def test_pointing_at_a_blue_reveal_names_its_primitive(page):
     page.mouse.move(*inside_reveal(picture(page, "point")))
     page.wait_for_selector("#pointed:not([hidden])", timeout=5000)
@@ -182,13 +95,13 @@ def test_pointing_at_a_blue_reveal_names_its_primitive(page):
 
 def test_a_face_turned_to_the_viewer_shows_its_own_colour(page):
     page.click("#view-front")
-    page.wait_for_timeout(200)
+    painted(page)
     image = picture(page, "front")
     render = np.round(np.array([0.93, 0.90, 0.82]) * 255)  # ENDUIT, the walls' colour
     full = np.all(np.abs(image - render) <= 2, axis=2)
     assert full.sum() > 20000  # the south wall, at full strength
     page.click("#view-perspective")
-    page.wait_for_timeout(200)
+    painted(page)
     turned = picture(page, "perspective")
     walls = np.all(np.abs(turned / turned.max(axis=2, keepdims=True).clip(1)
                           - render / render.max()) < 0.03, axis=2) & (turned.max(axis=2) > 60)
@@ -198,11 +111,11 @@ def test_a_face_turned_to_the_viewer_shows_its_own_colour(page):
 
 def test_the_section_plane_shows_a_plan(page):
     page.click("#view-top")
-    page.wait_for_timeout(100)
+    painted(page)
     roof = picture(page, "top")
     page.fill("#section", "250")
     page.dispatch_event("#section", "input")
-    page.wait_for_timeout(200)
+    painted(page)
     plan = picture(page, "plan")
     label = page.inner_text("#section-label")
     assert label.startswith("z = ") and 1.3 < float(label[4:]) < 1.5

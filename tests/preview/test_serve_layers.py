@@ -8,7 +8,7 @@ import json
 
 import numpy as np
 
-from castor.serve.scene import Watched, evaluate
+from castor.serve.evaluation import Watched, evaluate
 from castor.settings import Source
 
 

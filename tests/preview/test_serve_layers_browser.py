@@ -1,4 +1,4 @@
-"""castor --serve in a real browser (as test_serve_browser.py): the classes of
+"""castor --serve in a real browser (fixtures from tests.support.preview_page): the classes of
 the annotated house as layers to hide and show, and pointing at a wall names
 its element and class. Every wait is for a state of the page, never a time."""
 
@@ -7,7 +7,10 @@ from __future__ import annotations
 import re
 
 import numpy as np
-from test_serve_browser import BAR, REVEAL, ROOF, browser, house, near, page, picture  # noqa: F401
+from tests.support.browser import BAR, REVEAL, ROOF, near, picture
+from tests.support.preview_page import browser, house, page, skip_without_chromium  # noqa: F401
+
+skip_without_chromium()
 
 WALLS = (0.93, 0.90, 0.82)  # ENDUIT, the walls' render
 

@@ -10,11 +10,11 @@ import time
 
 from castor.analysis import reuse
 from castor.language.parse import Parser
-from castor.serve.scene import Watched
+from castor.serve.evaluation import Watched
 from castor.serve.server import PreviewServer
 from castor.settings import Source
 
-from test_lsp_stale import LONG
+from tests.support.scenes import LONG
 
 
 def test_a_save_stops_the_evaluation_inside_a_long_statement(monkeypatch, tmp_path):

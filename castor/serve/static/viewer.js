@@ -654,6 +654,13 @@
     document.body.dataset.version = String(scene.version);
   }
 
+  // the view as it is drawn, for editing.js (editing on screen)
+  window.castorViewer = {
+    canvas, FOV, basis, matrices, radius, redraw, setView,
+    camera: () => state.camera,
+    frame: () => (shown() ? shown().meta : null),
+  };
+
   if (!gl) $("no-webgl").hidden = false;
   else setView("perspective");
   const events = new EventSource("/events");

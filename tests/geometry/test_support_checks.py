@@ -1,11 +1,11 @@
-"""The oracle's winding test (meshcheck.winding_numbers): the ray count it makes
+"""The oracle's winding test (tests/support/winding.py): the ray count it makes
 on a closed surface is the solid-angle sum, point for point, and it still
 sees a sheet, a fold and an open surface."""
 
 import numpy as np
 import pytest
 
-from tests import meshcheck
+from tests.support import regularity, stream, winding
 
 
 def _box(low, high, flip=False):
@@ -50,17 +50,17 @@ def test_ray_count_is_the_solid_angle_sum(surface):
                                             _sphere(2, radius=0.5)]),
     }[surface]()
     points = _probes(rng, 400, 1.3)
-    assert meshcheck._closed_vertex_ids(triangles) is not None
-    fast = meshcheck.winding_numbers(triangles, points)
-    slow = meshcheck._solid_angle_winding(triangles, points)
+    assert winding._closed_vertex_ids(triangles) is not None
+    fast = winding.winding_numbers(triangles, points)
+    slow = winding._solid_angle_winding(triangles, points)
     assert np.abs(fast - slow).max() < 1e-6, (fast - slow)[np.abs(fast - slow) > 1e-6][:5]
     assert np.allclose(fast, np.round(fast))
 
 
 def test_an_open_surface_keeps_its_fractional_number():
     triangles = _box((-1, -1, -1), (1, 1, 1))[:-1]  # one triangle missing
-    assert meshcheck._closed_vertex_ids(triangles) is None
-    w = meshcheck.winding_numbers(triangles, np.array([[0.0, 0.0, 0.0]]))
+    assert winding._closed_vertex_ids(triangles) is None
+    w = winding.winding_numbers(triangles, np.array([[0.0, 0.0, 0.0]]))
     assert 0.9 < w[0] < 1.0
 
 
@@ -71,12 +71,12 @@ def test_a_sheet_in_a_frame_of_many_polygons_is_found_quickly():
     import time
 
     sphere = _sphere(5, centre=(5, 0, 0))  # 20,480 triangles
-    polygons = [meshcheck.Polygon(points=tri, colour=(1, 1, 1), path="!sp") for tri in sphere]
+    polygons = [stream.Polygon(points=tri, colour=(1, 1, 1), path="!sp") for tri in sphere]
     for box in (_box((-1, -1, -1), (1, 1, 0)), _box((-1, -1, 0), (1, 1, 1))):
-        polygons += [meshcheck.Polygon(points=tri, colour=(1, 0, 0), path="!cu") for tri in box]
-    frame = meshcheck.Frame(1, "test", polygons)
+        polygons += [stream.Polygon(points=tri, colour=(1, 0, 0), path="!cu") for tri in box]
+    frame = stream.Frame(1, "test", polygons)
     started = time.perf_counter()
-    defects = meshcheck.sheet_defects(frame)
+    defects = regularity.sheet_defects(frame)
     elapsed = time.perf_counter() - started
     assert len(defects) == 4, defects  # the four triangles of the two coincident faces
     assert all("!cu" in d for d in defects)
@@ -104,14 +104,14 @@ def _random_polygons(count=3000, seed=3):
         if kind == 5:
             points *= 1e-9
         turn = np.linalg.qr(rng.normal(size=(3, 3)))[0]
-        polygons.append(meshcheck.Polygon("!p", (1, 1, 1), points @ turn.T + rng.normal(size=3)))
+        polygons.append(stream.Polygon("!p", (1, 1, 1), points @ turn.T + rng.normal(size=3)))
     return polygons
 
 
 def test_the_frames_polygon_defects_are_each_polygons():
     polygons = _random_polygons()
-    one_by_one = {i: d for i, p in enumerate(polygons) if (d := meshcheck.polygon_defects(p))}
-    at_once = dict(meshcheck.frame_polygon_defects(meshcheck.Frame(1, "test", polygons)))
+    one_by_one = {i: d for i, p in enumerate(polygons) if (d := regularity.polygon_defects(p))}
+    at_once = dict(regularity.frame_polygon_defects(stream.Frame(1, "test", polygons)))
     assert len(one_by_one) > 2000 and set(one_by_one) == set(at_once)
 
     def kinds(defects):  # "winds 0.00 times" or "-0.00": a sum of angles near 0
@@ -121,11 +121,11 @@ def test_the_frames_polygon_defects_are_each_polygons():
 
 
 def test_shells_of_zero_volume_are_found_among_many():
-    polygons = [meshcheck.Polygon("!sp", (1, 1, 1), t) for t in _sphere(4)]
+    polygons = [stream.Polygon("!sp", (1, 1, 1), t) for t in _sphere(4)]
     # a flat shell: a square twice, turned each way (volume 0)
     square = np.array([[3, 0, 0], [4, 0, 0], [4, 1, 0], [3, 1, 0]], float)
-    polygons += [meshcheck.Polygon("!sq", (1, 0, 0), square),
-                 meshcheck.Polygon("!sq", (1, 0, 0), square[::-1])]
-    polygons += [meshcheck.Polygon("!cu", (0, 1, 0), t) for t in _box((5, 5, 5), (6, 6, 6))]
-    defects = meshcheck.shell_defects(meshcheck.Frame(1, "test", polygons))
+    polygons += [stream.Polygon("!sq", (1, 0, 0), square),
+                 stream.Polygon("!sq", (1, 0, 0), square[::-1])]
+    polygons += [stream.Polygon("!cu", (0, 1, 0), t) for t in _box((5, 5, 5), (6, 6, 6))]
+    defects = regularity.shell_defects(stream.Frame(1, "test", polygons))
     assert defects == ["a shell of 2 polygons has volume 0 for area 2"]

@@ -9,21 +9,16 @@ structure (its matrices and primitives' vertices), so it shares nothing with
 castor either. (OpenSCAD's CGAL booleans are exact too, but its exports keep
 six digits: too few to decide a disagreement of a few parts per million.)
 
-Used by ``oracle.py --exact``; needs pymeshlab.
+Used by ``python -m tests.oracle --exact``; needs pymeshlab.
 """
 
 from __future__ import annotations
 
-import sys
 
 import numpy as np
 
-try:
-    import oracle
-except ImportError:  # imported as tests.exact
-    from tests import oracle
-if hasattr(sys.modules.get("__main__"), "Oracle"):  # oracle.py run as a script: its classes
-    oracle = sys.modules["__main__"]
+from .evaluate import frame_commands
+from .solids import _value, primitive_solid, step_matrix
 
 EMPTY = (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
 
@@ -37,7 +32,7 @@ def available() -> bool:
 
 
 def _primitive(prim):
-    gl = oracle.primitive_solid(prim).to_mesh64()
+    gl = primitive_solid(prim).to_mesh64()
     return (np.array(np.asarray(gl.vert_properties)[:, :3], dtype=np.float64),
             np.asarray(gl.tri_verts, dtype=np.int64))
 
@@ -75,11 +70,10 @@ class Evaluator:
 
     def frames(self):
         """For each '>' command, the (vertices, triangles) of each object it writes."""
-        for nodes, env, self.objects in oracle.frame_commands(self.scene):
+        for nodes, env, self.objects in frame_commands(self.scene):
             yield [self.node(n, dict(env)) for n in nodes]
 
     def node(self, node, env):
-        # by the class's name: the scene may be made by oracle.py run as __main__
         kind = type(node).__name__
         if kind == "Ref":
             return self.node(self.objects[node.name], env)
@@ -88,7 +82,7 @@ class Evaluator:
         if kind == "Tf":
             m = np.eye(4)
             for kind, args in node.steps:
-                m = m @ oracle.step_matrix(kind, [oracle._value(a, env) for a in args])
+                m = m @ step_matrix(kind, [_value(a, env) for a in args])
             v, t = self.node(node.child, env)
             v = v @ m[:3, :3].T + m[:3, 3]
             return (v, t[:, ::-1].copy()) if np.linalg.det(m[:3, :3]) < 0 else (v, t)

@@ -1,18 +1,25 @@
-"""Checks of the outlines that !ex and !rv take: a simple polygon, or a profile in r >= 0.
+"""The simple polygons !ex and !rv take, checked: a polygon, or a profile in r >= 0.
 
 Both are refused with the primitive's path when they repeat a vertex, cross
-themselves, fold back or enclose no area (LANGUAGE.md §4.1).
+themselves, fold back or enclose no area (LANGUAGE.md §4.1). numpy is imported
+in the functions: castor.primitives imports this module when it gathers the
+primitives, and reading a scene needs no numpy.
 """
 
 from __future__ import annotations
 
-import numpy as np
+from typing import TYPE_CHECKING
 
 from castor.diagnostics import GeometryError, Location
+
+if TYPE_CHECKING:
+    import numpy as np
 
 
 def _check_simple(points: np.ndarray, what: str, location: Location, path: object) -> None:
     """Refuse repeated vertices, self-intersection and zero area."""
+    import numpy as np
+
     n = len(points)
     nxt = np.roll(points, -1, axis=0)
     if np.any(np.all(points == nxt, axis=1)):
@@ -55,11 +62,15 @@ def _check_simple(points: np.ndarray, what: str, location: Location, path: objec
 
 
 def signed_area(points: np.ndarray) -> float:
+    import numpy as np
+
     x, y = points[:, 0], points[:, 1]
     return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
 
 
 def polygon(values: tuple, what: str, location: Location, path: object) -> np.ndarray:
+    import numpy as np
+
     points = np.array(values, dtype=np.float64).reshape(-1, 2)
     if len(points) > 3 and np.all(points[0] == points[-1]):
         points = points[:-1]  # a closing vertex repeating the first is allowed
@@ -71,6 +82,8 @@ def polygon(values: tuple, what: str, location: Location, path: object) -> np.nd
 
 def profile(values: tuple, location: Location, path: object) -> np.ndarray:
     """A revolution's profile: a simple polygon in the half-plane r >= 0."""
+    import numpy as np
+
     points = polygon(values, "profile", location, path)
     if np.any(points[:, 0] < 0):
         i = int(np.argmax(points[:, 0] < 0))

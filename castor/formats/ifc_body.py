@@ -1,0 +1,138 @@
+"""An element's body in IFC4: one closed ``IfcPolygonalFaceSet`` of castor's
+polygons, coloured per face by an ``IfcIndexedColourMap`` and styled in its
+largest colour for the readers that ignore colour maps (castor.formats.ifc).
+
+A face is one ``IfcIndexedPolygonalFace`` (IFC4 has no bulk form for polygons,
+only for triangles), made through the two calls ``create_entity`` ends in; its
+vertices are turned so that the first three make a true corner.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+class Styles:
+    """One ``IfcSurfaceStyle`` per colour of the file, named as the mesh formats
+    name their materials (castor.formats._mesh.materials), both sides shaded so
+    that a section box shows cut faces coloured."""
+
+    def __init__(self, f, table, create):
+        self.f, self.table, self.made, self.create = f, table, {}, create
+
+    def __call__(self, m: int):
+        if m not in self.made:
+            create = self.create
+            r, g, b = self.table[m].colour
+            shading = create("IfcSurfaceStyleShading",
+                             create("IfcColourRgb", None, float(r), float(g), float(b)), 0.0)
+            self.made[m] = create("IfcSurfaceStyle", self.table[m].name, "BOTH", [shading])
+        return self.made[m]
+
+
+def face_set(f, solid, shift: float, material: np.ndarray | None = None, styles=None):
+    """The solid's polygons as one closed face set (its vertices moved down by
+    ``shift``, the storey's level); with ``material`` (each polygon's, into
+    ``styles``' table) coloured per face and styled in the colour of the
+    largest area."""
+    create = styles.create if styles is not None else f.create_entity
+    vertices = solid.vertices - np.array([0.0, 0.0, shift])
+    coordinates = create("IfcCartesianPointList3D", vertices.tolist())
+    sizes = np.diff(solid.offsets)
+    ones = true_corner_first(solid.vertices, solid.offsets, solid.indices) + 1  # from 1
+    faces = _faces(f, ones, solid.offsets, sizes, np.arange(solid.polygon_count))
+    item = create("IfcPolygonalFaceSet", coordinates, True, faces, None)
+    if material is None:
+        return item
+    from castor.bim.measures import polygon_areas
+
+    used, index = np.unique(material, return_inverse=True)
+    areas = np.bincount(index, weights=polygon_areas(solid)[0], minlength=len(used))
+    colours = create("IfcColourRgbList", [list(map(float, styles.table[m].colour))
+                                          for m in used.tolist()])
+    create("IfcIndexedColourMap", item, None, colours, (index + 1).tolist())
+    create("IfcStyledItem", item, [styles(int(used[int(np.argmax(areas))]))], None)
+    return item
+
+
+def true_corner_first(vertices: np.ndarray, offsets: np.ndarray,
+                      indices: np.ndarray) -> np.ndarray:
+    """The polygons' vertex numbers, each polygon turned (same vertices, same
+    order) so that its first three vertices make a true corner.
+
+    A castor polygon may have a straight corner, a vertex in the middle of an
+    edge that a neighbour ends at. A reader that takes a face's plane from its
+    first three vertices (a common shortcut) finds one this way."""
+    if len(indices) == 0:
+        return indices
+    from castor.formats._mesh import corner_turns
+
+    sizes = np.diff(offsets)
+    starts = offsets[:-1]
+    following, turn, lengths = corner_turns(vertices, offsets, indices)
+    true = turn > 1e-9 * lengths
+    position = np.arange(len(indices))
+    ready = true[following[starts]]  # the second vertex is a true corner already
+    if ready.all():
+        return indices
+    # the first true corner of each polygon (its second vertex if none is)
+    first = np.minimum.reduceat(np.where(true, position, len(indices)), starts)
+    first = np.where((first < offsets[1:]) & ~ready, first, starts + 1)
+    shift = np.repeat((first - starts - 1) % sizes, sizes)
+    local = position - np.repeat(starts, sizes)
+    return indices[np.repeat(starts, sizes) + (local + shift) % np.repeat(sizes, sizes)]
+
+
+def _faces(f, ones: np.ndarray, offsets: np.ndarray, sizes: np.ndarray,
+           chosen: np.ndarray) -> list:
+    """An IfcIndexedPolygonalFace for each chosen polygon: the vertex tuples are cut
+    from one list, a size at a time, so that Python makes no slice per polygon."""
+    faces = [None] * len(chosen)
+    chosen_sizes = sizes[chosen]
+    make = face_maker(f)  # (looked up here: a test swaps it for create_entity)
+    for size in np.unique(chosen_sizes).tolist():
+        which = np.flatnonzero(chosen_sizes == size)
+        starts = offsets[chosen[which]]
+        rows = ones[starts[:, None] + np.arange(size)].tolist()
+        for place, row in zip(which.tolist(), rows):
+            faces[place] = make(row)
+    return faces
+
+
+def face_maker(f):
+    """A function from a polygon's vertex numbers to a new IfcIndexedPolygonalFace."""
+    make = entity_maker(f)
+    return lambda row: make("IfcIndexedPolygonalFace", row)
+
+
+def entity_maker(f):
+    """``f.create_entity``, made quicker: ``make(cls, *args, **named)``.
+
+    ``create_entity`` spends most of its time in Python (argument checks, the
+    undo journal, an attribute's index looked up by name at each call); here
+    an entity is made through the two calls it ends in (the same entity, the
+    same file), each attribute's index looked up once per class, and an
+    attribute left unset (``$``) rather than set to None: about three times as
+    fast. Where an ifcopenshell lacks those calls, or records an undo journal,
+    ``create_entity`` itself is used."""
+    import ifcopenshell
+
+    create = getattr(f, "create", None)
+    if (create is None or getattr(f, "transaction", None) is not None
+            or not hasattr(ifcopenshell.entity_instance, "set_attribute_value_py")):
+        return f.create_entity
+    indices: dict[tuple[str, str], int] = {}
+
+    def make(cls, *args, **named):
+        entity = create(cls, -1)
+        for index, value in enumerate(args):
+            if value is not None:
+                entity.set_attribute_value_py(index, value)
+        for name, value in named.items():
+            index = indices.get((cls, name))
+            if index is None:
+                index = indices[(cls, name)] = entity.get_argument_index(name)
+            if value is not None:
+                entity.set_attribute_value_py(index, value)
+        return entity
+    return make
