@@ -253,25 +253,19 @@ class Parser:
                 return state
 
     def parse(self, text: str, start: str):
-        """The value the transformer gives the start rule; raises Failed.
-
-        One loop reads the tokens and runs the table: each token is read by the
-        lexer of the state the parser is in when it is read, then reduces as far
-        as it allows and is shifted. Only the tokens a callback is handed are made
-        (``Token``, with their line and column); the line is counted in the
-        tokens that may hold a newline. Nothing it does depends on what came
-        before but the stacks: its time is linear in the text's length."""
+        """The value the transformer gives the start rule; raises Failed. One loop
+        reads each token (by the lexer of the state the parser is in), reduces as
+        far as it allows and shifts it; only the tokens a callback is handed are
+        made (``Token``). Its time is linear in the text's length."""
         scan, ignored, newlines = self._root_lexer()
         states, rules, kept = self._states, self._rules, self._kept
         chains = self._chains.setdefault(start, {})
-        state = self._starts[start]
-        end_state = self._ends[start]
-        state_stack = [state]
-        value_stack: list = []
+        state, end_state = self._starts[start], self._ends[start]
+        state_stack, value_stack = [state], []
         push_state, push_value = state_stack.append, value_stack.append
         next_found = scan(text).__next__
-        line, line_start = 1, 0  # the line of the next token; where it starts
-        relexed = -1  # where the state's lexer last read the token
+        # the line of the next token, where it starts; where the state's lexer last read
+        line, line_start, relexed = 1, 0, -1
         while True:
             found = next_found()
             kind = found.lastgroup
