@@ -264,8 +264,7 @@ class Parser:
         state_stack, value_stack = [state], []
         push_state, push_value = state_stack.append, value_stack.append
         next_found = scan(text).__next__
-        # the line of the next token, where it starts; where the state's lexer last read
-        line, line_start, relexed = 1, 0, -1
+        line, line_start, relexed = 1, 0, -1  # the next token's line, its start; _read's last
         while True:
             found = next_found()
             kind = found.lastgroup
