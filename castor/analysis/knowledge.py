@@ -14,6 +14,7 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass
+from functools import lru_cache
 
 from castor.analysis.scene import Analysis, macro_definitions, object_figures, parameters
 from castor.diagnostics import Location
@@ -22,6 +23,8 @@ from castor.primitives import PRIMITIVES
 from castor.transformations import TRANSFORMS
 
 _WORD = re.compile(r"[!@$]?[A-Za-z_]\w*")
+# a token, for a diagnostic's range; an annotation's bracket (LANGUAGE.md §11) is one: [wal]
+_TOKEN = re.compile(r"\[[^\]\n]*\]|[!@$]?\w+|\S")
 # a name as written (not the name of the vocabulary after '!', '@', '$', not a
 # number's exponent), or a comment or a string, skipped
 _COMMENT_OR_WORD = re.compile(
@@ -42,7 +45,7 @@ class Word:
 
 def word_at(text: str, line: int, column: int) -> Word | None:
     """The word at 1-based (line, column), or just before it."""
-    lines = text.split("\n")
+    lines = _lines(text)
     if not 0 < line <= len(lines):
         return None
     source = lines[line - 1]
@@ -56,13 +59,21 @@ def token_end(text: str | None, location: Location) -> int:
     """The 1-based column just after the token at ``location`` (for a range)."""
     if text is None:
         return location.column + 1
-    lines = text.split("\n")
+    lines = _lines(text)
     if not 0 < location.line <= len(lines):
         return location.column + 1
     source = lines[location.line - 1]
-    # an annotation's bracket (LANGUAGE.md §11) is one token: [wal]
-    match = re.compile(r"\[[^\]\n]*\]|[!@$]?\w+|\S").match(source, max(location.column - 1, 0))
+    match = _TOKEN.match(source, max(location.column - 1, 0))
     return match.end() + 1 if match else location.column + 1
+
+
+@lru_cache(maxsize=4)
+def _lines(text: str) -> list[str]:
+    """A text's lines, split once for all the diagnostics and requests that read
+    it (a diagnostic's range is asked of the same text for each diagnostic: a
+    split each time made a thousand warnings of a 1 MB scene take seconds).
+    The list is shared: never changed."""
+    return text.split("\n")
 
 
 def _before(a: Location, file: str, line: int, column: int) -> bool:

@@ -18,6 +18,8 @@ every example, and random edits of them, alike.
 from __future__ import annotations
 
 import re
+from itertools import chain
+from operator import itemgetter
 
 
 class Failed(Exception):
@@ -40,11 +42,39 @@ def _callback(method, expand_single: bool, include, append_none: int):
     """The transformer's ``method`` given a rule's children as lark gives them:
     tokens of punctuation left out, children of inlined rules (``_name``) spliced
     in, None for each missing ``[optional]``, a single child passed up as is where
-    the rule is ``?rule``."""
+    the rule is ``?rule``. The shapes every statement meets (some children kept;
+    a list, an inlined ``(...)*``'s, a child appended to) have a function of
+    their own; the others, lark's child filter as it is."""
     if include is None:
         if expand_single:
             return lambda children: children[0] if len(children) == 1 else method(children)
         return method
+    indices = tuple(index for index, _, _ in include)
+    splices = tuple(splice for _, splice, _ in include)
+    if not expand_single and not any(nones for _, _, nones in include):
+        tail = [None] * append_none
+        if not any(splices):
+            if len(indices) == 1:
+                only = indices[0]
+                if tail:
+                    return lambda children: method([children[only]] + tail)
+                return lambda children: method([children[only]])
+            picked = itemgetter(*indices)
+            if tail:
+                return lambda children: method([*picked(children), *tail])
+            return lambda children: method([*picked(children)])
+        if splices == (False, True) and not tail:  # a child, then an inlined list
+            first, rest = indices
+            return lambda children: method([children[first], *children[rest]])
+        if splices == (True, False) and not tail:  # a list, one more child appended
+            first, then = indices
+
+            def appended(children):
+                kept = children[first]  # the inlined rule's list, given up to this one
+                kept.append(children[then])
+                return method(kept)
+
+            return appended
 
     def filtered(children):
         kept = []
@@ -82,6 +112,31 @@ def _tree(name: str):
     return refused
 
 
+# the root lexer's groups that are no terminal (lark's terminals are upper case)
+_STRAY, _END = "stray", "end_of_text"
+
+# How the driver reduces a rule (the second field of its entry in Parser._rules),
+# written as these numbers in Parser.parse:
+_KEEP = 0  # a ``?rule`` of one child passes it up: the value stays, only the state changes
+_ONE = 1  # the callback, given the one child the rule pops (number, parameter)
+_PICK = 2  # a ``?rule`` that keeps one of its children, always: that child, no call
+_CALL = 3  # the callback (the transformer's method through lark's child filter)
+
+
+def _action(expand_single: bool, size: int, include, append_none: int) -> tuple:
+    """How the driver reduces a rule: (_KEEP, None), (_PICK, the child's index from
+    the top of the stack, negative) or (_ONE or _CALL, None)."""
+    if expand_single and not append_none:
+        if include is None:
+            if size == 1:
+                return _KEEP, None
+        elif len(include) == 1:
+            index, splice, nones = include[0]
+            if not splice and not nones:
+                return (_KEEP, None) if size == 1 else (_PICK, index - size)
+    return (_ONE if size == 1 else _CALL), None
+
+
 class Parser:
     """Parses text with the exported tables (castor.language.tables.export, which
     checks their layout), calling ``transformer`` as it reduces."""
@@ -89,7 +144,11 @@ class Parser:
     def __init__(self, tables: dict, transformer):
         if any(hasattr(transformer, name) for name in tables["terminals"]):
             raise ValueError("the transformer handles terminals")  # lark would call it on tokens
-        self._states = tables["states"]  # per state: symbol -> shift target (>= 0) or -1 - rule
+        # per state: symbol -> shift target (>= 0) or -1 - rule (~rule); lark never
+        # shifts the end, which ends where a reduction reaches the start's end state
+        self._states = tables["states"]
+        if any(row.get("$END", -1) >= 0 for row in self._states):
+            raise ValueError("the tables shift the end")
         self._starts = tables["starts"]
         self._ends = tables["ends"]
         self._lexer_of = tables["lexer_of"]  # per state: its lexer's number
@@ -97,11 +156,20 @@ class Parser:
         # hold newlines, its terminals; and the root lexer's, of every terminal
         self._lexers = tables["lexers"]
         self._compiled: list = [None] * len(self._lexers)
-        self._terminals = [frozenset(lexer[3]) for lexer in self._lexers]
         self._root = tables["root"]
         self._root_compiled = None
-        self._rules = []  # per rule: (its symbol, how many children it pops, its callback)
+        self._root_lexer()  # (ValueError where the driver cannot run it: lark does)
+        # the terminals some rule hands its callback: the others (punctuation) are
+        # shifted without a Token made for them
+        self._kept = frozenset(tables["kept"])
+        # per rule: (its symbol, _KEEP/_ONE/_PICK/_CALL, how many children it pops,
+        # the picked child's index or the callback)
+        self._rules = []
         for origin, size, name, expand_single, include, append_none in tables["rules"]:
+            how, pick = _action(expand_single, size, include, append_none)
+            if how in (_KEEP, _PICK):
+                self._rules.append((origin, how, size, pick))
+                continue
             method = getattr(transformer, name, None)
             if name.startswith("_"):
                 if method is not None:
@@ -109,8 +177,9 @@ class Parser:
                 method = _inlined
             elif method is None:
                 method = _tree(name)
-            self._rules.append((origin, size, _callback(method, expand_single, include,
-                                                        append_none)))
+            self._rules.append((origin, how, size, _callback(method, expand_single, include,
+                                                             append_none)))
+        self._chains: dict = {}  # per start: (below, state, kind) -> where _chain ends
 
     @staticmethod
     def _compile(lexer) -> tuple:
@@ -133,69 +202,133 @@ class Parser:
                 return found
         return None
 
-    def _tokens(self, text: str, state_stack: list):
-        """The text's tokens, each read by the lexer of the state the parser is in
-        when it asks (lark's contextual lexer), then the end ("$END", None).
+    def _read(self, text: str, pos: int, state: int):
+        """The token at ``pos`` as the lexer of ``state`` reads it (lark's contextual
+        lexer): where the root lexer's token is not one the state accepts."""
+        found = self._match(self._lexer(state)[0], text, pos)
+        if found is None:
+            raise Failed(pos)
+        return found
 
-        Each token is first read by the root lexer, whose one expression (every
-        terminal, in lark's order of them) is compiled once: where the terminal it
-        finds is one of the state's, the state's own lexer would find the same (its
+    def _root_lexer(self):
+        """The root lexer's scan (an iterator of its matches from a position on:
+        one expression of every terminal, in lark's order of them, then any
+        character, then the end of the text), the types it skips and those that
+        may hold newlines.
+
+        Each token is first read by it: where the terminal it finds is one the
+        parser's state accepts, the state's own lexer would find the same (its
         terminals are a part of the root's, in the same order, and none before
         that one matched), and compiling each state's expression (some 30 of
-        them, about 0.7 ms each) is spared. Where it is not, the state's lexer
-        reads the token."""
+        them, about 0.7 ms each) is spared. Where it is not (or is no terminal:
+        ``_STRAY``), the state's lexer reads the token (``_read``). The matches
+        follow one another with nothing between them, each where the one before
+        ends (any character matches), as the lexer reads tokens one after the
+        other; the last is the empty one at the end (``_END``)."""
         if self._root_compiled is None:
-            self._root_compiled = self._compile(self._root)
-        root, ignored, newlines = self._root_compiled
-        lexer_of, terminals = self._lexer_of, self._terminals
-        end = len(text)
-        pos, line, line_start = 0, 1, 0  # where the next token begins; its line's start
-        while pos < end:
-            state = state_stack[-1]
-            found = self._match(root, text, pos)
-            if found is None or found.lastgroup not in terminals[lexer_of[state]]:
-                found = self._match(self._lexer(state)[0], text, pos)
-                if found is None:
-                    raise Failed(pos)
-            value, kind = found.group(0), found.lastgroup
+            patterns, ignored, newlines, _ = self._root
+            if len({flags for _, flags in patterns}) != 1:
+                raise ValueError("root lexer's expressions of several flags")
+            scan = re.compile("|".join(pattern for pattern, _ in patterns)
+                              + f"|(?P<{_STRAY}>(?s:.))|(?P<{_END}>\\Z)", patterns[0][1]).finditer
+            self._root_compiled = scan, frozenset(ignored), frozenset(newlines)
+        return self._root_compiled
+
+    def _chain(self, below: int, state: int, kind: str, end_state: int) -> int:
+        """The state a chain of ``?rule``s of one child ends in (``expr: term``,
+        ``term: unary``, ...: four of them after each number), reduced one after
+        the other from ``state`` above ``below`` with ``kind`` next: each changes
+        the top state only, so that where the chain ends depends on these three
+        alone, and ``parse`` keeps it (``_chains``)."""
+        states, rules = self._states, self._rules
+        while True:
+            action = states[state].get(kind)
+            if action is None or action >= 0:
+                return state
+            origin, how, _, _ = rules[~action]
+            if how != _KEEP:
+                return state
+            state = states[below][origin]
+            if kind == "$END" and state == end_state:
+                return state
+
+    def parse(self, text: str, start: str):
+        """The value the transformer gives the start rule; raises Failed. One loop
+        reads each token (by the lexer of the state the parser is in), reduces as
+        far as it allows and shifts it; only the tokens a callback is handed are
+        made (``Token``). Its time is linear in the text's length."""
+        scan, ignored, newlines = self._root_lexer()
+        states, rules, kept = self._states, self._rules, self._kept
+        chains = self._chains.setdefault(start, {})
+        state, end_state = self._starts[start], self._ends[start]
+        state_stack, value_stack = [state], []
+        push_state, push_value = state_stack.append, value_stack.append
+        next_found = scan(text).__next__
+        line, line_start, relexed = 1, 0, -1  # the next token's line, its start; _read's last
+        while True:
+            found = next_found()
+            kind = found.lastgroup
+            if kind in ignored:
+                if kind in newlines:
+                    value = found.group()
+                    count = value.count("\n")
+                    if count:
+                        line += count
+                        line_start = found.start() + value.rindex("\n") + 1
+                continue
+            row = states[state]
+            if kind not in row:
+                if kind == _END:
+                    kind = "$END"
+                else:  # not a token this state accepts: the state's own lexer reads it
+                    pos = found.start()
+                    if pos == relexed:
+                        raise Failed(kind)
+                    relexed = pos
+                    found = self._read(text, pos, state)
+                    next_found = chain((found,), scan(text, found.end())).__next__
+                    continue
             token = None
-            if kind not in ignored:
-                token = Token(value)
-                token.type, token.line, token.column = kind, line, pos - line_start + 1
+            if kind in kept:
+                token = Token(found.group())
+                token.type, token.line, token.column = kind, line, found.start() - line_start + 1
             if kind in newlines:
+                value = found.group()
                 count = value.count("\n")
                 if count:
                     line += count
-                    line_start = pos + value.rindex("\n") + 1
-            pos += len(value)
-            if token is not None:
-                yield kind, token
-        yield "$END", None
-
-    def parse(self, text: str, start: str):
-        """The value the transformer gives the start rule; raises Failed."""
-        states, rules = self._states, self._rules
-        state_stack = [self._starts[start]]
-        value_stack: list = []
-        end_state = self._ends[start]
-        for kind, token in self._tokens(text, state_stack):
+                    line_start = found.start() + value.rindex("\n") + 1
             while True:  # reduce as far as the token allows, then shift it
-                action = states[state_stack[-1]].get(kind)
-                if action is None or (action >= 0 and token is None):
+                action = row.get(kind)
+                if action is None:
                     raise Failed(kind)
-                if action >= 0:
-                    state_stack.append(action)
-                    value_stack.append(token)
+                if action >= 0:  # (never on "$END": the tables have no such shift)
+                    push_state(action)
+                    push_value(token)
+                    state = action
                     break
-                origin, size, callback = rules[-1 - action]
-                if size:
-                    children = value_stack[-size:]
-                    del state_stack[-size:]
-                    del value_stack[-size:]
+                origin, how, size, callback = rules[~action]
+                if how == 0:  # _KEEP: one child passed up, only the state changes
+                    below = state_stack[-2]  # the same all along a chain of them
+                    key = (below, state, kind)
+                    state = chains.get(key)
+                    if state is None:
+                        state = chains[key] = self._chain(below, key[1], kind, end_state)
+                    state_stack[-1] = state
+                elif how == 1:  # _ONE: the value replaced, the state too
+                    value_stack[-1] = callback(value_stack[-1:])
+                    state = state_stack[-1] = states[state_stack[-2]][origin]
                 else:
-                    children = []
-                value_stack.append(callback(children))
-                state_stack.append(states[state_stack[-1]][origin])
-                if token is None and state_stack[-1] == end_state:
+                    if how == 2:  # _PICK
+                        value = value_stack[callback]
+                    else:
+                        value = callback(value_stack[-size:] if size else [])
+                    if size:
+                        del state_stack[-size:]
+                        del value_stack[-size:]
+                    push_value(value)
+                    state = states[state_stack[-1]][origin]
+                    push_state(state)
+                if state == end_state and kind == "$END":
                     return value_stack[-1]
-        raise Failed("the end")  # not reached: "$END" either reduces to the start or fails
+                row = states[state]

@@ -17,7 +17,7 @@ from typing import Iterator
 
 from castor.booleans import BOOLEANS
 from castor.diagnostics import (ArgumentCountError, CastorError, EvaluationError, LimitError,
-                                SceneError, UndefinedObject)
+                                Location, SceneError, UndefinedObject)
 from castor.language.expressions import FUNCTIONS, arity_message, evaluate
 from castor.language.lalr import Failed, Token
 from castor.language.reader import Chunk
@@ -26,6 +26,10 @@ from castor.language.scene import (EMPTY, Binary, BooleanNode, Call, FrameComman
                                    Step, Tables, TransformedNode, Unary, UndefinedReference)
 from castor.primitives import PRIMITIVES
 from castor.transformations import TRANSFORMS
+
+# how many arguments each primitive takes (without coordinate pairs)
+_COUNTS = {name: declared.count for name, declared in PRIMITIVES.items()}
+_new_tuple = tuple.__new__  # a Location made without the Python call of its __new__
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
 MAX_DEPTH = 100_000
@@ -76,13 +80,30 @@ class Builder:
 
     def __init__(self, tables: Tables):
         self.tables = tables
-        self.chunk: Chunk | None = None
+        self.chunk = None
         self.faults: list[CastorError] = []
         self._param_sets: dict[str, frozenset[str]] = {}
         self.on_statement = None
 
+    @property
+    def chunk(self) -> Chunk | None:
+        """The statement being read."""
+        return self._chunk
+
+    @chunk.setter
+    def chunk(self, chunk: Chunk | None) -> None:
+        self._chunk = chunk
+        # where its first line is: (file, line, columns before it), for _at
+        self._first = (*chunk.origins[0], chunk.first_column) \
+            if chunk is not None and chunk.origins else None
+
     def _at(self, token: Token):
-        return self.chunk.location(token.line, token.column)
+        """Where a token is in the original file: Chunk.location, with the first
+        line's case inline (a long statement asks it of every number and name)."""
+        if token.line == 1 and self._first is not None:
+            file, line, before = self._first
+            return _new_tuple(Location, (file, line, token.column + before))
+        return self._chunk.location(token.line, token.column)
 
     def _depth(self, depth: int, location) -> int:
         if depth > MAX_DEPTH:
@@ -128,10 +149,11 @@ class Builder:
             return atom
         steps = items[:-1]
         params = atom.params
-        for s in steps:
-            for a in s.args:
-                if a.params and not a.params <= params:
-                    params = params | a.params
+        # the names the steps read that the atom does not: gathered, then one union
+        # (a union per step would copy the set each time: quadratic in a long run)
+        more = [a.params for s in steps for a in s.args if a.params and not a.params <= params]
+        if more:
+            params = params.union(*more)
         return TransformedNode(tuple(steps), atom, steps[0].location, params, atom.depth + 1)
 
     def transform(self, children):
@@ -157,29 +179,27 @@ class Builder:
         args = args or ()
         location = self._at(token)
         kind = token[1:]
-        if kind not in PRIMITIVES:
+        declared = PRIMITIVES.get(kind)
+        n = len(args)
+        if declared is None:
             self.faults.append(SceneError(
                 f"unknown primitive '{token}'{_known('!', kind, PRIMITIVES)}", location))
-        else:
-            declared = PRIMITIVES[kind]
-            low, form = declared.count, declared.form
-            high = None if declared.pairs else low
-            if declared.pairs:
-                low += 6  # at least three coordinate pairs
-            n = len(args)
-            if n < low or (high is not None and n > high):
-                wanted = str(low) if low == high else f"at least {low}"
+        elif declared.pair_names is None:
+            if n != _COUNTS[kind]:
                 self.faults.append(ArgumentCountError(
-                    f"'{token}' takes {wanted} arguments ({form}), but {_given(n)}", location,
-                    _names(args)))
-            elif high is None and (n - 3) % 2:
-                self.faults.append(ArgumentCountError(
-                    f"'{token}' takes the colour then pairs of coordinates ({form}), "
-                    f"but {n - 3} coordinates were given, an odd number", location,
-                    _names(args)))
+                    f"'{token}' takes {declared.count} arguments ({declared.form}), "
+                    f"but {_given(n)}", location, _names(args)))
+        elif n < declared.count + 6:  # at least three coordinate pairs
+            self.faults.append(ArgumentCountError(
+                f"'{token}' takes at least {declared.count + 6} arguments ({declared.form}), "
+                f"but {_given(n)}", location, _names(args)))
+        elif (n - 3) % 2:
+            self.faults.append(ArgumentCountError(
+                f"'{token}' takes the colour then pairs of coordinates ({declared.form}), "
+                f"but {n - 3} coordinates were given, an odd number", location, _names(args)))
+        depth = max([a.depth for a in args], default=0)
         params = _names(args)
-        depth = max((a.depth for a in args), default=0) + 1
-        return PrimitiveNode(kind, args, location, params, depth)
+        return PrimitiveNode(kind, args, location, params, depth + 1)
 
     def boolean(self, children):
         token, rest = children[0], children[1:]
@@ -239,7 +259,11 @@ class Builder:
     def number(self, children):
         token = children[0]
         value = float(token)
-        location = self.chunk.location(token.line, token.column)
+        if token.line == 1 and self._first is not None:  # _at, inline: the most made node
+            file, line, before = self._first
+            location = _new_tuple(Location, (file, line, token.column + before))
+        else:
+            location = self._chunk.location(token.line, token.column)
         if value == math.inf:
             self.faults.append(EvaluationError(f"number '{token}' is too large", location))
             value = 0.0
@@ -251,7 +275,7 @@ class Builder:
         params = self._param_sets.get(name)
         if params is None:
             params = self._param_sets[name] = frozenset((name,))
-        return Param(name, self.chunk.location(token.line, token.column), params)
+        return Param(name, self._at(token), params)
 
     def binary(self, children):
         left, op, right = children
@@ -488,8 +512,11 @@ def _combined(chunks: list[Chunk]) -> Chunk:
 
 
 def _names(args) -> frozenset:
-    """The parameter names some argument reads."""
-    return EMPTY.union(*(a.params for a in args))
+    """The parameter names some argument reads (most read none: then no union)."""
+    names = [a.params for a in args if a.params]
+    if not names:
+        return EMPTY
+    return names[0] if len(names) == 1 else EMPTY.union(*names)
 
 
 class SkippedDefinition:

@@ -21,6 +21,7 @@ _MARKER = re.compile(r'\s*#\s*(?:line\s+)?(\d+)(?:\s+"((?:[^"\\]|\\.)*)")?[^\n]*
 _DIRECTIVE = re.compile(r"\s*#\s*([A-Za-z_]*)")
 _SCAN = re.compile(r"/\*|//|;")
 _END_COMMENT = re.compile(r"\*/")
+_new_tuple = tuple.__new__  # Location(...) without the Python call of its __new__
 
 
 @dataclass(frozen=True, slots=True)
@@ -32,12 +33,13 @@ class Chunk:
     first_column: int  # columns of the first line start after this many characters
 
     def location(self, line: int, column: int) -> Location:
-        """Map a 1-based (line, column) inside the chunk to the original file."""
+        """Map a 1-based (line, column) inside the chunk to the original file
+        (made as the tuple it is: the parser asks this of every number and name)."""
         if line == 1:
             file, original = self.origins[0]
-            return Location(file, original, column + self.first_column)
+            return _new_tuple(Location, (file, original, column + self.first_column))
         file, original = self.origins[min(max(line, 1), len(self.origins)) - 1]
-        return Location(file, original, column)
+        return _new_tuple(Location, (file, original, column))
 
     def end_location(self) -> Location:
         """Just after the last character that is not blank."""

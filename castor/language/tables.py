@@ -49,8 +49,8 @@ OPTIONS = {"parser": "lalr", "lexer": "contextual", "start": ["statement", "prog
 _MAGIC = b"castor-lark-tables "
 # the plain tables' layout, as castor.language.lalr reads it: bumped when it changes,
 # so that tables of another layout are not read (2: the root lexer, and each
-# lexer's terminals)
-PLAIN_LAYOUT = 2
+# lexer's terminals; 3: the terminals some rule hands its callback)
+PLAIN_LAYOUT = 3
 
 
 def grammar_path() -> str:
@@ -141,6 +141,7 @@ def export(parser) -> dict:
                 row[str(symbol)] = -1 - rules.setdefault(argument, len(rules))
         states[int(state)] = row
     exported_rules = []
+    kept = set()  # the terminals some rule hands its callback (not punctuation)
     for rule in rules:
         made = maybe_create_child_filter(rule.expansion, rule.options.keep_all_tokens, False,
                                          rule.options.empty_indices if options.maybe_placeholders
@@ -153,6 +154,10 @@ def export(parser) -> dict:
             include, append_none = tuple((i, splice, 0) for i, splice in made.args[0]), 0
         else:
             raise ValueError(f"a child filter the driver does not run: {made.func}")
+        for index in (range(len(rule.expansion)) if include is None else
+                      (i for i, splice, _ in include if not splice)):
+            if rule.expansion[index].is_term:
+                kept.add(str(rule.expansion[index].name))
         name = str(rule.alias or rule.options.template_source or rule.origin.name)
         expand_single = bool(rule.options.expand1 and not rule.alias)
         if name.startswith("_") and expand_single:
@@ -192,7 +197,8 @@ def export(parser) -> dict:
             "lexer_of": [lexer_of[i] for i in range(count)],
             "lexers": [entry for _, entry in sorted(lexers.values())],
             "root": lexer_data(frontend.lexer.root_lexer),
-            "terminals": sorted(str(t) for t in terminals)}
+            "terminals": sorted(str(t) for t in terminals),
+            "kept": sorted(kept)}
 
 
 def save_plain(target: str | os.PathLike, parser, grammar: str) -> bool:
@@ -229,7 +235,8 @@ def cached_plain() -> str:
 
         directory = tempfile.gettempdir()
     user = os.getuid() if hasattr(os, "getuid") else 0
-    return os.path.join(directory, f"castor-lalr-{user}.tables")
+    # the layout in the name: castors of another layout (another checkout) keep theirs
+    return os.path.join(directory, f"castor-lalr-{user}-{PLAIN_LAYOUT}.tables")
 
 
 def load_plain(grammar: str, transformer, sources=None):
