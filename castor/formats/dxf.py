@@ -317,21 +317,12 @@ def _layout_name(number: str, used: set) -> str:
     return name
 
 
-def patterned(product) -> bool:
-    from castor.formats.svg import patterned
-
-    return patterned(product)
-
-
 def write(sheet, info: WriteInfo) -> Iterator[bytes]:
     """The registry's writer (castor.formats): the sheet as one piece; a drawing
-    set (--sheets) as one document with a layout per sheet, or its first sheet
-    for a %d pattern."""
-    if hasattr(sheet, "sheets"):
-        if patterned(sheet):
-            return iter([export_drawing(sheet.sheets[0])])
-        return iter([export_set(sheet)])
-    return iter([export_drawing(sheet)])
+    set (--sheets) as one document, or its first sheet for a %d pattern."""
+    from castor.formats.svg import written
+
+    return written(sheet, export_drawing, export_set)
 
 
 def companions(product, info: WriteInfo) -> dict:

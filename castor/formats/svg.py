@@ -162,14 +162,24 @@ def export_drawing(sheet) -> bytes:
 def write(sheet, info: WriteInfo) -> Iterator[bytes]:
     """The registry's writer (castor.formats): the sheet as one piece; of a
     drawing set (--sheets, a file per sheet), its first sheet."""
-    if hasattr(sheet, "sheets"):
-        return iter([export_drawing(sheet.sheets[0])])
-    return iter([export_drawing(sheet)])
+    return written(sheet, export_drawing)
 
 
 def companions(product, info: WriteInfo) -> dict:
     """A drawing set written to a %d pattern: the files of its other sheets."""
     return sheet_files(product, export_drawing)
+
+
+def written(product, export, export_set=None) -> Iterator[bytes]:
+    """A drawing format's file: a sheet by ``export(sheet)``; a drawing set
+    (--sheets) as one document by ``export_set(set)``, or its first sheet where
+    it goes to a %d pattern or the format holds one sheet a file (no
+    ``export_set``)."""
+    if hasattr(product, "sheets"):
+        if export_set is None or patterned(product):
+            return iter([export(product.sheets[0])])
+        return iter([export_set(product)])
+    return iter([export(product)])
 
 
 def sheet_files(product, export) -> dict:

@@ -17,7 +17,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from castor.mesh.arrays import cross, norm
+from castor.mesh.arrays import cross, digest, norm
 from castor.mesh.caches import Bounded
 
 # sin of the angle by which a corner may turn the wrong way and still count
@@ -114,18 +114,6 @@ def _merge_group(v: np.ndarray, tris: np.ndarray) -> list[list[int]]:
     return list(polys.values())
 
 
-def _digest(*arrays) -> bytes:
-    try:  # hashlib's own BLAKE2, without hashlib's 16 ms of OpenSSL set-up at start
-        from _blake2 import blake2b
-    except ImportError:
-        from hashlib import blake2b
-
-    digest = blake2b(digest_size=16)
-    for array in arrays:
-        digest.update(np.ascontiguousarray(array).data)
-    return digest.digest()
-
-
 def _group_polygons(vertices: np.ndarray, tris: np.ndarray, known: Bounded | None) -> list:
     """``_merge_group`` of one group, on its own vertices numbered in their
     order (so the same polygons, whatever the other groups' vertices), or the
@@ -135,7 +123,7 @@ def _group_polygons(vertices: np.ndarray, tris: np.ndarray, known: Bounded | Non
     ids, local = np.unique(tris, return_inverse=True)
     points = vertices[ids]
     local = local.reshape(-1, 3)
-    key = None if known is None else _digest(points, local.astype(np.int64, copy=False))
+    key = None if known is None else digest(points, local.astype(np.int64, copy=False))
     polygons = None if key is None else known.get(key)
     if polygons is None:
         polygons = _merge_group(points, local)
@@ -389,7 +377,7 @@ class Merger:
         """merge's polygons, or those of a part merged before with the same arrays."""
         if self.parts is None:
             return merge(vertices, triangles, origin_ids, face_ids, self.groups)
-        key = _digest(vertices, triangles, face_ids)
+        key = digest(vertices, triangles, face_ids)
         found = self.parts.get(key)
         if found is not None:
             offsets, indices, source = found

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from castor.mesh import adapter
-from castor.mesh.arrays import paired, plane_sign, row_hash, shared_across
+from castor.mesh.arrays import digest, paired, plane_sign, row_hash, shared_across
 from castor.mesh.caches import PROCESS
 from castor.mesh.checks import off_faces
 from castor.mesh.flat import flat_triangles, without_flat_triangles
@@ -123,15 +123,7 @@ def _remembered(tri: Triangles, clean_key) -> Triangles:
     made of it, and decides nothing by it: the regularization is computed
     with each triangle's row for its origin, and remembered as the rows each
     triangle comes from, which give the origins of the triangles of any frame."""
-    try:  # hashlib's own BLAKE2, without hashlib's 16 ms of OpenSSL set-up at start
-        from _blake2 import blake2b
-    except ImportError:
-        from hashlib import blake2b
-
-    digest = blake2b(digest_size=16)
-    for array in (tri.vertices, tri.triangles, tri.face_ids):
-        digest.update(np.ascontiguousarray(array).data)
-    key = digest.digest()
+    key = digest(tri.vertices, tri.triangles, tri.face_ids)
     known = PROCESS.regular.get(key)
     if known is not None:
         vertices, triangles, rows, face_ids = known

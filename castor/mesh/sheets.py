@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from castor.mesh.arrays import cross, largest_of_each, norm, plane_sign
+from castor.mesh.arrays import cross, digest, largest_of_each, norm, plane_sign
 from castor.mesh.caches import PROCESS
 from castor.mesh.seams import welded_seams, without_t_junctions
 
@@ -176,7 +176,7 @@ class _Resolver:
         it would not have found any made so far (a point within eps, a
         crossing of the same edges); else the plane is resolved here."""
         ids, local = np.unique(self.triangles[members], return_inverse=True)
-        key = _digest(np.asarray(normal, np.float64), np.asarray(up, bool),
+        key = digest(np.asarray(normal, np.float64), np.asarray(up, bool),
                       local.astype(np.int64), self.vertices[ids],
                       np.array([self.scale], np.float64))
         known = PROCESS.planes.get(key)
@@ -455,18 +455,6 @@ class _Log:
             return None
         points = tuple(resolver.new_points[self.first - count:])
         return _Done((points, tuple(self.probes), crossings, on_edge, outlines))
-
-
-def _digest(*arrays) -> bytes:
-    try:  # hashlib's own BLAKE2, without hashlib's 16 ms of OpenSSL set-up at start
-        from _blake2 import blake2b
-    except ImportError:
-        from hashlib import blake2b
-
-    digest = blake2b(digest_size=16)
-    for array in arrays:
-        digest.update(np.ascontiguousarray(array).data)
-    return digest.digest()
 
 
 class _Cancels:
