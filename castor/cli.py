@@ -236,6 +236,11 @@ def _check_destinations(p: _Parser, args) -> None:
             p.error(problem)
         if path is not None and any(_same_file(path, scene) for scene in args.files):
             p.error(f"{option} {path}: is a scene castor reads; give the output another name")
+        if option == "--summary" and path is not None and path.lower().endswith(".cas") \
+                and os.path.isfile(path):
+            # 'castor --summary house.cas' read standard input and wrote the figures over the scene
+            p.error(f"--summary {path}: is a scene file; --summary takes the file the figures go "
+                    f"to (castor --summary figures.json {path})")
 
 
 def _same_file(output: str, scene: str) -> bool:

@@ -1,0 +1,28 @@
+"""'castor --summary house.cas' names the summary's file, not the scene: castor
+then read standard input and wrote its figures over the scene file. A scene
+file (an existing .cas) as --summary's target is a usage error, and the file
+is left as it was."""
+
+import subprocess
+import sys
+
+
+def test_a_scene_file_as_the_summary_s_target_is_a_usage_error(tmp_path):
+    scene = tmp_path / "house.cas"
+    scene.write_text("> !cu(1, 0, 0);\n")
+    result = subprocess.run([sys.executable, "-m", "castor", "--summary", str(scene)],
+                            input=b"", capture_output=True, cwd=tmp_path, timeout=60)
+    assert result.returncode == 2
+    assert (f"--summary {scene}: is a scene file; --summary takes the file the figures go to "
+            f"(castor --summary figures.json {scene})") in result.stderr.decode()
+    assert scene.read_text() == "> !cu(1, 0, 0);\n"
+
+
+def test_a_new_summary_file_is_still_written(tmp_path):
+    scene = tmp_path / "house.cas"
+    scene.write_text("> !cu(1, 0, 0);\n")
+    result = subprocess.run([sys.executable, "-m", "castor", "--summary", "figures.json",
+                             "-o", "/dev/null", str(scene)], capture_output=True, cwd=tmp_path,
+                            timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert '"volume": 1' in (tmp_path / "figures.json").read_text()
