@@ -7,9 +7,12 @@ Routes (anything else is 404; no path of the disk is ever looked up):
 - ``/frames/ID/N.bin``: frame N of the frames numbered ID, as triangles;
 - ``/events``: server-sent events, one each time the state changes;
 - ``/editing.js``, ``/editing.json``, ``POST /gesture``: editing on screen
-  (castor.serve.gestures).
+  (castor.serve.gestures);
+- ``POST /camera``: the page's camera, once it stops: the frames are faceted
+  again for it (castor.serve.evaluation.refaceted), without evaluating.
 
-Threads: one evaluates (cancelled when a newer save overtakes it), one polls
+Threads: one evaluates or facets again for a new camera (cancelled when a
+newer save overtakes it), one polls
 the files, one accepts connections, and at most MAX_REQUESTS serve them (of
 which at most MAX_STREAMS hold an event stream open).
 """
@@ -18,6 +21,7 @@ from __future__ import annotations
 
 import errno
 import json
+import math
 import re
 import secrets
 import signal
@@ -26,12 +30,13 @@ import socketserver
 import sys
 import threading
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
 
 from castor.diagnostics import UsageError
-from castor.serve.evaluation import Diagnostic, DrawnFrame, Evaluation, Overtaken, Watched, evaluate
+from castor.serve.evaluation import (Diagnostic, DrawnFrame, Evaluation, Facets, Overtaken,
+                                     Watched, evaluate, refaceted)
 from castor.serve.watch import Watcher
 
 POLL_SECONDS = 0.05  # how often the files are looked at
@@ -71,12 +76,14 @@ class Snapshot:
     seconds: float = 0.0
     finished: float = 0.0  # time.time() at the end of the evaluation
     files: tuple[str, ...] = ()
+    refaceted: float | None = None  # seconds of the refacet for the page's camera, if the last
 
     def as_json(self, server: str, evaluating: bool) -> bytes:
         return json.dumps({
             "server": server, "version": self.version, "evaluating": evaluating,
             "evaluated": self.evaluated,
             "stale": self.stale, "seconds": round(self.seconds, 4),
+            "refaceted": None if self.refaceted is None else round(self.refaceted, 4),
             "finished": time.strftime("%H:%M:%S", time.localtime(self.finished))
                         if self.finished else None,
             "files": list(self.files), "diagnostics": [d.as_json() for d in self.diagnostics],
@@ -99,6 +106,9 @@ class Preview:
         self.state = threading.Condition()
         self.stop = threading.Event()
         self._wanted = 1  # evaluations asked for (the first, then one per save)
+        self._looked = 0  # cameras the page has sent (each asks to facet again)
+        self._camera = None  # the page's latest (castor.pictures.camera.Camera)
+        self._good: Evaluation | None = None  # the evaluation whose frames are shown
         self._last_good: tuple[int, tuple[DrawnFrame, ...]] | None = None
         self._frames_ids = 0
         self._watcher = Watcher(job.files)
@@ -122,6 +132,20 @@ class Preview:
             self._wanted += 1
             self.state.notify_all()
         self._stop_stale()
+
+    def look(self, camera) -> None:
+        """The page's camera has stopped at ``camera``: facet the frames for it
+        (every later evaluation too)."""
+        with self.state:
+            self._camera = camera
+            self._looked += 1
+            self.state.notify_all()
+
+    def _facets(self) -> Facets:
+        """How this evaluation or refacet facets the frames: for the latest
+        camera, keeping what the shown frames were faceted from where close."""
+        good = self._good
+        return Facets(self._camera, good.faceted if good is not None else None)
 
     def _stop_stale(self) -> None:
         """Stop the evaluation under way if a newer one is wanted."""
@@ -148,16 +172,24 @@ class Preview:
     def evaluate_scene(self) -> None:
         """Evaluate whenever asked, until stopped; an evaluation overtaken by a
         newer save or value stops at once (castor.analysis.worker.Stopper), inside
-        a statement too, and is thrown away."""
-        done = 0
+        a statement too, and is thrown away. A new camera alone facets the
+        frames shown again, without evaluating."""
+        done = looked = 0
         while True:
             with self.state:
-                while self._wanted == done and not self.stop.is_set():
+                while (self._wanted == done and self._looked == looked
+                       and not self.stop.is_set()):
                     self.state.wait(0.5)
                 if self.stop.is_set():
                     return
-                generation = self._wanted
-                if not self.evaluating:
+                generation, looked = self._wanted, self._looked
+                facets = self._facets()
+                if generation == done:
+                    if self._good is None:
+                        continue  # nothing shown to facet again yet
+                    self.evaluating = True
+                    self.state.notify_all()
+                elif not self.evaluating:
                     self.evaluating = True
                     self.state.notify_all()
             started_ns = time.time_ns()
@@ -167,7 +199,10 @@ class Preview:
                 try:
                     if stale():  # asked for again before begin(): not stopped
                         raise Overtaken()
-                    result = self.evaluation(self.job, stale)
+                    if generation == done:
+                        self._publish_refaceted(refaceted(self._good, facets, stale))
+                        continue
+                    result = self.evaluation(self.job, stale, facets)
                 finally:
                     self._stopper.end()
             except Overtaken:
@@ -183,9 +218,24 @@ class Preview:
             if self.report is not None:
                 self.report(result)
 
-    def evaluation(self, job: Watched, stale) -> Evaluation:
+    def evaluation(self, job: Watched, stale, facets: Facets | None = None) -> Evaluation:
         """One evaluation of the scene (castor.serve.buffers reads an editor's buffers)."""
-        return evaluate(job, stale)
+        return evaluate(job, stale, facets)
+
+    def _publish_refaceted(self, result: Evaluation) -> None:
+        """The shown frames faceted again: a new version where any changed."""
+        with self.state:
+            old = self.snapshot
+            if self._good is not None and any(a is not b for a, b in zip(result.frames,
+                                                                          self._good.frames)):
+                self._frames_ids += 1
+                self._last_good = (self._frames_ids, result.frames)
+                self.snapshot = replace(old, version=old.version + 1,
+                                        frames_id=self._frames_ids, frames=result.frames,
+                                        refaceted=result.seconds)
+            self._good = result
+            self.evaluating = False
+            self.state.notify_all()
 
     def _publish(self, result: Evaluation, overtaken: bool) -> None:
         with self.state:
@@ -195,6 +245,7 @@ class Preview:
                 frames_id, frames, stale = self._frames_ids, result.frames, False
                 if result.errors == 0:
                     self._last_good = (frames_id, frames)
+                    self._good = result
             else:
                 (frames_id, frames), stale = self._last_good, True
             shown = tuple(dict.fromkeys(self.job.files + result.included))
@@ -270,6 +321,9 @@ class _Handler(BaseHTTPRequestHandler):
         if self.path == "/gesture":
             self._gesture(kind, length)
             return
+        if self.path == "/camera":
+            self._camera(kind, length)
+            return
         if self.path != "/parameters":
             self._send(404, b"not found\n", "text/plain; charset=utf-8", False)
             return
@@ -299,6 +353,29 @@ class _Handler(BaseHTTPRequestHandler):
             return
         status, body = answer_post(self.server.gestures, self.rfile.read(int(length)))
         self._send(status, body, "application/json", False)
+
+    def _camera(self, kind: str, length: str) -> None:
+        """``/camera``: the page's camera has stopped; the frames are faceted
+        again for it. Refused (409) from a page of another castor --serve."""
+        if kind != "application/json" or not length.isdigit() or int(length) > 4096:
+            self._send(400, b"send JSON (application/json), at most 4 kB\n",
+                       "text/plain; charset=utf-8", False)
+            return
+        preview = self.server.preview
+        try:
+            request = json.loads(self.rfile.read(int(length)) or b"null")
+            camera = page_camera(request)
+        except (ValueError, RecursionError) as exc:
+            message = str(exc) if isinstance(exc, CameraError) else "the request is not JSON"
+            self._send(400, json.dumps({"error": message}).encode(), "application/json", False)
+            return
+        if request.get("server", preview.name) != preview.name:
+            self._send(409, json.dumps({"error": "this page is another castor --serve's: "
+                                                 "load it again"}).encode(),
+                       "application/json", False)
+            return
+        preview.look(camera)
+        self._send(200, json.dumps({"looking": True}).encode(), "application/json", False)
 
     def _same_origin(self) -> bool:
         """A POST from another site's page is refused (its Origin is not ours)."""
@@ -410,6 +487,74 @@ class _Server(ThreadingHTTPServer):
 
 class _Server6(_Server):
     address_family = socket.AF_INET6
+
+
+class CameraError(ValueError):
+    """A camera request the page should not have sent: what is wrong with it."""
+
+
+MAX_PIXELS = 16384  # a side of the page's view, at most
+
+
+def page_camera(request):
+    """The camera (castor.pictures.camera.Camera) of a ``POST /camera`` request:
+    ``{"eye": [x, y, z], "target": [x, y, z], "up": [x, y, z], "fov": degrees
+    (vertical), "width": pixels, "height": pixels, "orthographic": false}``
+    (orthographic: the picture's half height is the distance to the target
+    times tan(fov / 2), as the page draws it). CameraError says what is wrong."""
+    import numpy as np
+
+    from castor.pictures.camera import Camera
+
+    if not isinstance(request, dict):
+        raise CameraError('send one JSON object: {"eye": [x, y, z], "target": [x, y, z], '
+                          '"up": [x, y, z], "fov": degrees, "width": pixels, "height": pixels}')
+    eye, target, up = (_vector(request, name) for name in ("eye", "target", "up"))
+    fov = _number(request, "fov")
+    if not 0 < fov < 180:
+        raise CameraError(f"'fov' is the vertical field of view in degrees, between 0 and 180 "
+                          f"(not {fov:g})")
+    width, height = (_pixels(request, name) for name in ("width", "height"))
+    orthographic = request.get("orthographic", False)
+    if not isinstance(orthographic, bool):
+        raise CameraError("'orthographic' is true or false")
+    forward = np.array(target) - np.array(eye)
+    distance = float(np.linalg.norm(forward))
+    if not distance > 0:
+        raise CameraError("'eye' and 'target' are one point: the camera looks nowhere")
+    forward /= distance
+    right = np.cross(forward, np.array(up))
+    if not float(np.linalg.norm(right)) > 1e-9 * max(1.0, float(np.linalg.norm(up))):
+        raise CameraError("'up' is along the line of sight (or zero)")
+    right /= np.linalg.norm(right)
+    half = distance * math.tan(math.radians(fov) / 2) if orthographic else None
+    if half is not None and not (math.isfinite(half) and half > 0):
+        raise CameraError("the orthographic picture is of no size")
+    return Camera(np.array(eye), forward, right, np.cross(right, forward), width, height,
+                  fov, half)
+
+
+def _number(request: dict, name: str) -> float:
+    value = request.get(name)
+    if isinstance(value, bool) or not isinstance(value, (int, float)) \
+            or not math.isfinite(value) or abs(value) > 1e15:
+        raise CameraError(f"'{name}' is a number (not {json.dumps(value)[:40]})")
+    return float(value)
+
+
+def _vector(request: dict, name: str) -> tuple[float, float, float]:
+    value = request.get(name)
+    if not isinstance(value, list) or len(value) != 3:
+        raise CameraError(f"'{name}' is three numbers [x, y, z] (not {json.dumps(value)[:40]})")
+    return tuple(_number({name: v}, name) for v in value)
+
+
+def _pixels(request: dict, name: str) -> int:
+    value = request.get(name)
+    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= MAX_PIXELS:
+        raise CameraError(f"'{name}' is a whole number of pixels from 1 to {MAX_PIXELS} "
+                          f"(not {json.dumps(value)[:40]})")
+    return value
 
 
 def _is_loopback(address: str) -> bool:
