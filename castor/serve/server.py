@@ -8,8 +8,8 @@ Routes (anything else is 404; no path of the disk is ever looked up):
 - ``/events``: server-sent events, one each time the state changes;
 - ``/editing.js``, ``/editing.json``, ``POST /gesture``: editing on screen
   (castor.serve.gestures);
-- ``POST /camera``: the page's camera, once it stops: the frames are faceted
-  again for it (castor.serve.evaluation.refaceted), without evaluating.
+- ``POST /camera``: the page's camera, once it stops (castor.serve.camera):
+  the frames are faceted again for it, without evaluating.
 
 Threads: one evaluates or facets again for a new camera (cancelled when a
 newer save overtakes it), one polls
@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import errno
 import json
-import math
 import re
 import secrets
 import signal
@@ -107,6 +106,7 @@ class Preview:
         self.stop = threading.Event()
         self._wanted = 1  # evaluations asked for (the first, then one per save)
         self._looked = 0  # cameras the page has sent (each asks to facet again)
+        self._looked_done = 0  # of which the frames shown are faceted for the latest
         self._camera = None  # the page's latest (castor.pictures.camera.Camera)
         self._good: Evaluation | None = None  # the evaluation whose frames are shown
         self._last_good: tuple[int, tuple[DrawnFrame, ...]] | None = None
@@ -133,13 +133,18 @@ class Preview:
             self.state.notify_all()
         self._stop_stale()
 
-    def look(self, camera) -> None:
+    def look(self, camera, seconds: float = 0.0) -> int:
         """The page's camera has stopped at ``camera``: facet the frames for it
-        (every later evaluation too)."""
+        (every later evaluation too). Waits at most ``seconds`` for the frames
+        faceted for it to be shown; the version then shown."""
         with self.state:
             self._camera = camera
             self._looked += 1
+            number = self._looked
             self.state.notify_all()
+            self.state.wait_for(lambda: self._looked_done >= number or self.stop.is_set(),
+                                seconds)
+            return self.snapshot.version
 
     def _facets(self) -> Facets:
         """How this evaluation or refacet facets the frames: for the latest
@@ -184,12 +189,11 @@ class Preview:
                     return
                 generation, looked = self._wanted, self._looked
                 facets = self._facets()
-                if generation == done:
-                    if self._good is None:
-                        continue  # nothing shown to facet again yet
-                    self.evaluating = True
+                if generation == done and self._good is None:
+                    self._looked_done = looked  # nothing shown to facet again yet
                     self.state.notify_all()
-                elif not self.evaluating:
+                    continue
+                if not self.evaluating:
                     self.evaluating = True
                     self.state.notify_all()
             started_ns = time.time_ns()
@@ -200,7 +204,7 @@ class Preview:
                     if stale():  # asked for again before begin(): not stopped
                         raise Overtaken()
                     if generation == done:
-                        self._publish_refaceted(refaceted(self._good, facets, stale))
+                        self._publish_refaceted(refaceted(self._good, facets, stale), looked)
                         continue
                     result = self.evaluation(self.job, stale, facets)
                 finally:
@@ -214,7 +218,7 @@ class Preview:
             done = generation
             with self._watcher_lock:
                 self._watcher.watch(self.job.files + result.included, since_ns=started_ns)
-            self._publish(result, overtaken=self._wanted != generation)
+            self._publish(result, self._wanted != generation, looked)
             if self.report is not None:
                 self.report(result)
 
@@ -222,7 +226,7 @@ class Preview:
         """One evaluation of the scene (castor.serve.buffers reads an editor's buffers)."""
         return evaluate(job, stale, facets)
 
-    def _publish_refaceted(self, result: Evaluation) -> None:
+    def _publish_refaceted(self, result: Evaluation, looked: int) -> None:
         """The shown frames faceted again: a new version where any changed."""
         with self.state:
             old = self.snapshot
@@ -234,10 +238,11 @@ class Preview:
                                         frames_id=self._frames_ids, frames=result.frames,
                                         refaceted=result.seconds)
             self._good = result
+            self._looked_done = looked
             self.evaluating = False
             self.state.notify_all()
 
-    def _publish(self, result: Evaluation, overtaken: bool) -> None:
+    def _publish(self, result: Evaluation, overtaken: bool, looked: int = 0) -> None:
         with self.state:
             old = self.snapshot
             if result.errors == 0 or self._last_good is None:
@@ -252,6 +257,7 @@ class Preview:
             self.snapshot = Snapshot(old.version + 1, frames_id, frames, result.diagnostics,
                                      stale, True, result.seconds, time.time(), shown)
             self.evaluating = overtaken
+            self._looked_done = max(self._looked_done, looked)
             self.state.notify_all()
 
     def close(self) -> None:
@@ -355,27 +361,15 @@ class _Handler(BaseHTTPRequestHandler):
         self._send(status, body, "application/json", False)
 
     def _camera(self, kind: str, length: str) -> None:
-        """``/camera``: the page's camera has stopped; the frames are faceted
-        again for it. Refused (409) from a page of another castor --serve."""
-        if kind != "application/json" or not length.isdigit() or int(length) > 4096:
+        """``/camera``: the page's camera has stopped (castor.serve.camera)."""
+        from castor.serve.camera import MAX_BODY, answer_post
+
+        if kind != "application/json" or not length.isdigit() or int(length) > MAX_BODY:
             self._send(400, b"send JSON (application/json), at most 4 kB\n",
                        "text/plain; charset=utf-8", False)
             return
-        preview = self.server.preview
-        try:
-            request = json.loads(self.rfile.read(int(length)) or b"null")
-            camera = page_camera(request)
-        except (ValueError, RecursionError) as exc:
-            message = str(exc) if isinstance(exc, CameraError) else "the request is not JSON"
-            self._send(400, json.dumps({"error": message}).encode(), "application/json", False)
-            return
-        if request.get("server", preview.name) != preview.name:
-            self._send(409, json.dumps({"error": "this page is another castor --serve's: "
-                                                 "load it again"}).encode(),
-                       "application/json", False)
-            return
-        preview.look(camera)
-        self._send(200, json.dumps({"looking": True}).encode(), "application/json", False)
+        status, body = answer_post(self.server.preview, self.rfile.read(int(length)))
+        self._send(status, body, "application/json", False)
 
     def _same_origin(self) -> bool:
         """A POST from another site's page is refused (its Origin is not ours)."""
@@ -487,74 +481,6 @@ class _Server(ThreadingHTTPServer):
 
 class _Server6(_Server):
     address_family = socket.AF_INET6
-
-
-class CameraError(ValueError):
-    """A camera request the page should not have sent: what is wrong with it."""
-
-
-MAX_PIXELS = 16384  # a side of the page's view, at most
-
-
-def page_camera(request):
-    """The camera (castor.pictures.camera.Camera) of a ``POST /camera`` request:
-    ``{"eye": [x, y, z], "target": [x, y, z], "up": [x, y, z], "fov": degrees
-    (vertical), "width": pixels, "height": pixels, "orthographic": false}``
-    (orthographic: the picture's half height is the distance to the target
-    times tan(fov / 2), as the page draws it). CameraError says what is wrong."""
-    import numpy as np
-
-    from castor.pictures.camera import Camera
-
-    if not isinstance(request, dict):
-        raise CameraError('send one JSON object: {"eye": [x, y, z], "target": [x, y, z], '
-                          '"up": [x, y, z], "fov": degrees, "width": pixels, "height": pixels}')
-    eye, target, up = (_vector(request, name) for name in ("eye", "target", "up"))
-    fov = _number(request, "fov")
-    if not 0 < fov < 180:
-        raise CameraError(f"'fov' is the vertical field of view in degrees, between 0 and 180 "
-                          f"(not {fov:g})")
-    width, height = (_pixels(request, name) for name in ("width", "height"))
-    orthographic = request.get("orthographic", False)
-    if not isinstance(orthographic, bool):
-        raise CameraError("'orthographic' is true or false")
-    forward = np.array(target) - np.array(eye)
-    distance = float(np.linalg.norm(forward))
-    if not distance > 0:
-        raise CameraError("'eye' and 'target' are one point: the camera looks nowhere")
-    forward /= distance
-    right = np.cross(forward, np.array(up))
-    if not float(np.linalg.norm(right)) > 1e-9 * max(1.0, float(np.linalg.norm(up))):
-        raise CameraError("'up' is along the line of sight (or zero)")
-    right /= np.linalg.norm(right)
-    half = distance * math.tan(math.radians(fov) / 2) if orthographic else None
-    if half is not None and not (math.isfinite(half) and half > 0):
-        raise CameraError("the orthographic picture is of no size")
-    return Camera(np.array(eye), forward, right, np.cross(right, forward), width, height,
-                  fov, half)
-
-
-def _number(request: dict, name: str) -> float:
-    value = request.get(name)
-    if isinstance(value, bool) or not isinstance(value, (int, float)) \
-            or not math.isfinite(value) or abs(value) > 1e15:
-        raise CameraError(f"'{name}' is a number (not {json.dumps(value)[:40]})")
-    return float(value)
-
-
-def _vector(request: dict, name: str) -> tuple[float, float, float]:
-    value = request.get(name)
-    if not isinstance(value, list) or len(value) != 3:
-        raise CameraError(f"'{name}' is three numbers [x, y, z] (not {json.dumps(value)[:40]})")
-    return tuple(_number({name: v}, name) for v in value)
-
-
-def _pixels(request: dict, name: str) -> int:
-    value = request.get(name)
-    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= MAX_PIXELS:
-        raise CameraError(f"'{name}' is a whole number of pixels from 1 to {MAX_PIXELS} "
-                          f"(not {json.dumps(value)[:40]})")
-    return value
 
 
 def _is_loopback(address: str) -> bool:

@@ -18,7 +18,8 @@ from castor.mesh import primitives as mesh_primitives
 from castor.mesh.caches import PROCESS, Bounded
 from castor.pictures.camera import make_camera
 from castor.serve.evaluation import Facets, PIXEL_ERROR, Watched, evaluate, refaceted
-from castor.serve.server import PreviewServer, page_camera
+from castor.serve.camera import page_camera
+from castor.serve.server import PreviewServer
 from castor.settings import Source
 from tests.support.serve import get, triangles, wait_for
 
@@ -163,6 +164,7 @@ def test_the_camera_refacets_the_frames_for_it(preview):
     # from far away: coarser than the scene's tolerance
     status, body = post(port, looking((-200.0, -200.0, 80.0), server=scene["server"]))
     assert status == 200, body
+    assert json.loads(body)["version"] > version  # answered once faceted for it
     far_version, far = wait_for(lambda: (v := _ball_triangles(port)) and v[0] > version and v)
     assert far < uniform / 3
     _, _, scene = get(port, "/scene.json")

@@ -393,7 +393,7 @@
   }
 
   // ---- the camera ----
-  function fit() {
+  function fit(tell = true) {
     if (!state.box) return;
     const [lo, hi] = state.box;
     state.camera.target = [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2];
@@ -401,7 +401,7 @@
     const half = Math.min(FOV / 2, Math.atan(Math.tan(FOV / 2) * aspect));
     state.camera.distance = (radius() / Math.sin(half)) * 1.02;
     redraw();
-    cameraStopped();
+    if (tell) cameraStopped();
   }
 
   function setView(name) {
@@ -422,9 +422,11 @@
     cameraTimer = setTimeout(sendCamera, CAMERA_PAUSE);
   }
 
-  function sendCamera() {
+  // The server answers once the frames faceted for the camera are shown (or
+  // after a few seconds): with the version then shown.
+  async function sendCamera() {
     if (state.drag) return cameraStopped();
-    if (!gl || !state.box || !state.scene) return;
+    if (!gl || !state.box || !state.scene) return null;
     resize();
     const cam = state.camera;
     const { towards, up } = basis(cam);
@@ -434,11 +436,16 @@
       fov: (FOV * 180) / Math.PI, width: canvas.width, height: canvas.height, orthographic: cam.ortho,
     };
     const text = JSON.stringify(body);
-    if (text === cameraSent) return;
+    if (text === cameraSent) return null;
     cameraSent = text;
-    fetch("/camera", { method: "POST", headers: { "Content-Type": "application/json" }, body: text, cache: "no-store" })
-      .then((answer) => { document.body.dataset.camera = String(answer.status); })
-      .catch(() => { document.body.dataset.camera = "unsent"; });
+    try {
+      const answer = await fetch("/camera", {
+        method: "POST", headers: { "Content-Type": "application/json" }, body: text, cache: "no-store" });
+      const data = await answer.json().catch(() => ({}));
+      return answer.ok ? data.version : null;
+    } catch (error) {
+      return null;
+    }
   }
 
   function noViewName() {
@@ -501,7 +508,7 @@
     cameraStopped();
   }, { passive: false });
   for (const name of Object.keys(VIEWS)) $(`view-${name}`).addEventListener("click", () => setView(name));
-  $("view-fit").addEventListener("click", fit);
+  $("view-fit").addEventListener("click", () => fit());
   window.addEventListener("resize", () => {
     redraw();
     cameraStopped();
@@ -644,6 +651,12 @@
         loadAgain = false;
         await loadOnce();
       } while (loadAgain);
+      // what is shown once loading settles: its version, and the triangles drawn
+      // (every frame's), for whoever checks that the facets follow the view
+      if (state.scene) {
+        document.body.dataset.triangles = String(state.scene.frames.reduce((s, f) => s + f.triangles, 0));
+        document.body.dataset.version = String(state.scene.version);
+      }
     } finally {
       loading = false;
     }
@@ -684,17 +697,17 @@
     showLayers(scene);
     showStatus(scene, scene.evaluating);
     updateSection();
-    if (!state.fitted && state.box) {
-      state.fitted = true;
-      fit();
-    } else if (!cameraSent) {
-      cameraStopped(); // a camera the server has not heard yet
-    }
     showFrame(state.current);
     draw();
-    // the triangles drawn (every frame's), for whoever checks the facets follow the view
-    document.body.dataset.triangles = String(scene.frames.reduce((s, f) => s + f.triangles, 0));
-    document.body.dataset.version = String(scene.version);
+    if (!cameraSent && state.box) {
+      // the first frames, faceted with the scene's tolerance: the view's own
+      // facets are waited for before the page says it is shown
+      if (!state.fitted) fit(false);
+      state.fitted = true;
+      clearTimeout(cameraTimer);
+      const version = await sendCamera();
+      if (version !== null && version !== undefined && version > state.version) loadAgain = true;
+    }
   }
 
   // the view as it is drawn, for editing.js (editing on screen)
@@ -714,6 +727,7 @@
       state.server = news.server;
       state.version = -1;
       state.framesKey = "";
+      cameraSent = ""; // a new server has not heard the camera
     }
     if (news.version !== state.version) load();
     else showStatus(state.scene, news.evaluating);
