@@ -697,13 +697,15 @@
     showLayers(scene);
     showStatus(scene, scene.evaluating);
     updateSection();
+    if (!state.fitted && state.box) {
+      state.fitted = true;
+      fit(false);
+    }
     showFrame(state.current);
     draw();
     if (!cameraSent && state.box) {
       // the first frames, faceted with the scene's tolerance: the view's own
       // facets are waited for before the page says it is shown
-      if (!state.fitted) fit(false);
-      state.fitted = true;
       clearTimeout(cameraTimer);
       const version = await sendCamera();
       if (version !== null && version !== undefined && version > state.version) loadAgain = true;
