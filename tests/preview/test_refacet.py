@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import http.client
 import json
+import os
 
 import pytest
 
@@ -176,6 +177,24 @@ def test_the_camera_refacets_the_frames_for_it(preview):
     # the ground, flat, is as it was
     _, _, scene = get(port, "/scene.json")
     assert scene["frames"][0]["polygons"] > 0
+
+
+def test_a_save_after_the_camera_is_faceted_for_it(preview, tmp_path):
+    port = preview.httpd.server_address[1]
+    version, uniform = wait_for(lambda: _ball_triangles(port))
+    assert post(port, looking((-200.0, -200.0, 80.0)))[0] == 200
+    version, far = wait_for(lambda: (v := _ball_triangles(port)) and v[0] > version and v)
+    # the ground's colour changed, saved: evaluated again, the ball still for the far camera
+    path = tmp_path / "scene.cas"
+    before = os.stat(path).st_mtime_ns
+    path.write_text(SCENE.replace("!cu(0.6, 0.6, 0.6)", "!cu(0.5, 0.6, 0.6)"))
+    if os.stat(path).st_mtime_ns == before:  # as an editor's save moves it on
+        os.utime(path, ns=(before + 1_000_000, before + 1_000_000))
+    _, again = wait_for(lambda: (v := _ball_triangles(port)) and v[0] > version and v)
+    _, _, scene = get(port, "/scene.json")
+    assert scene["refaceted"] is None  # evaluated, not faceted again
+    assert [0.5, 0.6, 0.6] in [o["colour"] for o in scene["frames"][0]["origins"]]
+    assert again == far < uniform / 3
 
 
 @pytest.mark.parametrize("body, message", [
