@@ -257,3 +257,41 @@ def test_the_page_camera_is_the_pictures_camera():
     assert list(camera.right) == [1.0, 0.0, 0.0] and not camera.orthographic
     flat = page_camera(looking((20.0, 10.0, 2.0), orthographic=True))
     assert flat.half_height == pytest.approx(10 * 0.36397, rel=1e-4)
+
+
+# --- the rule itself (castor.mesh.screen.kept_where_close), leaf by leaf
+
+def _sized(text: str, y: float):
+    from castor.mesh.screen import sized_to_screen
+    from castor.pipeline import evaluated_frames
+
+    [tree], said = evaluated_frames(text, "kept.cas")
+    assert not said, said
+    return sized_to_screen(tree, None, PIXEL_ERROR, _camera(y))
+
+
+def test_a_named_object_used_near_and_far_keeps_the_far_use_only():
+    from castor.mesh.screen import kept_where_close
+
+    text = ("TOLERANCE = 1e-4;\ncol = @h(0.3, 0.3, 2) !cy(0.5, 0.5, 0.5);\n"
+            "> $U(@t(0, 2, 0) col, @t(0, 60, 0) col);\n")
+    before, after = _sized(text, 0.0), _sized(text, -6.0)
+    kept = kept_where_close(before, after)
+    (near_before, far_before), (near_after, far_after), (near, far) = (
+        obj.root.operands for obj in (before.objects[0], after.objects[0], kept.objects[0]))
+    assert near is near_after and near.shared.key != near_before.shared.key  # 4x: made again
+    assert far is far_before  # 1.1x: the same shared subtree, from the caches
+    assert kept.objects[0].root.operands[1].shared is far_before.shared
+
+
+def test_a_leaf_that_moved_is_never_kept_with_its_old_place():
+    from castor.mesh.screen import kept_where_close
+
+    text = "TOLERANCE = 1e-4;\n> @t(0, 12, 0) !sp(0.5, 0.5, 0.5), @t(0, 30, 0) !sp(1, 0, 0);\n"
+    before = _sized(text, 0.0)
+    moved = _sized(text.replace("@t(0, 12, 0)", "@t(0.1, 12, 0)")
+                   .replace("!sp(1, 0, 0)", "!sp(0, 1, 0)"), 0.0)
+    kept = kept_where_close(before, moved)
+    assert kept.objects[0] is moved.objects[0] and kept.objects[1] is moved.objects[1]
+    again = kept_where_close(before, _sized(text, 0.0))  # evaluated again, unchanged
+    assert all(a is b for a, b in zip(again.objects, before.objects))
