@@ -64,6 +64,7 @@ class SourceLines:
                         text = handle.read()
                 except OSError:
                     text = ""
+            text = text.removeprefix("\ufeff")  # a byte-order mark: no column of line 1
             lines = self.files[file] = text.split("\n") if text else []
         return lines[number - 1] if 0 < number <= len(lines) else None
 
