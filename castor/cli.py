@@ -157,8 +157,16 @@ def _general_options(p: _Parser) -> None:
 def _parse(p: _Parser, argv) -> argparse.Namespace:
     """The options parsed; ``args.given``: the output options the command line gave."""
     unset = {option.dest: _NotGiven() for option in OUTPUT_OPTIONS}  # told apart from any value
-    args = p.parse_args(negative_values(argv, tuple(o.flag for o in OUTPUT_OPTIONS if o.signed)),
-                        namespace=argparse.Namespace(**unset))
+    argv = list(argv)
+    after = argv.index("--") if "--" in argv else len(argv)  # files only, after '--'
+    args, extra = p.parse_known_args(
+        negative_values(argv[:after], tuple(o.flag for o in OUTPUT_OPTIONS if o.signed)),
+        namespace=argparse.Namespace(**unset))
+    unknown = [word for word in extra if word.startswith("-") and word != "-"]
+    if unknown:  # only the unknown options: the scene files around them are no fault
+        p.error(f"unrecognized arguments: {' '.join(unknown)}")
+    # files between and after the options too, as cpp takes them
+    args.files += extra + argv[after + 1:]
     args.given = [option.flag for option in OUTPUT_OPTIONS
                   if getattr(args, option.dest) is not unset[option.dest] or unset[option.dest]]
     for option in OUTPUT_OPTIONS:
