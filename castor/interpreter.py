@@ -150,6 +150,8 @@ class Interpreter:
         count where an argument names a parameter that has no value after an
         #include that could not be read (it may be one of that file's macros,
         such as a colour's three components)."""
+        if self.reporter.explains(error):  # a macro use left unexpanded, said by the preprocessor
+            return True
         if isinstance(error, UndefinedParameter):
             return error.name in self.failed and error.name not in self.tables.parameters
         if isinstance(error, ArgumentCountError) and self.reporter.unread_includes:

@@ -155,6 +155,35 @@ class Hooks:
                 f"macro {name} takes {wanted} argument{'' if wanted == '1' else 's'}, but "
                 f"{given} {'was' if given == '1' else 'were'} given")
 
+    def collect_args(self, tokenlist, ignore_errors=False):
+        """pcpp's, and a macro call whose '(' never closes said at the call: pcpp
+        leaves it unexpanded without a word (as ``ignore_errors`` asks), and the
+        statement then failed in words about parameters and objects."""
+        found = super().collect_args(tokenlist, ignore_errors)
+        if found[0] == 0 and ignore_errors and not self.quiet and tokenlist:
+            self._unclosed(tokenlist[0])
+        return found
+
+    def _unclosed(self, paren) -> None:
+        """A macro call whose '(' (the token ``paren``) has no ')': an error at the
+        call, the one message of its statement."""
+        file, line = getattr(paren, "source", None), int(getattr(paren, "lineno", 0) or 0)
+        text = self.originals.line(file, line) if file else None
+        if text is None:
+            return
+        with_arguments = {name for name, macro in self.macros.items()
+                          if macro.arglist is not None}
+        for use in re.finditer(r"(?<![\w])([A-Za-z_]\w*)\s*\(", text):
+            if use[1] in with_arguments and _argument_count(text, use.end()) < 0:
+                location = Location(file, line, use.start() + 1)
+                if location in self.reporter.explained:
+                    return  # said already (pcpp scans the rest again)
+                self.reporter.source_lines[(file, line)] = text
+                self.reporter.explained.add(location)
+                self.reporter.error(PreprocessError(
+                    f"the call of macro {use[1]} has no closing ')'", location))
+                return
+
     def on_include_not_found(self, is_malformed, is_system_include, curdir, includepath):
         """Report the #include at its place and drop the directive: the run goes on,
         so that the errors after it are seen too, as an external cpp shows them."""
