@@ -298,7 +298,7 @@ def executor_for(jobs: int, scheduler: str | None):
             from distributed import Client
         except ImportError:
             raise UsageError("error: --scheduler needs Dask's distributed package: "
-                             "pip install 'castor[cluster]'") from None
+                             "pip install '.[cluster]' in castor's directory") from None
         try:
             client = Client(scheduler, timeout="10s", set_as_default=False)
         except (OSError, TimeoutError, ValueError, TypeError) as exc:
