@@ -19,6 +19,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 from castor.diagnostics import Location, PreprocessError, Reporter
+from castor.language import macro_calls
 
 MAX_INCLUDE_DEPTH = 200
 
@@ -79,22 +80,6 @@ _CONDITION = re.compile(r"Could not evaluate expression due to .* \(passed to ev
 _ARGUMENT_COUNT = re.compile(r"Macro (\w+) requires (\d+) arguments but was passed (\d+)")
 
 
-def _argument_count(text: str, start: int) -> int:
-    """How many arguments the parentheses opened just before ``start`` hold (as
-    many as pcpp counts: an empty pair holds one), or -1 when they do not close."""
-    depth, count = 1, 1
-    for char in text[start:]:
-        if char == "(":
-            depth += 1
-        elif char == ")":
-            depth -= 1
-            if depth == 0:
-                return count
-        elif char == "," and depth == 1:
-            count += 1
-    return -1
-
-
 def _where(token, default: str = "<stdin>") -> Location:
     """The start of the line of a directive's token."""
     return Location(getattr(token, "source", None) or default,
@@ -136,24 +121,10 @@ class Hooks:
                    f"numbers, macros, defined(NAME) and C's operators")
         counted = _ARGUMENT_COUNT.fullmatch(msg)
         if counted and location is not None:
-            location, msg = self._argument_count(location, *counted.groups())
+            location, msg = macro_calls.argument_count(self, location, *counted.groups())
             # the use stays unexpanded, and the statement cannot parse: one message
             self.reporter.explained.add(location)
         self.reporter.error(PreprocessError(msg, location))
-
-    def _argument_count(self, location: Location, name: str, wanted: str, given: str):
-        """The place and castor's words for a macro use with the wrong number of
-        arguments: at the first use on the line with that many."""
-        text = self.originals.line(location.file, location.line)
-        column = 1
-        if text is not None:
-            self.reporter.source_lines[(location.file, location.line)] = text
-            uses = [(use.start() + 1, _argument_count(text, use.end()))
-                    for use in re.finditer(rf"(?<![\w]){re.escape(name)}\s*\(", text)]
-            column = next((c for c, n in uses if n == int(given)), uses[0][0] if uses else 1)
-        return (Location(location.file, location.line, column),
-                f"macro {name} takes {wanted} argument{'' if wanted == '1' else 's'}, but "
-                f"{given} {'was' if given == '1' else 'were'} given")
 
     def collect_args(self, tokenlist, ignore_errors=False):
         """pcpp's, and a macro call whose '(' never closes said at the call: pcpp
@@ -161,28 +132,8 @@ class Hooks:
         statement then failed in words about parameters and objects."""
         found = super().collect_args(tokenlist, ignore_errors)
         if found[0] == 0 and ignore_errors and not self.quiet and tokenlist:
-            self._unclosed(tokenlist[0])
+            macro_calls.unclosed(self, tokenlist[0])
         return found
-
-    def _unclosed(self, paren) -> None:
-        """A macro call whose '(' (the token ``paren``) has no ')': an error at the
-        call, the one message of its statement."""
-        file, line = getattr(paren, "source", None), int(getattr(paren, "lineno", 0) or 0)
-        text = self.originals.line(file, line) if file else None
-        if text is None:
-            return
-        with_arguments = {name for name, macro in self.macros.items()
-                          if macro.arglist is not None}
-        for use in re.finditer(r"(?<![\w])([A-Za-z_]\w*)\s*\(", text):
-            if use[1] in with_arguments and _argument_count(text, use.end()) < 0:
-                location = Location(file, line, use.start() + 1)
-                if location in self.reporter.explained:
-                    return  # said already (pcpp scans the rest again)
-                self.reporter.source_lines[(file, line)] = text
-                self.reporter.explained.add(location)
-                self.reporter.error(PreprocessError(
-                    f"the call of macro {use[1]} has no closing ')'", location))
-                return
 
     def on_include_not_found(self, is_malformed, is_system_include, curdir, includepath):
         """Report the #include at its place and drop the directive: the run goes on,
