@@ -114,6 +114,9 @@ class Symbols:
     # a section's or elevation's vertical chains: side -> heights of its
     # openings' sills and heads
     sides: dict = field(default_factory=dict)
+    # the page boxes ((x0, y0), (x1, y1)) the set's marks take (castor.drawings.marks),
+    # beyond the chains: the sheet makes room for them
+    marks: list = field(default_factory=list)
 
 
 def classify(drawing, takeoff, warn=None) -> None:
