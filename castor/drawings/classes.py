@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from castor.drawings.cut import cut_loops, loops_area
+from castor.drawings.cut import cut_loops
 
 # pattern name (as DXF names it) -> (line families (angle in degrees, offset as
 # a fraction of the period), period in paper mm, its period in the DXF
@@ -161,7 +161,9 @@ def classify(drawing, takeoff, warn=None) -> None:
             _stair(p, takeoff, z, drawing.view, symbols, warn)
         elif box[0][2] > z and box[0][2] < ceiling - 1e-9 and p.element.ifc_class != STAIR:
             _overhead(takeoff.solid(p.element), drawing.view, symbols)
-    _rooms(takeoff, drawing.view, z, symbols)
+    from castor.drawings.rooms import room_tags
+
+    room_tags(takeoff, drawing.view, z, symbols, drawing.scale, warn)
 
 
 def _regions(drawing, takeoff, symbols: Symbols, plan: bool) -> None:
@@ -456,52 +458,3 @@ def _joined(segments: list) -> list:
                     break
         out.append([a, b])
     return out
-
-
-def _rooms(takeoff, view, z: float, symbols: Symbols) -> None:
-    """A tag at the middle of each space the plan cuts: its name and its area
-    at the plan's height."""
-    depth = view.plane_depth(_Cut(z))
-    for room in takeoff.rooms():
-        low, high = room.solid.vertices[:, 2].min(), room.solid.vertices[:, 2].max()
-        if not low < z < high:
-            continue
-        loops = cut_loops(room.solid, view, depth)
-        area = loops_area(loops)
-        if area <= 0:
-            continue
-        at = _middle(loops)
-        symbols.labels.append(Label(at, (room.name, f"{area:.2f} m²"), 3.0))
-        if symbols.level_at is None:
-            symbols.level_at = (at[0], at[1])
-
-
-class _Cut(NamedTuple):
-    value: float
-    axis: str = "z"
-
-
-def _middle(loops) -> tuple[float, float]:
-    """The area centroid of the loops, or, when it falls outside them (an L),
-    the middle of the longest stretch inside along the horizontal through it."""
-    total, cx, cy = 0.0, 0.0, 0.0
-    for loop in loops:
-        x, y = loop[:, 0], loop[:, 1]
-        xn, yn = np.roll(x, -1), np.roll(y, -1)
-        cross = x * yn - xn * y
-        total += cross.sum() / 2
-        cx += ((x + xn) * cross).sum() / 6
-        cy += ((y + yn) * cross).sum() / 6
-    cx, cy = cx / total, cy / total
-    crossings = []
-    for loop in loops:
-        p, q = loop, np.roll(loop, -1, axis=0)
-        hit = (p[:, 1] > cy) != (q[:, 1] > cy)
-        t = (cy - p[hit, 1]) / (q[hit, 1] - p[hit, 1])
-        crossings.extend((p[hit, 0] + t * (q[hit, 0] - p[hit, 0])).tolist())
-    crossings.sort()
-    spans = [(crossings[k], crossings[k + 1]) for k in range(0, len(crossings) - 1, 2)]
-    if any(a <= cx <= b for a, b in spans) or not spans:
-        return float(cx), float(cy)
-    a, b = max(spans, key=lambda s: s[1] - s[0])
-    return float((a + b) / 2), float(cy)
