@@ -131,7 +131,7 @@ def classify(drawing, takeoff, warn=None) -> None:
         _regions(drawing, takeoff, symbols, plan)
     symbols.storeys = [level for _, level in takeoff.storeys()]
     blocks = takeoff.blocks()  # measured once: each call measures them again
-    _openings(drawing, blocks, symbols)
+    _openings(drawing, blocks, symbols, takeoff)
     if not plan:
         return
     z = float(drawing.section.value)
@@ -187,7 +187,7 @@ def _regions(drawing, takeoff, symbols: Symbols, plan: bool) -> None:
         layer.regions = by_object.get(layer.source, [])
 
 
-def _openings(drawing, blocks, symbols: Symbols) -> None:
+def _openings(drawing, blocks, symbols: Symbols, takeoff=None) -> None:
     """The page boxes of the openings the drawing cuts (the chains break at
     them) and of those it sees face on (what is seen through them is no
     level); for a section or an elevation, the sills and heads of the
@@ -221,6 +221,9 @@ def _openings(drawing, blocks, symbols: Symbols) -> None:
     if not chosen and drawing.section is None:
         nearest = max(float(np.max(np.array(b.figures.bbox) @ towards)) for b, _, _ in seen) \
             if seen else None
+        if takeoff is not None and seen:  # the façade is the building's face, not a wall inside
+            nearest = max(float(np.max(_corners(p.figures.bbox) @ towards))
+                          for p in takeoff.placed())
         chosen = [(b, box) for b, box, _ in seen
                   if float(np.max(np.array(b.figures.bbox) @ towards)) > nearest - 1.0]
     if not chosen:
@@ -230,6 +233,12 @@ def _openings(drawing, blocks, symbols: Symbols) -> None:
     for block, box in chosen:
         side = "left" if (box[0][0] + box[1][0]) / 2 < middle else "right"
         symbols.sides.setdefault(side, []).extend([box[0][1], box[1][1]])
+
+
+def _corners(bbox) -> np.ndarray:
+    low, high = np.array(bbox)
+    return np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
+                     for z in (low[2], high[2])])
 
 
 def _centre(takeoff) -> np.ndarray:
