@@ -163,7 +163,10 @@ def classify(drawing, takeoff, warn=None) -> None:
             _overhead(takeoff.solid(p.element), drawing.view, symbols)
     from castor.drawings.rooms import room_tags
 
-    room_tags(takeoff, drawing.view, z, symbols, drawing.scale, warn)
+    for at, lines in room_tags(takeoff, drawing.view, z, drawing.scale, warn):
+        symbols.labels.append(Label(at, lines, 3.0))
+        if symbols.level_at is None:
+            symbols.level_at = (at[0], at[1])
 
 
 def _regions(drawing, takeoff, symbols: Symbols, plan: bool) -> None:

@@ -10,7 +10,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from castor.drawings.classes import Label, Symbols
 from castor.drawings.cut import cut_loops, loops_area
 
 NAME, AREA = 3.0, 2.5  # mm: the name's height, the area's below it
@@ -22,9 +21,11 @@ class _Cut(NamedTuple):
     axis: str = "z"
 
 
-def room_tags(takeoff, view, z: float, symbols: Symbols, scale: float, warn) -> None:
-    """A tag in each space the plan at height z cuts; ``warn(message)`` hears
-    of a space cut with no area, or too small at 1:scale for its tag."""
+def room_tags(takeoff, view, z: float, scale: float, warn) -> list:
+    """A tag in each space the plan at height z cuts: (where its name's middle
+    is, page metres; its lines); ``warn(message)`` hears of a space cut with no
+    area, or too small at 1:scale for its tag, or empty."""
+    tags = []
     depth = view.plane_depth(_Cut(z))
     k = scale / 1000.0  # metres per paper mm
     rooms = takeoff.rooms()
@@ -49,9 +50,8 @@ def room_tags(takeoff, view, z: float, symbols: Symbols, scale: float, warn) -> 
             at = _middle(loops)
             warn(f"{where} is too small at 1:{scale:g} for its room tag: the tag is drawn "
                  "over its outline")
-        symbols.labels.append(Label(at, lines, NAME))
-        if symbols.level_at is None:
-            symbols.level_at = (at[0], at[1])
+        tags.append((at, lines))
+    return tags
 
 
 def _tag_box(at, lines, k: float) -> np.ndarray:
