@@ -76,3 +76,17 @@ def test_the_model_comes_out_at_the_sheets_scale_inside_its_viewport(set_dxf, na
     # the dimensions, drawn by the reader from the DIMENSION entities, stand round the house
     dimensions, _ = drawn["dimensions"]
     assert dimensions.extmin.x < house.extmin.x and dimensions.extmax.y > house.extmax.y
+
+
+def test_dashed_lines_in_a_viewport_are_3_mm_dashes_on_paper(set_dxf):
+    # each scale's linetype is in model metres (3 mm and 1.5 mm at 1:N), so the
+    # viewports must not rescale it as paper units ($PSLTSCALE 1, ezdxf's default,
+    # made the roof's overhang 0.15 mm dashes at 1:50: a solid line). ezdxf's
+    # drawing add-on ignores $PSLTSCALE, so this reads the file.
+    assert set_dxf.header["$PSLTSCALE"] == 0
+    dashed = {e.dxf.linetype for e in set_dxf.modelspace().query("LINE")
+              if e.dxf.linetype.startswith("CASTOR_DASHED")}
+    assert dashed == {"CASTOR_DASHED_50"}  # the roof's overhang, above the plan
+    tags = set_dxf.linetypes.get("CASTOR_DASHED_50").pattern_tags.tags
+    lengths = [t.value for t in tags if t.code == 49]
+    assert [round(v * 1000 / 50, 6) for v in lengths] == [3.0, -1.5]
