@@ -224,9 +224,10 @@ def _openings(drawing, blocks, symbols: Symbols, takeoff=None) -> None:
     if not chosen and drawing.section is None:
         nearest = max(float(np.max(np.array(b.figures.bbox) @ towards)) for b, _, _ in seen) \
             if seen else None
-        if takeoff is not None and seen:  # the façade is the building's face, not a wall inside
-            nearest = max(float(np.max(_corners(p.figures.bbox) @ towards))
-                          for p in takeoff.placed())
+        walls = [p for p in takeoff.placed() if p.element.ifc_class in WALLS] \
+            if takeoff is not None and seen else []
+        if walls:  # the façade is the outer walls' face, not a wall inside behind it
+            nearest = max(float(np.max(_corners(p.figures.bbox) @ towards)) for p in walls)
         chosen = [(b, box) for b, box, _ in seen
                   if float(np.max(np.array(b.figures.bbox) @ towards)) > nearest - 1.0]
     if not chosen:
