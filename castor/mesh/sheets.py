@@ -121,6 +121,7 @@ class _Resolver:
         self.crossings: dict[tuple, int] = {}
         self.on_edge: dict[tuple[int, int], set[int]] = {}
         self.log: _Log | None = None  # what the plane being resolved did (_Log)
+        self.flat: dict[int, tuple[float, float]] = {}
 
     # points: original vertices keep their numbers; new ones follow
     def point(self, v: int) -> np.ndarray:
@@ -222,6 +223,7 @@ class _Resolver:
         e1 /= np.linalg.norm(e1)
         e2 = np.cross(normal, e1)
         self.e1, self.e2 = e1, e2
+        self.flat: dict[int, tuple[float, float]] = {}  # point -> its (x, y) in this plane
         tiny = 1e-12 * self.scale ** 2
         # every triangle as a convex piece, counter-clockwise in the plane's
         # frame: (vertex, support of the edge that leaves it), and its triangle
@@ -257,8 +259,12 @@ class _Resolver:
             replaced[i] = [[v for v, _ in (piece if facing else piece[::-1])] for piece, facing in kept]
 
     def _xy(self, v):
-        q = self.point(v)
-        return (float(q @ self.e1), float(q @ self.e2))
+        """The point's coordinates in the plane's frame, computed once per plane."""
+        known = self.flat.get(v)
+        if known is None:
+            q = self.point(v)
+            known = self.flat[v] = (float(q @ self.e1), float(q @ self.e2))
+        return known
 
     def _subtract(self, piece, cutter):
         """Convex pieces of ``piece`` outside the convex piece ``cutter`` (both
