@@ -122,6 +122,7 @@ class _Resolver:
         self.on_edge: dict[tuple[int, int], set[int]] = {}
         self.log: _Log | None = None  # what the plane being resolved did (_Log)
         self.flat: dict[int, tuple[float, float]] = {}
+        self.lines: dict | None = None  # _lines
 
     # points: original vertices keep their numbers; new ones follow
     def point(self, v: int) -> np.ndarray:
@@ -371,6 +372,7 @@ class _Resolver:
 
     def _with_edge_points(self, outline: list[int]) -> list[int]:
         """The outline with the points that lie on its edges put in, in order."""
+        lines = self._lines()
         out = []
         n = len(outline)
         for k in range(n):
@@ -380,11 +382,10 @@ class _Resolver:
             if not points:
                 # an edge of a piece may lie along an original edge without
                 # being one: look along every edge that holds points, its
-                # ends included
+                # ends included, that holds u
                 points = set()
-                for (i, j), extra in self.on_edge.items():
-                    line = {i, j} | extra
-                    if u in line and v in line:
+                for line in lines.get(u, ()):
+                    if v in line:
                         points |= line
             if points:
                 pu, pv = self.point(u), self.point(v)
@@ -399,6 +400,17 @@ class _Resolver:
                         inside.append((t, w))
                 out.extend(w for _, w in sorted(inside))
         return out
+
+    def _lines(self) -> dict[int, list[set[int]]]:
+        """Every edge that holds points, as the set of its ends and points,
+        under each of them (made once, when the planes are done)."""
+        if self.lines is None:
+            self.lines = {}
+            for (i, j), extra in self.on_edge.items():
+                line = {i, j} | extra
+                for w in line:
+                    self.lines.setdefault(w, []).append(line)
+        return self.lines
 
     def _fan(self, outline: list[int]) -> list[list[int]]:
         """Triangles of a convex outline; with points on its sides, a fan from
