@@ -129,3 +129,40 @@ def test_a_cavity_is_still_kept(monkeypatch):
     calls = _decomposed(monkeypatch)
     assert regularize.regular(box).volume() == pytest.approx(7.875, abs=1e-12)
     assert calls == []  # a cavity is a shell of negative volume, not a sheet
+
+
+def test_a_slider_step_on_the_bus_shelter_checks_its_unions_at_once(monkeypatch):
+    """The live preview's step (castor.serve.evaluation, caches kept): the
+    unions whose operands the shelter's length changed go to the engine, each
+    checked and regularized without a run looked at alone or a decomposition
+    (no result of the scene has a sheet shell), and the unions it did not
+    change are not made again."""
+    from pathlib import Path
+
+    from castor.mesh import booleans
+    from castor.serve.evaluation import Watched, evaluate
+    from castor.settings import EvaluationSettings, Source
+
+    shelter = Path(__file__).resolve().parents[2] / "examples" / "bus_shelter.cas"
+
+    def step(value):
+        result = evaluate(Watched(Source((str(shelter),)),
+                                  evaluation=EvaluationSettings(overrides={"LA": value}), quiet=True))
+        assert result.errors == 0, result.printed
+
+    step(5.0)
+    calls = {"decompose": 0, "run by run": 0, "unions": 0}
+
+    def counted(name, function):
+        def call(*args):
+            calls[name] += 1
+            return function(*args)
+        return call
+
+    monkeypatch.setattr(adapter, "decompose", counted("decompose", adapter.decompose))
+    monkeypatch.setattr(checks, "moved_planes", counted("run by run", checks.moved_planes))
+    monkeypatch.setattr(booleans, "_united", counted("unions", booleans._united))
+    step(5.35)
+    # the shelter's posts, its frame, the shelter, the scene and the scene with the light
+    assert 1 <= calls["unions"] <= 6
+    assert calls["decompose"] == 0 and calls["run by run"] == 0
