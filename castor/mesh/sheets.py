@@ -570,11 +570,12 @@ def _overlap_area(p: list, q: list) -> float:
     out = p
     for k in range(len(q)):
         (ax, ay), (bx, by) = q[k], q[(k + 1) % len(q)]
+        dx, dy = bx - ax, by - ay
+        sides = [dx * (y - ay) - dy * (x - ax) for x, y in out]
         points, n = [], len(out)
         for m in range(n):
             (ux, uy), (vx, vy) = out[m], out[(m + 1) % n]
-            su = (bx - ax) * (uy - ay) - (by - ay) * (ux - ax)
-            sv = (bx - ax) * (vy - ay) - (by - ay) * (vx - ax)
+            su, sv = sides[m], sides[(m + 1) % n]
             if su >= 0:
                 points.append((ux, uy))
             if (su > 0 > sv) or (su < 0 < sv):
