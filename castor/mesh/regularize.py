@@ -32,7 +32,7 @@ def regular(manifold: adapter.Manifold) -> adapter.Manifold:
     manifold3d keeps a result 2-manifold, not regular: solids that only touch
     intersect into a closed sheet of zero volume, a difference of coincident
     solids leaves one. Regularization (LANGUAGE.md §4.3, §7) removes them."""
-    if manifold.is_empty() or not _may_have_sheets(manifold):
+    if manifold.is_empty() or (_many_shells(manifold) and not _may_have_sheets(manifold)):
         return manifold
     shells = adapter.decompose(manifold)
     kept = [shell for shell in shells if not _sheet(shell)]
@@ -49,6 +49,20 @@ def regular(manifold: adapter.Manifold) -> adapter.Manifold:
     # sheet stays, to be cut out of the triangles at the end (regular_triangles)
     cut = adapter.intersect(manifold, outer[0] if len(outer) == 1 else adapter.compose(outer))
     return manifold if off_faces(cut) else cut
+
+
+# The engine's decomposition costs about as much per shell as finding the
+# shells and their volumes from the triangles costs per this many triangles.
+TRIANGLES_PER_SHELL = 2000
+
+
+def _many_shells(manifold: adapter.Manifold) -> bool:
+    """Whether the solid has shells enough for ``_may_have_sheets`` to cost
+    less than the engine's decomposition (a few shells of many triangles are
+    decomposed, as always): its genus (1 - V/2 + E/2 - T/2, summed over its
+    shells, each at most 0 if it has no handle) says at least how many."""
+    at_least = 1 - manifold.genus()
+    return at_least >= 4 and manifold.num_tri() <= TRIANGLES_PER_SHELL * at_least
 
 
 def _may_have_sheets(manifold: adapter.Manifold) -> bool:

@@ -72,12 +72,35 @@ def _decomposed(monkeypatch):
     return calls
 
 
-def test_a_union_with_no_sheet_is_not_decomposed(monkeypatch):
+def test_a_union_of_many_shells_with_no_sheet_is_not_decomposed(monkeypatch):
     cube = _cube().manifold
-    union = adapter.compose([cube + cube.translate([0.5, 0.25, 0.0]), cube.translate([5, 0, 0])])
+    union = adapter.compose([cube + cube.translate([0.5, 0.25, 0.0])]
+                            + [cube.translate([5 + 2 * k, 0, 0]) for k in range(5)])
     calls = _decomposed(monkeypatch)
     assert regularize.regular(union) is union
     assert calls == []
+    # a few shells are decomposed, as before (the engine's is the cheaper then)
+    few = adapter.compose([cube, cube.translate([5, 0, 0])])
+    assert regularize.regular(few) is few and len(calls) == 1
+
+
+def test_a_sheet_among_many_shells_is_taken_out(monkeypatch):
+    """The sheets left by the intersection of solids that only touch, with
+    six cubes apart: found, and taken out by the decomposition."""
+    from castor.mesh.caches import PROCESS
+    from tests.support.cli import frames_of
+
+    PROCESS.new_facetizer()  # the intersection made again, not found made before
+    made = []
+    regular = regularize.regular
+    monkeypatch.setattr("castor.mesh.booleans.regular", lambda m: made.append(m) or regular(m))
+    frames_of(f"> $U(@t(3, 0, 0) !cu(0, 0, 1), {TOUCHING});\n")
+    (sheet,) = [m for m in made if not m.is_empty()
+                and any(regularize._sheet(shell) for shell in adapter.decompose(m))]
+    cubes = [_cube().manifold.translate([5 + 2 * k, 0, 0]) for k in range(6)]
+    solid = adapter.compose([sheet, *cubes])
+    assert regularize._many_shells(solid) and regularize._may_have_sheets(solid)
+    assert regularize.regular(solid).num_tri() == 6 * 12
 
 
 TOUCHING = "$I(@t(-1,-1,0) !ex(1,0,0, 0,0, 2,0, 2,1, 1,1, 1,2, 0,2), !cu(0,0,1))"
@@ -126,17 +149,20 @@ def test_every_sheet_the_engine_leaves_is_still_found(monkeypatch, scene):
 
 def test_a_cavity_is_still_kept(monkeypatch):
     box = manifold3d.Manifold.cube([2, 2, 2]) - manifold3d.Manifold.cube([0.5] * 3).translate([0.5] * 3)
+    solid = adapter.compose([box, *[_cube().manifold.translate([5 + 2 * k, 0, 0]) for k in range(5)]])
     calls = _decomposed(monkeypatch)
-    assert regularize.regular(box).volume() == pytest.approx(7.875, abs=1e-12)
+    assert regularize.regular(solid).volume() == pytest.approx(7.875 + 5, abs=1e-12)
     assert calls == []  # a cavity is a shell of negative volume, not a sheet
+    assert regularize.regular(box).volume() == pytest.approx(7.875, abs=1e-12)
 
 
 def test_a_slider_step_on_the_bus_shelter_checks_its_unions_at_once(monkeypatch):
     """The live preview's step (castor.serve.evaluation, caches kept): the
     unions whose operands the shelter's length changed go to the engine, each
-    checked and regularized without a run looked at alone or a decomposition
-    (no result of the scene has a sheet shell), and the unions it did not
-    change are not made again."""
+    checked and regularized without a run looked at alone, the scene's unions
+    of many shells (20, 28) without the engine's decomposition (no result of
+    the scene has a sheet shell), and the unions it did not change are not
+    made again."""
     from pathlib import Path
 
     from castor.mesh import booleans
@@ -159,7 +185,10 @@ def test_a_slider_step_on_the_bus_shelter_checks_its_unions_at_once(monkeypatch)
             return function(*args)
         return call
 
-    monkeypatch.setattr(adapter, "decompose", counted("decompose", adapter.decompose))
+    decompose = adapter.decompose
+    monkeypatch.setattr(adapter, "decompose",
+                        lambda m: calls.__setitem__("decompose", calls["decompose"] + (
+                            m.num_tri() > 5000)) or decompose(m))
     monkeypatch.setattr(checks, "moved_planes", counted("run by run", checks.moved_planes))
     monkeypatch.setattr(booleans, "_united", counted("unions", booleans._united))
     step(5.35)
