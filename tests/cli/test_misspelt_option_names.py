@@ -42,4 +42,4 @@ def test_scene_files_after_the_options_are_read_in_order(tmp_path, monkeypatch):
     assert (status, out, err) == (0, "", "")
     written = (tmp_path / "x.off").read_text()
     assert written.startswith("OFF") and " 2 " in written  # b.cas saw a.cas's L
-    assert run_here("--check", "a.cas", "--", "-c.cas") == (0, "", "")
+    assert run_here("--check", "a.cas", "--", "-c.cas", "b.cas") == (0, "", "")
