@@ -43,3 +43,19 @@ def test_scene_files_after_the_options_are_read_in_order(tmp_path, monkeypatch):
     written = (tmp_path / "x.off").read_text()
     assert written.startswith("OFF") and " 2 " in written  # b.cas saw a.cas's L
     assert run_here("--check", "a.cas", "--", "-c.cas", "b.cas") == (0, "", "")
+
+
+@pytest.mark.parametrize("args, named", [
+    (["--sizee", "10x10", "-o", "x.png", "a.off"], "--sizee"),
+    (["a.off", "--wirre"], "--wirre"),
+    (["-o", "x.png", "a.off", "b.off"], "b.off"),  # one file: a second is still named
+])
+def test_castor_view_names_the_unknown_option_alone(tmp_path, monkeypatch, capsys, args, named):
+    from castor.view.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(SystemExit) as stop:
+        main(args)
+    assert stop.value.code == 2
+    assert capsys.readouterr().err.splitlines()[0] == \
+        f"castor-view: error: unrecognized arguments: {named}"
