@@ -61,17 +61,27 @@ class _Judge:
     def __init__(self):
         self.empties: dict[str, bool] = {}
         self.boxes: dict[str, Box | None] = {}
+        # booleans judged and boxed so far (by id: the tree holds them while the
+        # walk runs), so that nested booleans are walked once, not once per level
+        self.judged: dict[int, bool] = {}
+        self.boxed: dict[tuple, Box | None] = {}
 
     def empty(self, node, outer: tree.Matrix) -> bool:
         kind = type(node)
         if kind is tree.Primitive:
             return False
+        if kind is tree.Boolean:
+            found = self.judged.get(id(node))
+            if found is None:
+                found = self.judged[id(node)] = self._empty_boolean(node, outer)
+            return found
         if kind is tree.Use:
             return self._shared_empty(node.shared)
         if kind is tree.Smooth:
             return self.empty(node.operand, tree.IDENTITY)
-        if kind is not tree.Boolean:
-            return False
+        return False
+
+    def _empty_boolean(self, node: tree.Boolean, outer: tree.Matrix) -> bool:
         operands = node.operands
         if node.op == "U":
             return all(self.empty(o, outer) for o in operands)
@@ -98,6 +108,14 @@ class _Judge:
     # --- bounding boxes
     def box(self, node, outer: tree.Matrix) -> Box | None:
         """A box that holds the node's facets under ``outer`` (None: unknown)."""
+        if type(node) is not tree.Boolean:
+            return self._box(node, outer)
+        key = (id(node), outer)
+        if key not in self.boxed:
+            self.boxed[key] = self._box(node, outer)
+        return self.boxed[key]
+
+    def _box(self, node, outer: tree.Matrix) -> Box | None:
         kind = type(node)
         if kind is tree.Primitive:
             declared = PRIMITIVES[node.kind]
