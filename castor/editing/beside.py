@@ -43,7 +43,7 @@ def beside(solids: Solids, view, radius: float, found: dict) -> None:
     if corners:
         found.setdefault("corner", []).extend(corners)
         return  # the first in snap's order: the edges are not needed
-    order = np.argsort(view.pixels(nearest))[:TRIED]
+    order = view.nearest_first(nearest)[:TRIED]
     seen = _visible(solids, view, nearest[order])
     for k, visible in zip(order, seen):
         if not visible:
@@ -151,7 +151,7 @@ def _corners(solids: Solids, view, radius: float, planes, rows, lows, highs, lin
         return []
     _, first = np.unique(np.round(points / (1e-9 * solids.size)), axis=0, return_index=True)
     points, owners = points[first], owners[first]
-    order = np.argsort(view.pixels(points))[:TRIED]
+    order = view.nearest_first(points)[:TRIED]
     points, owners = points[order], owners[order]
     seen = _visible(solids, view, points)
     for point, visible, owner in zip(points, seen, owners):

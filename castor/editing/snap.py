@@ -86,6 +86,14 @@ class _View:
             out = across / (self.pixel * depth)
         return np.where(depth > 0, out, np.inf)
 
+    def nearest_first(self, points: np.ndarray) -> np.ndarray:
+        """The order of the points by their distance off the ray on the screen
+        (to a tenth of a pixel), then by depth: of two points drawn at the same
+        place (a plan's top and bottom corners), the one in front first."""
+        points = np.asarray(points, np.float64).reshape(-1, 3)
+        depth = (points - self.origin) @ self.direction
+        return np.lexsort((depth, np.round(self.pixels(points), 1)))
+
     def metres(self, point: np.ndarray) -> float:
         """The size of a pixel at ``point``."""
         if self.pixel_size is not None:
@@ -128,7 +136,8 @@ def snap(prepared: Prepared, origin, direction, pixel: float | None = None,
     result = None
     for kind in _ORDER:
         if found.get(kind):
-            point, name, leaf = min(found[kind], key=lambda item: view.pixels(item[0])[0])
+            points = np.array([item[0] for item in found[kind]])
+            point, name, leaf = found[kind][int(view.nearest_first(points)[0])]
             result = Snap(tuple(point), name, *prepared.named(leaf))
             break
     if result is None and hit is not None:

@@ -106,3 +106,17 @@ def test_orthographic_beside_the_outline(tmp_path):
     assert (near.feature, near.point) == ("corner", (1.0, 5.0, 1.5))
     far = snap(scene, corner - 30 * direction + 30 * size * side, direction, pixel_size=size)
     assert far.feature == "grid"
+
+
+def test_in_a_plan_the_top_corner_before_the_bottom_one(tmp_path):
+    """Looking straight down, the top and bottom corners are drawn at one place:
+    the one in front (on top) is taken."""
+    scene = prepared(f"> {BOX};\n", tmp_path)
+    size = 0.005
+    down = (0.0, math.cos(math.radians(90)), -1.0)  # as the page's plan sends it: y 6e-17
+    for pixels in (0, 0.2, 3):
+        for corner in ((3.0, 5.0), (3.0, 2.0), (1.0, 2.0)):
+            away = np.sign(np.subtract(corner, (2.0, 3.5)))
+            origin = (*(corner + away * (pixels * size + 7e-8)), 14.0)
+            found = snap(scene, origin, down, pixel_size=size)
+            assert (found.feature, found.point) == ("corner", (*corner, 1.5))
