@@ -10,7 +10,9 @@ wall's top under the roof; never a seam inside a union). Within 10 pixels,
 the first of corner, midpoint, centre, edge, then the axes (and the
 parallels and perpendiculars of the edges) from the previous point, wins;
 else the face (a flat face's point on a 0.05 m grid in its plane), or with
-nothing hit, the grid on the ground z = 0. A typed distance puts the point
+nothing hit, the grid on the ground z = 0. A corner or an edge the ray passes
+within 10 pixels of without meeting its solid (just outside an outline, over
+the ground or a face behind) is found by castor.editing.beside. A typed distance puts the point
 at that distance from the previous one, along the direction found.
 """
 
