@@ -37,27 +37,51 @@ def beside(solids: Solids, view, radius: float, found: dict) -> None:
     lines = _lines(solids, view, radius, normals, offsets, rows, lows, highs, margins)
     if lines is None:
         return
-    i, j, starts, ways, nearest = lines
     corners = _corners(solids, view, radius, (normals, offsets, owners), rows, lows, highs,
                        lines)
     if corners:
         found.setdefault("corner", []).extend(corners)
         return  # the first in snap's order: the edges are not needed
+    _edge(solids, view, radius, (normals, offsets, owners), lines, found)
+
+
+def _edge(solids: Solids, view, radius: float, planes, lines, found: dict) -> None:
+    """The nearest of the lines near the ray that is an edge of the solid and
+    seen, and its middle if within the radius and seen, into ``found``."""
+    normals, offsets, owners = planes
+    i, j, _, ways, nearest = lines
     order = view.nearest_first(nearest)[:TRIED]
-    seen = _visible(solids, view, nearest[order])
-    for k, visible in zip(order, seen):
-        if not visible:
+    # an edge where either plane's face ends at the line: one classification
+    # of the probes of every candidate on both planes
+    sides = np.stack([i[order], j[order]])
+    edged = edge_along(solids, nearest[np.concatenate([order, order])],
+                       (normals[sides.ravel()], None), ways[np.concatenate([order, order])])
+    edged = edged.reshape(2, -1)
+    rows = np.flatnonzero(edged.any(axis=0))
+    if len(rows) == 0:
+        return
+    planes = sides[np.argmax(edged[:, rows], axis=0), rows]  # the plane whose face ends
+    # the nearest edge's middle, seen or not with the edges in one trace
+    middle = edge_middle(solids, (normals[planes[0]], offsets[planes[0]]),
+                         (nearest[order[rows[0]]], ways[order[rows[0]]]))
+    near_middle = middle is not None and view.pixels(middle)[0] <= radius
+    points = nearest[order[rows]]
+    seen = _visible(solids, view, np.vstack([points, middle]) if near_middle else points)
+    for n, row in enumerate(rows):
+        if not seen[n]:
             continue
-        point, u = nearest[k], ways[k]
-        for plane in ((normals[i[k]], offsets[i[k]]), (normals[j[k]], offsets[j[k]])):
-            if edge_along(solids, point[None], plane, u)[0]:
-                leaf = int(owners[i[k]])
-                found.setdefault("edge", []).append((point, "edge", leaf))
-                middle = edge_middle(solids, plane, (point, u))
-                if middle is not None and view.pixels(middle)[0] <= radius \
-                        and _visible(solids, view, middle[None])[0]:
-                    found.setdefault("midpoint", []).append((middle, "midpoint", leaf))
-                return
+        k, leaf = order[row], int(owners[i[order[row]]])
+        found.setdefault("edge", []).append((nearest[k], "edge", leaf))
+        if n > 0:  # the nearest edge is hidden: this one's middle
+            middle = edge_middle(solids, (normals[planes[n]], offsets[planes[n]]),
+                                 (nearest[k], ways[k]))
+            near_middle = middle is not None and view.pixels(middle)[0] <= radius \
+                and _visible(solids, view, middle[None])[0]
+        elif near_middle:
+            near_middle = seen[-1]
+        if near_middle:
+            found.setdefault("midpoint", []).append((middle, "midpoint", leaf))
+        return
 
 
 def _near_ray(solids: Solids, view, radius: float) -> tuple[np.ndarray, np.ndarray]:

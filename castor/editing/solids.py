@@ -200,8 +200,8 @@ def distinct(normals: np.ndarray, offsets: np.ndarray, scale: float) -> np.ndarr
 
 def edge_along(solids: Solids, points: np.ndarray, plane, u: np.ndarray) -> np.ndarray:
     """Whether the solid has an edge along ``u`` (one direction, or one for each
-    point) at each point of a line in ``plane``: the plane carries a face on
-    one side of the line only."""
+    point) at each point of a line in ``plane`` (its normal first: one, or one
+    for each point): the plane carries a face on one side of the line only."""
     n = plane[0]
     w = np.cross(n, u)
     step, across = solids.step, solids.across
