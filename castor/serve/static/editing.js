@@ -221,7 +221,7 @@
       segments.push(...ring(h));
       for (const [du, dv] of [[0, 0], [1, 0], [1, 1], [0, 1]]) segments.push([corner(du, dv, 0), corner(du, dv, h)]);
     }
-    return { segments, text: `${sides} × ${round(Math.abs(h))} m`, at: [second, corner(1, 1, h)] };
+    return { segments, text: h ? `${sides} × ${round(Math.abs(h))} m` : `${sides} m`, at: [a, corner(0, 0, h)] };  // the upright away from the pointer's
   }
 
   let bandShown = "";
