@@ -110,3 +110,16 @@ def test_a_set_given_on_the_command_line_is_the_frame_edited(scene):
         assert scene.read_text() == SCENE.replace("mur = @h", "mur = @t(0.5, 0, 0) @h")
     finally:
         server.close()
+
+
+def test_the_gestures_follow_the_settings_as_they_change(scene):
+    """castor --lsp --serve hands Gestures the preview's settings the same way."""
+    from castor.serve.gestures import Gestures
+
+    shown = {"settings": EvaluationSettings()}
+    gestures = Gestures(path_to_uri(str(scene)), Cache(), settings=lambda: shown["settings"])
+    request = {"command": "castor.snap", "arguments": towards((6, 0, 2.5))}
+    assert gestures.answer(request)["result"]["feature"] != "corner"  # L = 4: nothing there
+    shown["settings"] = EvaluationSettings({"L": 6.0})
+    found = gestures.answer(request)["result"]
+    assert (found["feature"], found["point"]) == ("corner", [6.0, 0.0, 2.5])

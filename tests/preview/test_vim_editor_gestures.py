@@ -102,7 +102,8 @@ def test_a_gesture_on_the_preview_lands_in_vims_buffer(tmp_path: Path):
     env = {"HOME": str(tmp_path), "PATH": "/usr/bin:/bin", "TERM": "xterm", "LANG": "C.UTF-8",
            "PYTHONPATH": str(ROOT), "CASTOR_URL": str(url_file), "CASTOR_RESULT": str(result),
            "CASTOR_ANSWERED": str(tmp_path / "answered")}
-    vim = Terminal([VIM, "-n", "-i", "NONE", "-u", str(init), "-S", str(script), str(scene)],
+    # opened by its name in the current folder, as one does: the edit names it by its path
+    vim = Terminal([VIM, "-n", "-i", "NONE", "-u", str(init), "-S", str(script), scene.name],
                    tmp_path, env)
     try:
         message = vim.until(url_file, 60)
