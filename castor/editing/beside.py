@@ -19,6 +19,7 @@ import numpy as np
 from castor.editing.solids import Solids, edge_along, edge_middle, is_corner
 
 LEAVES = 48  # at most this many primitives near the ray: those the ray reaches first
+LINES = 64  # at most this many lines where two planes meet, the nearest the ray
 TRIED = 8  # at most this many candidates of a kind checked against the solid, nearest first
 _PARALLEL = 1e-6
 
@@ -138,6 +139,9 @@ def _lines(solids: Solids, view, radius: float, normals, offsets, rows, lows, hi
         ok &= np.all((grown_low[side] <= nearest) & (nearest <= grown_high[side]), axis=1)
     if not ok.any():
         return None
+    ok = np.flatnonzero(ok)
+    if len(ok) > LINES:  # a ray along a row of primitives: the nearest lines
+        ok = ok[view.nearest_first(nearest[ok])[:LINES]]
     return i[ok], j[ok], starts[ok], ways[ok], nearest[ok]
 
 
