@@ -37,6 +37,8 @@ def beside(solids: Solids, view, radius: float, found: dict) -> None:
     lows, highs = solids.lows[leaves], solids.highs[leaves]
     lines = _lines(solids, view, radius, normals, offsets, rows, lows, highs, margins)
     if lines is None:
+        if not _has_edge(found):
+            _rims(solids, view, radius, leaves, found)
         return
     corners = _corners(solids, view, radius, (normals, offsets, owners), rows, lows, highs,
                        lines)
@@ -44,6 +46,77 @@ def beside(solids: Solids, view, radius: float, found: dict) -> None:
         found.setdefault("corner", []).extend(corners)
         return  # the first in snap's order: the edges are not needed
     _edge(solids, view, radius, (normals, offsets, owners), lines, found)
+    if not _has_edge(found):
+        _rims(solids, view, radius, leaves, found)
+
+
+def _has_edge(found: dict) -> bool:
+    """Whether an edge (or its middle, or a face's centre) is found already:
+    a rim would come after it in snap's order."""
+    return any(found.get(kind) for kind in ("midpoint", "centre", "edge"))
+
+
+def _rims(solids: Solids, view, radius: float, leaves: np.ndarray, found: dict) -> None:
+    """The rim of a curved primitive's flat face (a column's top) that the ray
+    passes near without meeting it: where the ray crosses the face's plane, the
+    face's outline between that point and the face's centre (a circle's point
+    nearest it), found by halving the part of that segment within the radius
+    on the screen; if seen, as an edge."""
+    from castor.primitives import PRIMITIVES
+
+    kinds = [solids.traced.leaves[k].kind for k in leaves]
+    curved = leaves[[kind != "smooth" and PRIMITIVES[kind].curved for kind in kinds]] \
+        if len(leaves) else leaves
+    if len(curved) == 0:
+        return
+    normals, offsets, centres, owners = solids.gathered(curved)
+    across = normals @ view.direction
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (offsets - normals @ view.origin) / across
+    ok = np.flatnonzero((np.abs(across) > _PARALLEL) & (t > 0))
+    if len(ok) == 0:
+        return
+    ok = ok[np.argsort(t[ok])[:TRIED]]  # the planes the ray crosses first
+    normals, centres, owners = normals[ok], centres[ok], owners[ok]
+    crossed = view.origin + t[ok, None] * view.direction
+    way = crossed - centres
+    # the part of each segment centre -> crossing within the radius on the
+    # screen (the crossing is on the ray): the rim counts only if it lies there
+    beyond, first = np.zeros(len(way)), np.ones(len(way))  # fractions of the way
+    for _ in range(40):
+        middle = (beyond + first) / 2
+        within = view.pixels(centres + middle[:, None] * way) <= radius
+        beyond, first = np.where(within, beyond, middle), np.where(within, middle, first)
+    start = centres + first[:, None] * way
+    low = np.minimum(start, crossed).min(axis=0)
+    high = np.maximum(start, crossed).max(axis=0)
+    local = solids.around((low + high) / 2, float(np.max(high - low)) / 2 + 10 * solids.step)
+    # the face reaches that part, and ends before the crossing (the ray misses it)
+    inner = local.carries(normals, start) & ~local.carries(normals, crossed)
+    if not inner.any():
+        return
+    keep = np.flatnonzero(inner)[:2]  # the two faces the ray crosses first
+    normals, centres, owners, way, first, start, crossed = (
+        a[keep] for a in (normals, centres, owners, way, first, start, crossed))
+    low = np.minimum(start, crossed).min(axis=0)
+    high = np.maximum(start, crossed).max(axis=0)
+    local = solids.around((low + high) / 2, float(np.max(high - low)) / 2 + 10 * solids.step)
+    low, high = first, np.ones(len(way))
+    for _ in range(60):
+        if np.max((high - low) * np.linalg.norm(way, axis=1)) <= 1e-10 * solids.size:
+            break
+        middle = (low + high) / 2
+        carried = local.carries(normals, centres + middle[:, None] * way)
+        low, high = np.where(carried, middle, low), np.where(carried, high, middle)
+    points = centres + low[:, None] * way
+    near = np.flatnonzero(view.pixels(points) <= radius)
+    if len(near) == 0:
+        return
+    near = near[view.nearest_first(points[near])]
+    seen = _visible(solids, view, points[near])
+    if seen.any():
+        k = near[int(np.argmax(seen))]
+        found.setdefault("edge", []).append((points[k], "edge", int(owners[k])))
 
 
 def _edge(solids: Solids, view, radius: float, planes, lines, found: dict) -> None:

@@ -120,3 +120,22 @@ def test_in_a_plan_the_top_corner_before_the_bottom_one(tmp_path):
             origin = (*(corner + away * (pixels * size + 7e-8)), 14.0)
             found = snap(scene, origin, down, pixel_size=size)
             assert (found.feature, found.point) == ("corner", (*corner, 1.5))
+
+
+@pytest.mark.parametrize("angle", [90, 150, 200])
+def test_the_rim_of_a_column_beside_its_top(tmp_path, angle):
+    """A ray 3 pixels beyond a column's top rim (seen from above) snaps to the rim."""
+    scene = prepared("> @t(1, 2, 0) @h(0.3, 0.3, 2.5) !cy(0.8, 0.8, 0.8);\n", tmp_path)
+    eye = (8.0, -6.0, 5.0)
+    a = math.radians(angle)
+    rim = (1 + 0.3 * math.cos(a), 2 + 0.3 * math.sin(a), 2.5)
+    origin, direction = outside(rim, 3, away=(1, 2, 2.5), eye=eye)
+    assert misses(scene, origin, direction)
+    found = snap(scene, origin, direction, pixel=PIXEL)
+    assert found.feature == "edge" and found.path == "!cy"
+    x, y, z = found.point
+    assert z == pytest.approx(2.5, abs=1e-12)
+    assert math.hypot(x - 1, y - 2) == pytest.approx(0.3, abs=1e-9)
+    assert math.dist(found.point, rim) < 0.01  # the rim's point beside the pointer
+    far = snap(scene, *outside(rim, 30, away=(1, 2, 2.5), eye=eye), pixel=PIXEL)
+    assert far.feature == "grid"
