@@ -15,6 +15,8 @@ settings one way, bytes, arrays and figures back.
 
 from __future__ import annotations
 
+import threading
+from collections import deque
 from dataclasses import dataclass, field
 
 from castor.csg.tree import FrameTree
@@ -166,3 +168,112 @@ def _alive(pid: int) -> bool:
     except OSError:
         pass
     return True
+
+
+class FrameFuture:
+    """A frame submitted to the FrameThread: as much of concurrent.futures.Future
+    as the Sequencer uses (done, result, exception, add_done_callback)."""
+
+    __slots__ = ("_ready", "_finished", "_value", "_error", "_callbacks", "castor_tree")
+
+    def __init__(self, ready: threading.Condition):
+        self._ready = ready
+        self._finished = False
+        self._value = self._error = None
+        self._callbacks: list = []
+        self.castor_tree = None
+
+    def done(self) -> bool:
+        return self._finished
+
+    def cancelled(self) -> bool:  # never: a frame submitted is made
+        return False
+
+    def exception(self) -> BaseException | None:
+        with self._ready:
+            while not self._finished:
+                self._ready.wait()
+        return self._error
+
+    def result(self):
+        error = self.exception()
+        if error is not None:
+            raise error
+        return self._value
+
+    def add_done_callback(self, callback) -> None:
+        with self._ready:
+            if not self._finished:
+                self._callbacks.append(callback)
+                return
+        self._call(callback)
+
+    def _set(self, value, error: BaseException | None) -> None:
+        with self._ready:
+            self._value, self._error, self._finished = value, error, True
+            callbacks, self._callbacks = self._callbacks, []
+            self._ready.notify_all()
+        for callback in callbacks:
+            self._call(callback)
+
+    def _call(self, callback) -> None:
+        try:
+            callback(self)
+        except Exception:  # as concurrent.futures does: said, and the thread goes on
+            import logging
+
+            logging.getLogger("concurrent.futures").exception(
+                "exception calling callback for %r", self)
+
+
+class FrameThread:
+    """The executor of --jobs 1: one thread that makes the frames submitted, in
+    order, while the scene's thread evaluates the next. A ThreadPoolExecutor of
+    one worker does the same, but concurrent.futures imports logging and
+    traceback (some 11 ms of every run that writes a frame)."""
+
+    def __init__(self):
+        self._ready = threading.Condition()
+        self._queue: deque = deque()
+        self._closed = False
+        self._thread: threading.Thread | None = None
+
+    def submit(self, function, *args) -> FrameFuture:
+        future = FrameFuture(self._ready)
+        with self._ready:
+            if self._closed:
+                raise RuntimeError("cannot submit a frame after the run has ended")
+            self._queue.append((future, function, args))
+            if self._thread is None:  # started at the first frame, as the pool's worker
+                self._thread = threading.Thread(target=self._work, name="castor-frames_0",
+                                                daemon=True)
+                self._thread.start()
+            self._ready.notify_all()
+        return future
+
+    def map(self, function, *lists):
+        """``map``'s results, each call made on the thread (all submitted at once)."""
+        futures = [self.submit(function, *args) for args in zip(*lists)]
+        return (future.result() for future in futures)
+
+    def shutdown(self, wait: bool = True) -> None:
+        with self._ready:
+            self._closed = True
+            self._ready.notify_all()
+        if wait and self._thread is not None:
+            self._thread.join()
+
+    def _work(self) -> None:
+        while True:
+            with self._ready:
+                while not self._queue and not self._closed:
+                    self._ready.wait()
+                if not self._queue:
+                    return
+                future, function, args = self._queue.popleft()
+            try:
+                value = function(*args)
+            except BaseException as exc:  # handed to whoever asks for the result
+                future._set(None, exc)
+            else:
+                future._set(value, None)

@@ -16,8 +16,15 @@ import sys
 import threading
 from collections import deque
 
+# numpy's OpenBLAS starts a thread per core when numpy is imported, and they
+# spin-wait: a run of 64 houses spent a sixth of its CPU time there. castor's
+# products of matrices are (N, 3) by (3, 3), too small to gain from threads,
+# and a thread per product computes each element as one thread does (the
+# same bytes). Set before numpy is first imported; a user's own setting wins.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 from castor.diagnostics import CastorError, LimitError, Reporter, TooManyErrors, UsageError
-from castor.jobs import Job, Result, make
+from castor.jobs import FrameThread, Job, Result, make
 from castor.pipeline import evaluate, evaluated_frames  # noqa: F401 - tests and tools use it here
 from castor.settings import EvaluationSettings, FrameSettings, ReadSettings, RunSettings, Source
 
@@ -312,9 +319,7 @@ def executor_for(jobs: int, scheduler: str | None):
         # one thread that makes and writes the frames while this one evaluates the
         # next: the engine's booleans and the writing need no lock of Python's, so an
         # animation overlaps its stages even on one core's worth of jobs
-        from concurrent.futures import ThreadPoolExecutor
-
-        return ThreadPoolExecutor(max_workers=1, thread_name_prefix="castor-frames"), 1
+        return FrameThread(), 1
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 

@@ -26,7 +26,7 @@ the boolean steps down to it (``U1.D2!cu``; the k-th operand of a boolean is
 it places, and the subtree adds ``(name)``. ``leaves`` writes whole paths.
 
 The nodes are plain classes (castor.records), not dataclasses: making these 7
-frozen dataclasses cost about 6 ms of every start-up (issue 18). hashlib and
+frozen dataclasses cost about 6 ms of every start-up (issue 18). BLAKE2 and
 struct are imported where a key is made: a scene without a named object or
 ``@s`` makes none.
 """
@@ -218,12 +218,21 @@ def compose(a: Matrix, b: Matrix) -> Matrix:
             a8 * b2 + a9 * b6 + a10 * b10, a8 * b3 + a9 * b7 + a10 * b11 + a11)
 
 
+def _blake2b():
+    """A 16-byte BLAKE2b: hashlib's own module, without hashlib's OpenSSL set-up
+    (about 12 ms of a run whose scene names an object)."""
+    try:
+        from _blake2 import blake2b
+    except ImportError:
+        from hashlib import blake2b
+    return blake2b(digest_size=16)
+
+
 def smooth_key(angle: float, tolerance: float, operand: TreeNode) -> str:
     """The key of a smoothing: its angle, tolerance and operand's content."""
-    import hashlib
     import struct
 
-    digest = hashlib.blake2b(digest_size=16)
+    digest = _blake2b()
     digest.update(struct.pack("<2d", angle, tolerance))
     _feed(digest, operand)
     return digest.hexdigest()
@@ -232,9 +241,7 @@ def smooth_key(angle: float, tolerance: float, operand: TreeNode) -> str:
 def content_key(name: str, child: TreeNode | None) -> str:
     """The canonical key of a shared subtree: a digest of its name and content,
     the same in every process (shared subtrees below count by their own keys)."""
-    import hashlib
-
-    digest = hashlib.blake2b(digest_size=16)
+    digest = _blake2b()
     digest.update(name.encode())
     if child is not None:
         _feed(digest, child)

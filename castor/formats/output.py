@@ -164,6 +164,21 @@ def discard(data: Data | None) -> None:
             pass
 
 
+def _temporary_in(directory: str) -> tuple[int, str]:
+    """A new private file in ``directory`` (.castor-RANDOM.tmp), open: as
+    tempfile.mkstemp makes it, without importing tempfile (with shutil, random,
+    bz2 and lzma, some 8 ms of a run that writes a file)."""
+    flags = os.O_RDWR | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0) \
+        | getattr(os, "O_CLOEXEC", 0)
+    for _ in range(100):
+        path = os.path.join(directory, f".castor-{os.urandom(6).hex()}.tmp")
+        try:
+            return os.open(path, flags, 0o600), path
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"no new temporary file name in {directory}")
+
+
 class AtomicFile:
     """A file written a piece at a time beside ``path`` and renamed into place by
     ``commit``: never half a file. A device or a pipe (/dev/null) is written into.
@@ -179,10 +194,8 @@ class AtomicFile:
                 # /dev/null, a named pipe, a terminal: written into, never renamed over
                 self.handle = open(path, "wb")
                 return
-            import tempfile  # here: the stream to standard output needs none of it
-
             directory = os.path.dirname(os.path.abspath(path))
-            fd, self.temporary = tempfile.mkstemp(prefix=".castor-", suffix=".tmp", dir=directory)
+            fd, self.temporary = _temporary_in(directory)
             _temporaries.add(self.temporary)
             self.handle = os.fdopen(fd, "wb")
         except OSError as exc:

@@ -5,7 +5,8 @@ Everything castor asks of the engine is a function here: a mesh in (a
 primitive's template), a mesh out (arrays, with the runs that say which
 template and placement each triangle comes from), the booleans, moving,
 composing and splitting solids. The rest of castor holds the engine's solids
-as opaque handles (``Manifold``) and asks them only for their counts, box,
+as opaque handles (``Manifold``, or ``Composed``: solids that do not meet, made
+one by the engine only when asked) and asks them only for their counts, box,
 volume and area (``num_tri()``, ``bounding_box()``, ``volume()``, …).
 """
 
@@ -23,6 +24,68 @@ _Intersect = manifold3d.OpType.Intersect
 
 class EngineError(Exception):
     """manifold3d refused a mesh (not an oriented 2-manifold)."""
+
+
+class Composed:
+    """Solids that do not meet, as the one solid the engine's ``compose`` makes
+    of them, made each time it is asked for and never kept.
+
+    A union of thousands of parts is composed into fewer (castor.mesh.booleans,
+    MAX_PARTS); the engine's composition copies every triangle (with its sort
+    and its tree of boxes, some 300 bytes a triangle), and all of a frame's
+    compositions held at once, beside the parts they were made of, were most of
+    the memory of 4,096 houses. Held as its parts instead, a composition is made
+    when its triangles are read (provenance, a batch at a time) or a boolean
+    needs it, and let go after: the same solid, triangle for triangle, in the
+    same order. Its counts and box are its parts' (the engine's composition
+    adds none and moves none: checked on every composition of 1,024 houses)."""
+
+    __slots__ = ("parts", "_counts", "_box")
+
+    def __init__(self, parts: list):
+        self.parts = tuple(parts)
+        self._counts: tuple[int, int] | None = None
+        self._box: tuple | None = None
+
+    def manifold(self) -> Manifold:
+        """The engine's composition, made now. Made at once, not left to the
+        engine's lazy tree: a composition of compositions left lazy is flattened
+        by the engine into one of all their parts, which orders the triangles
+        otherwise."""
+        made = manifold3d.Manifold.compose([engine(part) for part in self.parts])
+        made.num_tri()  # (any question of the engine's makes it)
+        return made
+
+    def num_tri(self) -> int:
+        return self._tallied()[0]
+
+    def num_vert(self) -> int:
+        return self._tallied()[1]
+
+    def is_empty(self) -> bool:
+        return self.num_tri() == 0
+
+    def bounding_box(self) -> tuple:
+        if self._box is None:
+            boxes = np.array([part.bounding_box() for part in self.parts],
+                             dtype=np.float64).reshape(-1, 2, 3)
+            self._box = (*boxes[:, 0].min(axis=0).tolist(), *boxes[:, 1].max(axis=0).tolist())
+        return self._box
+
+    def _tallied(self) -> tuple[int, int]:
+        if self._counts is None:
+            self._counts = (sum(part.num_tri() for part in self.parts),
+                            sum(part.num_vert() for part in self.parts))
+        return self._counts
+
+    def __getattr__(self, name: str):
+        # any other question (volume, surface_area, status…): of the composition
+        return getattr(self.manifold(), name)
+
+
+def engine(solid) -> Manifold:
+    """The engine's own solid of ``solid`` (a Composed made now)."""
+    return solid.manifold() if type(solid) is Composed else solid
 
 
 # --- into the engine
@@ -65,7 +128,7 @@ def from_runs(vertices: np.ndarray, triangles: np.ndarray, faces: np.ndarray,
 
 def as_original(manifold: Manifold) -> tuple[Manifold, int]:
     """A copy of ``manifold`` under an engine ID of its own, and that ID."""
-    copy = manifold.as_original()
+    copy = engine(manifold).as_original()
     return copy, copy.original_id()
 
 
@@ -80,6 +143,7 @@ def with_run_ids(manifold: Manifold, run_ids: np.ndarray) -> Manifold | None:
     transformation and face numbers. (The engine keeps a mesh's runs when it
     is given them: a round trip through its mesh.) None if the engine would
     not keep the mesh as it is."""
+    manifold = engine(manifold)
     gl = manifold.to_mesh64()
     merge_from = np.array(gl.merge_from_vert, dtype=np.uint64)
     copy = manifold3d.Manifold(manifold3d.Mesh64(
@@ -132,7 +196,7 @@ class EngineMesh(NamedTuple):
 
 def to_arrays(manifold: Manifold) -> EngineMesh:
     """The engine's mesh of ``manifold`` as numpy arrays."""
-    gl = manifold.to_mesh64()
+    gl = engine(manifold).to_mesh64()
     return EngineMesh(
         np.asarray(gl.vert_properties, dtype=np.float64)[:, :3],
         np.asarray(gl.tri_verts, dtype=np.int64),
@@ -155,37 +219,37 @@ def empty() -> Manifold:
 
 def add(a: Manifold, b: Manifold) -> Manifold:
     """a + b, the engine's union of two solids."""
-    return a + b
+    return engine(a) + engine(b)
 
 
 def subtract(a: Manifold, b: Manifold) -> Manifold:
     """a - b, the engine's difference."""
-    return a - b
+    return engine(a) - engine(b)
 
 
 def intersect(a: Manifold, b: Manifold) -> Manifold:
     """a ^ b, the engine's intersection of two solids."""
-    return a ^ b
+    return engine(a) ^ engine(b)
 
 
 def intersect_all(manifolds: list) -> Manifold:
     """The engine's intersection of all at once."""
-    return manifold3d.Manifold.batch_boolean(manifolds, _Intersect)
+    return manifold3d.Manifold.batch_boolean([engine(m) for m in manifolds], _Intersect)
 
 
 def compose(manifolds: list) -> Manifold:
     """Solids that do not meet as one, without a boolean."""
-    return manifold3d.Manifold.compose(manifolds)
+    return manifold3d.Manifold.compose([engine(m) for m in manifolds])
 
 
 def decompose(manifold: Manifold) -> list:
     """The solid's connected shells, each a solid."""
-    return manifold.decompose()
+    return engine(manifold).decompose()
 
 
 def transform(manifold: Manifold, rows: np.ndarray) -> Manifold:
     """Moved by an affine map (3x4 rows, contiguous)."""
-    return manifold.transform(rows)
+    return engine(manifold).transform(rows)
 
 
 def triangulate(outline: np.ndarray) -> np.ndarray:

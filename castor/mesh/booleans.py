@@ -284,7 +284,8 @@ def _fewer_parts(parts: list, boxes: np.ndarray) -> list:
     boxes = boxes[engine_parts]
     order = np.argsort(boxes[:, 0, 0], kind="stable")
     size = -(-len(parts) // MAX_PARTS)
-    return placed + [adapter.compose([parts[i] for i in order[k:k + size]])
+    # held as their parts, composed by the engine when read (adapter.Composed)
+    return placed + [adapter.Composed([parts[i] for i in order[k:k + size]])
                      for k in range(0, len(parts), size)]
 
 

@@ -152,8 +152,8 @@ class Placed:
 
 
 def in_engine(part) -> adapter.Manifold:
-    """A part as the engine's manifold."""
-    return part.in_engine() if type(part) is Placed else part
+    """A part as the engine's manifold (a composition made now)."""
+    return part.in_engine() if type(part) is Placed else adapter.engine(part)
 
 
 def fill_boxes(parts) -> None:

@@ -37,7 +37,7 @@ from typing import NamedTuple
 import numpy as np
 
 from castor.mesh import adapter
-from castor.mesh.arrays import row_hash
+from castor.mesh.arrays import row_hash, unique
 from castor.mesh.frame import Origin
 from castor.mesh.caches import PROCESS
 from castor.mesh.instances import Placed, moved_planes
@@ -370,6 +370,6 @@ def _part_triangles(part, origins: Origins) -> Triangles:
     # one number for each flat face of each use of a primitive: the rank of its
     # entry in this part, then its face. Copies of one object (whose entries
     # keep their order) number their faces alike, so their polygons can be reused.
-    rank = np.searchsorted(np.unique(origin_ids), origin_ids)
+    rank = np.searchsorted(unique(origin_ids), origin_ids)
     faces = (rank << 32) | mesh.face_ids
     return Triangles(vertices, tris, origin_ids, faces)
