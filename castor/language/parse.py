@@ -411,8 +411,9 @@ class Parser:
         return set(self.param_sets)
 
     def parse(self, chunk: Chunk) -> Iterator["ParamDef | ObjectDef | FrameCommand | CastorError"]:
-        """Parse one chunk. A missing ';' is reported, the statement is taken as if it
-        were there, and parsing resumes with the next line."""
+        """Parse one chunk. A missing ';' is reported, the statement is read as if it
+        were there (for its other errors) and skipped (LANGUAGE.md §9), and parsing
+        resumes with the next line."""
         parser = self._ready()
         pending = [chunk]
         patched: set[int] = set()  # chunks given their missing ';': never patched twice
@@ -448,6 +449,12 @@ class Parser:
                     patched.add(id(head))
                     rest = [head] + rest
                 pending[:0] = rest
+                continue
+            if id(chunk) in patched:  # read with its missing ';' for its other errors, then skipped
+                yield from self.builder.faults
+                if isinstance(statement, ObjectDef):
+                    self.builder.tables.broken.add(statement.name)
+                yield SkippedDefinition(getattr(statement, "name", None))
                 continue
             yield from self._deliver(statement, self.builder.faults)
 

@@ -59,11 +59,15 @@ def test_messages(text, expected):
     assert err.splitlines()[0] == expected
 
 
-def test_missing_semicolon_is_recovered():
+def test_missing_semicolon_skips_the_statement():
+    # LANGUAGE.md §9: the statement in error is skipped (it was once taken as if
+    # the ';' were there); its use then says why the object is missing
     status, out, err = run("--no-cpp", stdin=f"a = {CUBE}\n> a;\n")
     assert status == 1
-    assert len(parse_stream(out)) == 1  # the definition was taken as if the ';' were there
-    assert err.count("error:") == 1
+    assert out == ""  # no frame: its object was skipped
+    assert err.count("error:") == 2
+    assert "expected ';' at the end of the statement" in err
+    assert "(its definition had errors)" in err
 
 
 def test_error_limit_stops_at_fifty():
