@@ -283,6 +283,72 @@ def _turn(a, b, c) -> float:
     return float((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
 
 
+_EMPTY = FrameObject(np.zeros((0, 3)), np.zeros(1, np.int64), np.zeros(0, np.int64),
+                     np.zeros(0, np.int64), [])
+
+
+def _chain(node) -> list:
+    """The uses from ``node`` down to the first node that is not a use (a shared
+    subtree moved by each): empty when ``node`` is not a use."""
+    from castor.csg import tree
+
+    chain = []
+    while type(node) is tree.Use and node.shared.child is not None:
+        chain.append(node)
+        node = node.shared.child
+    return chain
+
+
+class _Copy:
+    """A solid that is its unit's (the innermost use of ``chain``, made once at
+    the identity) moved by the chain's matrices, its paths under the chain's
+    names as the facetizer puts them (castor.mesh.facetize: each use puts its
+    shared subtree's name, then its own path, in front)."""
+
+    __slots__ = ("unit", "matrix", "prefixes", "rigid", "translation")
+
+    def __init__(self, unit: str, chain: list):
+        from castor.csg import tree
+
+        self.unit = unit
+        matrix = tree.IDENTITY
+        for use in chain:
+            matrix = tree.compose(matrix, use.matrix)
+        self.matrix = np.array(matrix, dtype=np.float64).reshape(3, 4)
+        prefixes = [chain[-1].path] if chain[-1].path else []
+        for use in reversed(chain[:-1]):
+            prefixes.append(f"({use.shared.name})")
+            if use.path:
+                prefixes.append(use.path)
+        self.prefixes = prefixes
+        linear = self.matrix[:, :3]
+        # rotations and translations keep volumes, areas, colours and shells;
+        # a mirror or a scale does not keep them all: measured again
+        self.rigid = bool(np.abs(linear.T @ linear - np.eye(3)).max() <= 1e-12
+                          and np.linalg.det(linear) > 0)
+        self.translation = bool((linear == np.eye(3)).all())
+
+    def moved(self, solid: FrameObject) -> FrameObject:
+        """``solid`` moved and renamed; a mirror turns each polygon round, so
+        that it stays counter-clockwise seen from outside."""
+        from dataclasses import replace
+
+        if solid.polygon_count == 0:
+            return solid
+        linear, shift = self.matrix[:, :3], self.matrix[:, 3]
+        vertices = solid.vertices @ linear.T + shift
+        indices = solid.indices
+        if np.linalg.det(linear) < 0:
+            sizes = np.diff(solid.offsets)
+            starts = np.repeat(solid.offsets[:-1], sizes)
+            local = np.arange(len(indices)) - starts
+            indices = indices[starts + np.repeat(sizes, sizes) - 1 - local]
+        origins = solid.origins
+        for prefix in self.prefixes:
+            origins = [o._replace(steps=o.steps.under(prefix)) for o in origins]
+        return replace(solid, vertices=vertices, indices=indices, origins=origins)
+
+
 class Placed(NamedTuple):
     """An element measured and put on its storey."""
 
@@ -336,28 +402,102 @@ class Takeoff:
         self.polygons = polygons
         self.elements, self.openings = find(frame_tree)
         self._solids: dict = {}
+        self._copies: dict = {}  # key -> _Copy: a solid that is a unit moved
+        self._units: dict = {}  # shared key -> the solid of a subtree copies move
+        self._unit_figures: dict = {}
+        self._unit_pieces: dict = {}
         self._storeys: list[tuple[str, float]] | None = None
         self._placed: list[Placed] | None = None
 
     def _made(self, key, node) -> FrameObject:
-        if key not in self._solids:
-            from castor.csg import tree
+        self._make_all([(key, node)])
+        return self._get(key)
 
+    def _make_all(self, wanted: list) -> None:
+        """The solids of ``wanted`` ((key, CSG tree or None) pairs), those not
+        made yet, as the objects of one frame: the facetizer's patterns serve
+        every copy of a part, and a frame's fixed costs are paid once. A tree
+        that is a shared subtree moved (the chain of uses down to it), whose
+        subtree other wanted trees move too, is made once where it stands
+        alone and each copy moved (``_Copy``): 1,024 houses' walls are one
+        wall's solid and 1,024 placements."""
+        from castor.csg import tree
+
+        alone: list = []  # (key, tree)
+        copies: dict[str, list] = {}  # the shared key of a unit -> its copies
+        for key, node in wanted:
+            if key in self._solids or key in self._copies:
+                continue
             if node is None:
-                self._solids[key] = FrameObject(np.zeros((0, 3)), np.zeros(1, np.int64),
-                                                np.zeros(0, np.int64), np.zeros(0, np.int64), [])
+                self._solids[key] = _EMPTY
+                continue
+            chain = _chain(node)
+            if chain:
+                copies.setdefault(chain[-1].shared.key, []).append((key, node, chain))
             else:
-                whole = self.frame_tree
-                frame_tree = tree.FrameTree(whole.number, whole.where, whole.location,
-                                            (tree.Object(str(key), node),))
-                # triangles: the figures are the same, and no polygons are written
-                merging = self.facetizer.merge_polygons
-                self.facetizer.merge_polygons = self.polygons
-                try:
-                    self._solids[key] = self.facetizer.frame(frame_tree).objects[0]
-                finally:
-                    self.facetizer.merge_polygons = merging
-        return self._solids[key]
+                alone.append((key, node))
+        units = []
+        for unit_key, found in copies.items():
+            if len(found) == 1 or unit_key in self._units:
+                if unit_key in self._units:
+                    units.append((unit_key, found))
+                else:
+                    alone.append(found[0][:2])
+                continue
+            inner = found[0][2][-1]
+            alone.append((("unit", unit_key), tree.Use(tree.IDENTITY, "", inner.shared)))
+            units.append((unit_key, found))
+        self._frame(alone)
+        for unit_key, found in units:
+            if unit_key not in self._units:
+                self._units[unit_key] = self._solids.pop(("unit", unit_key))
+            for key, _, chain in found:
+                self._copies[key] = _Copy(unit_key, chain)
+
+    def _frame(self, wanted: list) -> None:
+        """The solids of ``wanted`` ((key, tree) pairs) as the objects of one
+        frame, each checked against the polygon limit as before (the limit
+        times the objects, for the frame)."""
+        from castor.csg import tree
+
+        if not wanted:
+            return
+        whole = self.frame_tree
+        frame_tree = tree.FrameTree(whole.number, whole.where, whole.location,
+                                    tuple(tree.Object(str(key), node) for key, node in wanted))
+        # triangles: the figures are the same, and no polygons are written
+        facetizer = self.facetizer
+        merging, limit = facetizer.merge_polygons, facetizer.max_polygons
+        facetizer.merge_polygons = self.polygons
+        facetizer.max_polygons = limit * len(wanted)
+        try:
+            made = facetizer.frame(frame_tree).objects
+        finally:
+            facetizer.merge_polygons, facetizer.max_polygons = merging, limit
+        self._solids.update(zip((key for key, _ in wanted), made))
+
+    def _get(self, key) -> FrameObject:
+        """A solid made by _make_all: its own, or its unit's moved."""
+        found = self._solids.get(key)
+        if found is None:
+            copy = self._copies[key]
+            found = self._solids[key] = copy.moved(self._units[copy.unit])
+        return found
+
+    def _figures(self, key, name: str) -> Figures:
+        """The figures of a solid made by _make_all: a rigid copy's are its
+        unit's (volume, area, colours, shells are the same), with its own box."""
+        copy = self._copies.get(key)
+        if copy is None or not copy.rigid:
+            return object_figures(self._get(key), name)
+        if copy.unit not in self._unit_figures:
+            self._unit_figures[copy.unit] = object_figures(self._units[copy.unit], name)
+        unit = self._unit_figures[copy.unit]
+        if unit.bbox is None:
+            return unit._replace(name=name)
+        solid = self._get(key)
+        low, high = solid.vertices.min(axis=0).tolist(), solid.vertices.max(axis=0).tolist()
+        return unit._replace(name=name, bbox=(tuple(low), tuple(high)))
 
     def known(self, element, solid: FrameObject) -> None:
         """Take ``solid`` as the element's own (made already: a whole '>' object's)."""
@@ -367,11 +507,22 @@ class Takeoff:
         """The element's own solid, as polygons."""
         from castor.csg.elements import element_tree
 
-        return self._made(("element", element.number),
-                          element_tree(self.frame_tree, element, self.boxes))
+        key = ("element", element.number)
+        if key in self._solids or key in self._copies:
+            return self._get(key)
+        return self._made(key, element_tree(self.frame_tree, element, self.boxes))
+
+    def _all_elements(self) -> None:
+        """Every element's solid, made in one frame."""
+        from castor.csg.elements import element_tree
+
+        self._make_all([(("element", e.number), element_tree(self.frame_tree, e, self.boxes))
+                        for e in self.elements if ("element", e.number) not in self._solids
+                        and ("element", e.number) not in self._copies])
 
     def figures(self, element) -> Figures:
-        return object_figures(self.solid(element), element.name)
+        self.solid(element)
+        return self._figures(("element", element.number), element.name)
 
     def space_solid(self, index: int) -> FrameObject:
         from castor.csg import tree
@@ -391,6 +542,7 @@ class Takeoff:
         found = [(m.name, float(values[m.parameter])) for m in declared if m.parameter in values]
         if found:
             return sorted(found, key=lambda s: s[1])
+        self._all_elements()
         tops = sorted(f.bbox[1][2] for f in (self.figures(e) for e in self.elements
                                              if _is_floor(e)) if f.bbox is not None)
         levels: list[float] = []
@@ -415,6 +567,7 @@ class Takeoff:
         """Every element with a solid, measured, on its storey (by its bottom; a
         floor slab by its top)."""
         if self._placed is None:
+            self._all_elements()
             self._placed = []
             for element in self.elements:
                 f = self.figures(element)
@@ -434,16 +587,36 @@ class Takeoff:
         of_object: dict[int, list[Placed]] = {}
         for p in self.placed():
             of_object.setdefault(p.element.object, []).append(p)
+        self._make_all([(("opening", o.number), opening_tree(self.frame_tree, o))
+                        for o in self.openings])
         for opening in self.openings:
-            whole = self._made(("opening", opening.number), opening_tree(self.frame_tree, opening))
-            for k, piece in enumerate(shells(whole)):
-                f = object_figures(piece, opening.name)
+            for k, (piece, f, (width, thickness, direction)) in enumerate(
+                    self._pieces(("opening", opening.number), opening.name)):
                 (_, _, z0), (_, _, z1) = f.bbox
-                width, thickness, direction = footprint(piece.vertices)
                 out.append(Block(opening, k, piece, f,
                                  _host(of_object.get(opening.object, []), f.bbox),
                                  self.storey_at(z0), width, thickness, z1 - z0, z0, z1,
                                  direction))
+        return out
+
+    def _pieces(self, key, name: str) -> list:
+        """The separate blocks of an opening's solid, each with its figures and
+        footprint: a rigid copy's are its unit's moved (the footprint measured
+        again where the copy is turned)."""
+        copy = self._copies.get(key)
+        if copy is None or not copy.rigid:
+            return [(piece, object_figures(piece, name), footprint(piece.vertices))
+                    for piece in shells(self._get(key))]
+        if copy.unit not in self._unit_pieces:
+            self._unit_pieces[copy.unit] = [
+                (piece, object_figures(piece, name), footprint(piece.vertices))
+                for piece in shells(self._units[copy.unit])]
+        out = []
+        for piece, f, plan in self._unit_pieces[copy.unit]:
+            moved = copy.moved(piece)
+            low, high = moved.vertices.min(axis=0).tolist(), moved.vertices.max(axis=0).tolist()
+            out.append((moved, f._replace(name=name, bbox=(tuple(low), tuple(high))),
+                        plan if copy.translation else footprint(moved.vertices)))
         return out
 
     def rooms(self) -> list[Room]:
