@@ -15,19 +15,8 @@ from __future__ import annotations
 from typing import Callable, NamedTuple
 
 from castor.bim import measures
-from castor.language.classes import PROXY
+from castor.language.classes import OUTSIDE_REFERENCE_VIEW, PROXY
 from castor.mesh.frame import FrameObject
-
-# classes IFC4 has that buildingSMART's Reference View leaves out (they imply
-# material layers or parametric shapes), and the class it has instead
-OUTSIDE_REFERENCE_VIEW = {
-    "IfcBeamStandardCase": "IfcBeam", "IfcColumnStandardCase": "IfcColumn",
-    "IfcDoorStandardCase": "IfcDoor", "IfcMemberStandardCase": "IfcMember",
-    "IfcPlateStandardCase": "IfcPlate", "IfcSlabElementedCase": "IfcSlab",
-    "IfcSlabStandardCase": "IfcSlab", "IfcWallElementedCase": "IfcWall",
-    "IfcWallStandardCase": "IfcWall", "IfcWindowStandardCase": "IfcWindow",
-}
-
 
 class Storey(NamedTuple):
     name: str
@@ -63,6 +52,10 @@ class Void(NamedTuple):
 
 class Building(NamedTuple):
     title: str
+    # what the GlobalIds are made from besides each part's key: the title castor
+    # would give, whatever --title says (default_title), so that a model issued
+    # again under another title keeps its elements' identities
+    identity: str
     number: int  # the frame's
     where: str  # its '>' command's FILE:LINE
     parameters: tuple[tuple[str, float], ...]
@@ -99,7 +92,7 @@ def build(tree, frame, facetizer, title: str | None = None, classes: dict | None
     elements, placed = maker.elements()
     openings = maker.openings(elements, placed)
     spaces = maker.spaces()
-    return Building(title or default_title(frame), frame.number, frame.where, tree.parameters,
+    return Building(title or default_title(frame), default_title(frame), frame.number, frame.where, tree.parameters,
                     storeys, tuple(elements), tuple(openings), tuple(spaces))
 
 
