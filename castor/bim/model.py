@@ -37,6 +37,7 @@ class Part(NamedTuple):
     quantities: tuple  # measures.QuantitySet, …
     settings: tuple[tuple[str, str], ...] = ()  # hinge, swing
     size: tuple[float, float] | None = None  # a door's or window's overall width, height
+    properties: tuple = ()  # measures.Property, … of its common set (a stair's risers)
 
 
 class Void(NamedTuple):
@@ -218,7 +219,8 @@ class _Maker:
         for k, p in enumerate(placed):
             part = parts[k]
             parts[k] = part._replace(quantities=measures.element_sets(
-                part.ifc_class, part.solid, p.figures, taken[k]))
+                part.ifc_class, part.solid, p.figures, taken[k]),
+                properties=measures.common_properties(part.ifc_class, part.solid))
         return voids
 
     def hosts(self, block, placed: list) -> list:

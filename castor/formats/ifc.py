@@ -270,7 +270,9 @@ class _Writer:
         for qto in part.quantities:
             self.quantities(entity, part.key, qto)
         if cls in COMMON_PSETS:
-            self.properties(entity, part.key, f"Pset_{cls[3:]}Common", {"Reference": part.name})
+            values = {"Reference": ("IfcIdentifier", part.name)}
+            values.update((p.name, (p.type, p.value)) for p in part.properties)
+            self.properties(entity, part.key, f"Pset_{cls[3:]}Common", values)
         return entity
 
     def typed(self, cls: str, part) -> dict:
@@ -287,6 +289,10 @@ class _Writer:
             values["CompositionType"] = "ELEMENT"
         if part.size is not None and self.has(cls, "OverallWidth"):
             values["OverallWidth"], values["OverallHeight"] = map(float, part.size)
+        for p in part.properties:  # an IfcStairFlight's NumberOfRisers …
+            attribute = "NumberOfRisers" if p.name == "NumberOfRiser" else p.name
+            if self.has(cls, attribute):
+                values[attribute] = p.value
         if cls == "IfcDoor":
             hinge = dict(part.settings).get("hinge", "left")
             values["OperationType"] = f"SINGLE_SWING_{hinge.upper()}"
@@ -305,10 +311,11 @@ class _Writer:
                None, [entity], quantities)
 
     def properties(self, entity, key: str, name: str, values: dict) -> None:
+        """A property set: ``values`` {name: (IFC type, value)}."""
         create = self.create
         pset = create("IfcPropertySet", self.guid(name, key), None, name, None, [
-            create("IfcPropertySingleValue", k, None, create("IfcIdentifier", v), None)
-            for k, v in values.items()])
+            create("IfcPropertySingleValue", k, None, create(kind, v), None)
+            for k, (kind, v) in values.items()])
         create("IfcRelDefinesByProperties", self.guid("defines", name, key), None, None, None,
                [entity], pset)
 
@@ -325,7 +332,7 @@ class _Writer:
                              self.shape(void.solid, level), None, "OPENING")
             create("IfcRelVoidsElement", guid("voids", *key), None, None, None, host, opening)
             self.properties(opening, void.key, "Pset_OpeningElementCommon",
-                            {"Reference": void.name})
+                            {"Reference": ("IfcIdentifier", void.name)})
             if void.filler is not None:
                 create("IfcRelFillsElement", guid("fills", *key), None, None, None, opening,
                        elements[void.filler])
