@@ -82,7 +82,7 @@ def _volumes(volume: float, voids: float) -> tuple[Quantity, ...]:
 def wall(solid: FrameObject, figures, voids: float) -> tuple[Quantity, ...]:
     """Height, volumes; Length, Width and NetSideArea when the wall is straight
     and of one thickness (``voids``: the volume its openings took)."""
-    from castor.quantities import footprint
+    from castor.bim.solids import footprint
 
     (_, _, bottom), (_, _, top) = figures.bbox
     height = top - bottom
@@ -224,7 +224,7 @@ def element_sets(ifc_class: str, solid: FrameObject, figures, voids: float = 0.0
         return ((QuantitySet(name, quantities),) if quantities else ()) + (castor(figures),)
     elif ifc_class in ("IfcDoor", "IfcWindow"):
         if size is None:  # not in an opening: its own box
-            from castor.quantities import footprint
+            from castor.bim.solids import footprint
 
             (_, _, bottom), (_, _, top) = figures.bbox
             size = (footprint(solid.vertices)[0], top - bottom)
