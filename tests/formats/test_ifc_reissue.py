@@ -273,3 +273,19 @@ def test_global_ids_stay_under_a_new_title_and_with_a_moved_door(tmp_path):
     other, _ = _castor(tmp_path, "X = 1;\n" + DOOR.replace("> mur;", "maison = mur;\n> maison;"),
                        name="d.ifc")
     assert _ids(other)[("IfcDoor", "porte")] != named[("IfcDoor", "porte")]
+
+
+def test_the_quick_global_id_is_ifcopenshells_uuid5():
+    import random
+    import uuid
+
+    ifcopenshell = pytest.importorskip("ifcopenshell")
+    import ifcopenshell.guid
+
+    from castor.formats.ifc import _GUID_SPACE, guid
+
+    chosen = random.Random(5)
+    for _ in range(2000):
+        name = "".join(chosen.choice("ab\0é€Z ") for _ in range(chosen.randint(0, 40)))
+        assert guid(name) == ifcopenshell.guid.compress(uuid.uuid5(_GUID_SPACE, name).hex)
+        assert len(guid(name)) == 22 and ifcopenshell.guid.expand(guid(name))
