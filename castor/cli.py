@@ -438,11 +438,16 @@ def _status(outcome) -> int:
 
 def _warn_without_effect(args, reporter) -> None:
     """Each option given that has no effect on the chosen output, once (CLI.md)."""
-    from castor.formats import FORMATS, without_effect
+    from castor.formats import FORMATS, acts_on, without_effect
 
     brings = {option.flag: option.brings for option in OUTPUT_OPTIONS}
     for message in without_effect(args.given, FORMATS[args.format], brings):
         reporter.warning(message)
+    if "--sheets" in args.given and acts_on("--sheets", FORMATS[args.format]):
+        for option in ("--section", "--view", "--scale", "--sheet"):  # the register says them
+            if option in args.given:
+                reporter.warning(f"{option} has no effect with --sheets (each sheet's drawing, "
+                                 "scale and paper are the register's); it is ignored")
 
 
 def _stop_on_signals() -> list[int]:

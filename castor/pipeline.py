@@ -204,14 +204,17 @@ def frames(source: Source, *, reading: ReadSettings = ReadSettings(),
            quiet: bool = False, on_mesh: Callable | None = None,
            cancelled: Callable[[], bool] = lambda: False,
            reporter: CollectingReporter | None = None,
-           interpreter: Callable | None = None) -> Checked:
+           interpreter: Callable | None = None,
+           sized: Callable | None = None) -> Checked:
     """Evaluate ``source`` in this process and, with ``mesh``, facetize each frame
     (its errors, such as too many polygons, become diagnostics); nothing is
     written. ``on_mesh`` is given each mesh frame as it is made (and then the
     result keeps none: a long animation is not held whole); ``cancelled()``
     is asked between statements and frames (True raises Overtaken); ``reporter``:
     the caller's, to ask after the run where a place was written (through macros);
-    ``interpreter``: as for ``evaluate``."""
+    ``interpreter``: as for ``evaluate``; ``sized(tree)``: the tree to facetize
+    in place of each frame's (the live preview's facets sized to its camera),
+    which ``trees`` keeps as evaluated."""
     started = time.perf_counter()
     reporter = reporter if reporter is not None else CollectingReporter(quiet)
     trees: list = []
@@ -228,7 +231,7 @@ def frames(source: Source, *, reading: ReadSettings = ReadSettings(),
             return
         from castor.jobs import Job, make
 
-        result = make(Job(tree, settings))
+        result = make(Job(tree if sized is None else sized(tree), settings))
         for message, location in result.warnings:
             reporter.warning(message, location)
         for error in result.errors:

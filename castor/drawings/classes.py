@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from castor.drawings.cut import cut_loops, loops_area
+from castor.drawings.cut import cut_loops
 
 # pattern name (as DXF names it) -> (line families (angle in degrees, offset as
 # a fraction of the period), period in paper mm, its period in the DXF
@@ -114,6 +114,9 @@ class Symbols:
     # a section's or elevation's vertical chains: side -> heights of its
     # openings' sills and heads
     sides: dict = field(default_factory=dict)
+    # the page boxes ((x0, y0), (x1, y1)) the set's marks take (castor.drawings.marks),
+    # beyond the chains: the sheet makes room for them
+    marks: list = field(default_factory=list)
 
 
 def classify(drawing, takeoff, warn=None) -> None:
@@ -128,7 +131,7 @@ def classify(drawing, takeoff, warn=None) -> None:
         _regions(drawing, takeoff, symbols, plan)
     symbols.storeys = [level for _, level in takeoff.storeys()]
     blocks = takeoff.blocks()  # measured once: each call measures them again
-    _openings(drawing, blocks, symbols)
+    _openings(drawing, blocks, symbols, takeoff)
     if not plan:
         return
     z = float(drawing.section.value)
@@ -158,7 +161,12 @@ def classify(drawing, takeoff, warn=None) -> None:
             _stair(p, takeoff, z, drawing.view, symbols, warn)
         elif box[0][2] > z and box[0][2] < ceiling - 1e-9 and p.element.ifc_class != STAIR:
             _overhead(takeoff.solid(p.element), drawing.view, symbols)
-    _rooms(takeoff, drawing.view, z, symbols)
+    from castor.drawings.rooms import room_tags
+
+    for at, lines in room_tags(takeoff, drawing.view, z, drawing.scale, warn):
+        symbols.labels.append(Label(at, lines, 3.0))
+        if symbols.level_at is None:
+            symbols.level_at = (at[0], at[1])
 
 
 def _regions(drawing, takeoff, symbols: Symbols, plan: bool) -> None:
@@ -182,7 +190,7 @@ def _regions(drawing, takeoff, symbols: Symbols, plan: bool) -> None:
         layer.regions = by_object.get(layer.source, [])
 
 
-def _openings(drawing, blocks, symbols: Symbols) -> None:
+def _openings(drawing, blocks, symbols: Symbols, takeoff=None) -> None:
     """The page boxes of the openings the drawing cuts (the chains break at
     them) and of those it sees face on (what is seen through them is no
     level); for a section or an elevation, the sills and heads of the
@@ -216,6 +224,10 @@ def _openings(drawing, blocks, symbols: Symbols) -> None:
     if not chosen and drawing.section is None:
         nearest = max(float(np.max(np.array(b.figures.bbox) @ towards)) for b, _, _ in seen) \
             if seen else None
+        walls = [p for p in takeoff.placed() if p.element.ifc_class in WALLS] \
+            if takeoff is not None and seen else []
+        if walls:  # the façade is the outer walls' face, not a wall inside behind it
+            nearest = max(float(np.max(_corners(p.figures.bbox) @ towards)) for p in walls)
         chosen = [(b, box) for b, box, _ in seen
                   if float(np.max(np.array(b.figures.bbox) @ towards)) > nearest - 1.0]
     if not chosen:
@@ -225,6 +237,12 @@ def _openings(drawing, blocks, symbols: Symbols) -> None:
     for block, box in chosen:
         side = "left" if (box[0][0] + box[1][0]) / 2 < middle else "right"
         symbols.sides.setdefault(side, []).extend([box[0][1], box[1][1]])
+
+
+def _corners(bbox) -> np.ndarray:
+    low, high = np.array(bbox)
+    return np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
+                     for z in (low[2], high[2])])
 
 
 def _centre(takeoff) -> np.ndarray:
@@ -453,52 +471,3 @@ def _joined(segments: list) -> list:
                     break
         out.append([a, b])
     return out
-
-
-def _rooms(takeoff, view, z: float, symbols: Symbols) -> None:
-    """A tag at the middle of each space the plan cuts: its name and its area
-    at the plan's height."""
-    depth = view.plane_depth(_Cut(z))
-    for room in takeoff.rooms():
-        low, high = room.solid.vertices[:, 2].min(), room.solid.vertices[:, 2].max()
-        if not low < z < high:
-            continue
-        loops = cut_loops(room.solid, view, depth)
-        area = loops_area(loops)
-        if area <= 0:
-            continue
-        at = _middle(loops)
-        symbols.labels.append(Label(at, (room.name, f"{area:.2f} m²"), 3.0))
-        if symbols.level_at is None:
-            symbols.level_at = (at[0], at[1])
-
-
-class _Cut(NamedTuple):
-    value: float
-    axis: str = "z"
-
-
-def _middle(loops) -> tuple[float, float]:
-    """The area centroid of the loops, or, when it falls outside them (an L),
-    the middle of the longest stretch inside along the horizontal through it."""
-    total, cx, cy = 0.0, 0.0, 0.0
-    for loop in loops:
-        x, y = loop[:, 0], loop[:, 1]
-        xn, yn = np.roll(x, -1), np.roll(y, -1)
-        cross = x * yn - xn * y
-        total += cross.sum() / 2
-        cx += ((x + xn) * cross).sum() / 6
-        cy += ((y + yn) * cross).sum() / 6
-    cx, cy = cx / total, cy / total
-    crossings = []
-    for loop in loops:
-        p, q = loop, np.roll(loop, -1, axis=0)
-        hit = (p[:, 1] > cy) != (q[:, 1] > cy)
-        t = (cy - p[hit, 1]) / (q[hit, 1] - p[hit, 1])
-        crossings.extend((p[hit, 0] + t * (q[hit, 0] - p[hit, 0])).tolist())
-    crossings.sort()
-    spans = [(crossings[k], crossings[k + 1]) for k in range(0, len(crossings) - 1, 2)]
-    if any(a <= cx <= b for a, b in spans) or not spans:
-        return float(cx), float(cy)
-    a, b = max(spans, key=lambda s: s[1] - s[0])
-    return float((a + b) / 2), float(cy)

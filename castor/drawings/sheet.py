@@ -233,9 +233,7 @@ def _framed(drawing, mm: float) -> _Frame:
         box[0, 0] -= GROUND_OVERHANG
         box[1, 0] += GROUND_OVERHANG
     chains = _chains(drawing, np.array([[x0, y0], [x1, y1]]), vertical)
-    depth = {side: 0.0 for side in ("bottom", "top", "left", "right")}
-    for chain in chains:
-        depth[chain.side] = DEPTH[READS[chain.side]] if len(chain.breaks) else DEPTH[READS[chain.side]] - 9
+    depth = _depths(chains)
     symbols = drawing.symbols
     levels = level_heights(drawing.layers, np.array([[x0, y0], [x1, y1]]),
                            symbols.storeys if symbols else (),
@@ -247,7 +245,34 @@ def _framed(drawing, mm: float) -> _Frame:
     right = depth["right"] + (LEVEL_WIDTH + 6.0 if levels else 0.0)
     content = np.array([[box[0, 0] - depth["left"], box[0, 1] - depth["top"]],
                         [box[1, 0] + right, box[1, 1] + depth["bottom"]]])
+    reach = _symbols_box(symbols, mm)  # the set's marks stand beyond the chains
+    if reach is not None:
+        content = np.array([np.minimum(content[0], reach[0]), np.maximum(content[1], reach[1])])
     return _Frame(box, ground, chains, levels, level_x, content)
+
+
+def _depths(chains) -> dict:
+    """How far out (mm) each side's dimensions reach from the drawing's box."""
+    depth = {side: 0.0 for side in ("bottom", "top", "left", "right")}
+    for chain in chains:
+        depth[chain.side] = DEPTH[READS[chain.side]] - (0 if len(chain.breaks) else 9)
+    return depth
+
+
+def annotation_depths(drawing) -> dict:
+    """Side -> how far out (paper mm) a drawing's dimension chains reach from
+    what is drawn: where the set's marks may stand (castor.drawings.marks)."""
+    box = drawing.box()
+    return _depths(_chains(drawing, box, tuple(drawing.view.up) == (0, 0, 1)))
+
+
+def _symbols_box(symbols, mm: float):
+    """The paper box (page origin at 0, y down) of the set's marks, or None."""
+    if symbols is None or not symbols.marks:
+        return None
+    allp = np.concatenate([np.asarray(box, float) for box in symbols.marks])
+    lo, hi = allp.min(axis=0), allp.max(axis=0)
+    return np.array([[lo[0] * mm, -hi[1] * mm], [hi[0] * mm, -lo[1] * mm]])
 
 
 def _chains(drawing, box: np.ndarray, vertical: bool) -> list:

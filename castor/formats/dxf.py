@@ -272,6 +272,9 @@ def export_set(drawing_set) -> bytes:
     viewport that shows its drawing at the sheet's scale (so that a CAD program
     plots the layout at 1:1 with the pens' true widths)."""
     doc = _document()
+    # a viewport shows the model's linetypes in model units at its scale: each
+    # scale's CASTOR_DASHED_N is 3 mm dashes on paper (1 would read them as paper mm)
+    doc.header["$PSLTSCALE"] = 0
     msp = doc.modelspace()
     shift = 0.0
     used: set[str] = set()

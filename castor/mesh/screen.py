@@ -310,40 +310,85 @@ def _bounded(world: float | None, above: float, finest: float, size: float,
 def kept_where_close(previous: tree.FrameTree | None, needed: tree.FrameTree,
                      factor: float = 2.0) -> tree.FrameTree:
     """The live preview's rule once its camera stops (CLI.md, "Live preview"):
-    ``needed`` (the frame sized to the new view) with each object as
-    ``previous`` had it (the same frame sized to the view before) wherever
-    every tolerance it needs is within ``factor`` of the one it has, so that
-    only objects whose facets would change much are faceted again (the
-    facetizer's caches keep the others)."""
+    ``needed`` (the frame sized to the new view) with each curved leaf and
+    smooth solid as ``previous`` had it (the frame as last faceted: sized to
+    the view before, or evaluated before an edit) wherever the tolerance it
+    needs is within ``factor`` of the one it has, so that only those whose
+    facets would change much are faceted again: the others keep their
+    tolerance, hence their facetization in the facetizer's caches (a boolean
+    above a changed leaf is made again). A leaf is kept only if all but its
+    tolerance is the same; an object wholly kept is ``previous``'s own."""
     if previous is None or len(previous.objects) != len(needed.objects):
         return needed
-    objects = tuple(old if (old.name == new.name and _close(old.root, new.root, factor, {}))
-                    else new for old, new in zip(previous.objects, needed.objects))
+    memo: dict = {}
+    objects = tuple(_kept_object(old, new, factor, memo)
+                    for old, new in zip(previous.objects, needed.objects))
     if all(new is kept for new, kept in zip(needed.objects, objects)):
         return needed
     return needed.replace(objects=objects)
 
 
-def _close(old, new, factor: float, seen: dict) -> bool:
-    """Whether two sizings of one subtree differ in no tolerance by more than ``factor``."""
+def _kept_object(old: tree.Object, new: tree.Object, factor: float, memo: dict) -> tree.Object:
+    if old is new or old.name != new.name or old.root is None or new.root is None:
+        return new
+    root = _kept(old.root, new.root, factor, memo)
+    if root is old.root:
+        return old if old.where == new.where else new.replace(root=root)
+    return new if root is new.root else new.replace(root=root)
+
+
+def _within(old: float, new: float, factor: float) -> bool:
+    return new / factor <= old <= new * factor
+
+
+def _kept(old, new, factor: float, memo: dict):
+    """``new`` with what ``old`` had wherever only a tolerance differs, by no
+    more than ``factor``: ``old`` itself where all of it is kept, ``new``
+    where none of it is."""
     if old is new:
-        return True
-    kind = type(old)
-    if kind is not type(new):
-        return False
+        return old
+    kind = type(new)
+    if kind is not type(old):
+        return new
     if kind is tree.Primitive:
-        return (old.kind == new.kind and old.shape == new.shape
-                and new.tolerance / factor <= old.tolerance <= new.tolerance * factor)
+        if (old.kind != new.kind or old.shape != new.shape or old.colour != new.colour
+                or old.matrix != new.matrix or old.metric != new.metric
+                or old.path != new.path or not _within(old.tolerance, new.tolerance, factor)):
+            return new
+        return old if old.location == new.location else new.replace(tolerance=old.tolerance)
     if kind is tree.Boolean:
-        return (old.op == new.op and len(old.operands) == len(new.operands)
-                and all(_close(a, b, factor, seen) for a, b in zip(old.operands, new.operands)))
-    if kind is tree.Smooth:
-        return (new.tolerance / factor <= old.tolerance <= new.tolerance * factor
-                and _close(old.operand, new.operand, factor, seen))
-    if kind is tree.Use:
-        pair = (old.shared.key, new.shared.key)
-        if pair not in seen:
-            seen[pair] = (old.shared.child is not None and new.shared.child is not None
-                          and _close(old.shared.child, new.shared.child, factor, seen))
-        return old.matrix == new.matrix and seen[pair]
-    return False
+        if old.op != new.op or len(old.operands) != len(new.operands):
+            return new
+        operands = tuple(_kept(a, b, factor, memo) for a, b in zip(old.operands, new.operands))
+        if all(k is a for k, a in zip(operands, old.operands)):
+            return old
+        if all(k is b for k, b in zip(operands, new.operands)):
+            return new
+        return tree.Boolean(new.op, operands, new.location)
+    if kind is tree.Smooth:  # one smoothing: kept whole or made again
+        same = (old.angle == new.angle and old.matrix == new.matrix
+                and _within(old.tolerance, new.tolerance, factor)
+                and _kept(old.operand, new.operand, factor, memo) is old.operand)
+        return old if same else new
+    if old.matrix != new.matrix or old.path != new.path or old.shared.name != new.shared.name:
+        return new
+    return _kept_use(old, new, factor, memo)
+
+
+def _kept_use(old: tree.Use, new: tree.Use, factor: float, memo: dict) -> tree.Use:
+    pair = (old.shared.key, new.shared.key)
+    shared = memo.get(pair)
+    if shared is None:
+        a, b = old.shared.child, new.shared.child
+        if a is None or b is None:
+            shared = new.shared
+        else:
+            child = _kept(a, b, factor, memo)
+            shared = (old.shared if child is a else new.shared if child is b
+                      else tree.Shared(new.shared.name, child,
+                                       tree.content_key(new.shared.name, child),
+                                       new.shared.location))
+        memo[pair] = shared
+    if shared is old.shared:
+        return old
+    return new if shared is new.shared else tree.Use(new.matrix, new.path, shared)

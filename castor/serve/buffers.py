@@ -49,11 +49,11 @@ class BufferPreview(Preview):
         imported on first use) leaves importlib's lock of that module held, so
         that the other thread waits for it forever."""
 
-    def evaluation(self, job: Watched, stale) -> Evaluation:
+    def evaluation(self, job: Watched, stale, facets=None) -> Evaluation:
         from castor.language.preprocess import unsaved
 
         with unsaved(self.buffers):
-            return evaluate(job, stale)
+            return evaluate(job, stale, facets)
 
 
 def warm() -> None:

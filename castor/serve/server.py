@@ -7,9 +7,12 @@ Routes (anything else is 404; no path of the disk is ever looked up):
 - ``/frames/ID/N.bin``: frame N of the frames numbered ID, as triangles;
 - ``/events``: server-sent events, one each time the state changes;
 - ``/editing.js``, ``/editing.json``, ``POST /gesture``: editing on screen
-  (castor.serve.gestures).
+  (castor.serve.gestures);
+- ``POST /camera``: the page's camera, once it stops (castor.serve.camera):
+  the frames are faceted again for it, without evaluating.
 
-Threads: one evaluates (cancelled when a newer save overtakes it), one polls
+Threads: one evaluates or facets again for a new camera (cancelled when a
+newer save overtakes it), one polls
 the files, one accepts connections, and at most MAX_REQUESTS serve them (of
 which at most MAX_STREAMS hold an event stream open).
 """
@@ -26,12 +29,13 @@ import socketserver
 import sys
 import threading
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
 
 from castor.diagnostics import UsageError
-from castor.serve.evaluation import Diagnostic, DrawnFrame, Evaluation, Overtaken, Watched, evaluate
+from castor.serve.evaluation import (Diagnostic, DrawnFrame, Evaluation, Facets, Overtaken,
+                                     Watched, evaluate, refaceted)
 from castor.serve.watch import Watcher
 
 POLL_SECONDS = 0.05  # how often the files are looked at
@@ -71,12 +75,14 @@ class Snapshot:
     seconds: float = 0.0
     finished: float = 0.0  # time.time() at the end of the evaluation
     files: tuple[str, ...] = ()
+    refaceted: float | None = None  # seconds of the refacet for the page's camera, if the last
 
     def as_json(self, server: str, evaluating: bool) -> bytes:
         return json.dumps({
             "server": server, "version": self.version, "evaluating": evaluating,
             "evaluated": self.evaluated,
             "stale": self.stale, "seconds": round(self.seconds, 4),
+            "refaceted": None if self.refaceted is None else round(self.refaceted, 4),
             "finished": time.strftime("%H:%M:%S", time.localtime(self.finished))
                         if self.finished else None,
             "files": list(self.files), "diagnostics": [d.as_json() for d in self.diagnostics],
@@ -99,6 +105,10 @@ class Preview:
         self.state = threading.Condition()
         self.stop = threading.Event()
         self._wanted = 1  # evaluations asked for (the first, then one per save)
+        self._looked = 0  # cameras the page has sent (each asks to facet again)
+        self._looked_done = 0  # of which the frames shown are faceted for the latest
+        self._camera = None  # the page's latest (castor.pictures.camera.Camera)
+        self._good: Evaluation | None = None  # the evaluation whose frames are shown
         self._last_good: tuple[int, tuple[DrawnFrame, ...]] | None = None
         self._frames_ids = 0
         self._watcher = Watcher(job.files)
@@ -122,6 +132,25 @@ class Preview:
             self._wanted += 1
             self.state.notify_all()
         self._stop_stale()
+
+    def look(self, camera, seconds: float = 0.0) -> int:
+        """The page's camera has stopped at ``camera``: facet the frames for it
+        (every later evaluation too). Waits at most ``seconds`` for the frames
+        faceted for it to be shown; the version then shown."""
+        with self.state:
+            self._camera = camera
+            self._looked += 1
+            number = self._looked
+            self.state.notify_all()
+            self.state.wait_for(lambda: self._looked_done >= number or self.stop.is_set(),
+                                seconds)
+            return self.snapshot.version
+
+    def _facets(self) -> Facets:
+        """How this evaluation or refacet facets the frames: for the latest
+        camera, keeping what the shown frames were faceted from where close."""
+        good = self._good
+        return Facets(self._camera, good.faceted if good is not None else None)
 
     def _stop_stale(self) -> None:
         """Stop the evaluation under way if a newer one is wanted."""
@@ -148,15 +177,22 @@ class Preview:
     def evaluate_scene(self) -> None:
         """Evaluate whenever asked, until stopped; an evaluation overtaken by a
         newer save or value stops at once (castor.analysis.worker.Stopper), inside
-        a statement too, and is thrown away."""
-        done = 0
+        a statement too, and is thrown away. A new camera alone facets the
+        frames shown again, without evaluating."""
+        done = looked = 0
         while True:
             with self.state:
-                while self._wanted == done and not self.stop.is_set():
+                while (self._wanted == done and self._looked == looked
+                       and not self.stop.is_set()):
                     self.state.wait(0.5)
                 if self.stop.is_set():
                     return
-                generation = self._wanted
+                generation, looked = self._wanted, self._looked
+                facets = self._facets()
+                if generation == done and self._good is None:
+                    self._looked_done = looked  # nothing shown to facet again yet
+                    self.state.notify_all()
+                    continue
                 if not self.evaluating:
                     self.evaluating = True
                     self.state.notify_all()
@@ -167,7 +203,10 @@ class Preview:
                 try:
                     if stale():  # asked for again before begin(): not stopped
                         raise Overtaken()
-                    result = self.evaluation(self.job, stale)
+                    if generation == done:
+                        self._publish_refaceted(refaceted(self._good, facets, stale), looked)
+                        continue
+                    result = self.evaluation(self.job, stale, facets)
                 finally:
                     self._stopper.end()
             except Overtaken:
@@ -179,15 +218,31 @@ class Preview:
             done = generation
             with self._watcher_lock:
                 self._watcher.watch(self.job.files + result.included, since_ns=started_ns)
-            self._publish(result, overtaken=self._wanted != generation)
+            self._publish(result, self._wanted != generation, looked)
             if self.report is not None:
                 self.report(result)
 
-    def evaluation(self, job: Watched, stale) -> Evaluation:
+    def evaluation(self, job: Watched, stale, facets: Facets | None = None) -> Evaluation:
         """One evaluation of the scene (castor.serve.buffers reads an editor's buffers)."""
-        return evaluate(job, stale)
+        return evaluate(job, stale, facets)
 
-    def _publish(self, result: Evaluation, overtaken: bool) -> None:
+    def _publish_refaceted(self, result: Evaluation, looked: int) -> None:
+        """The shown frames faceted again: a new version where any changed."""
+        with self.state:
+            old = self.snapshot
+            if self._good is not None and any(a is not b for a, b in zip(result.frames,
+                                                                          self._good.frames)):
+                self._frames_ids += 1
+                self._last_good = (self._frames_ids, result.frames)
+                self.snapshot = replace(old, version=old.version + 1,
+                                        frames_id=self._frames_ids, frames=result.frames,
+                                        refaceted=result.seconds)
+            self._good = result
+            self._looked_done = looked
+            self.evaluating = False
+            self.state.notify_all()
+
+    def _publish(self, result: Evaluation, overtaken: bool, looked: int = 0) -> None:
         with self.state:
             old = self.snapshot
             if result.errors == 0 or self._last_good is None:
@@ -195,12 +250,14 @@ class Preview:
                 frames_id, frames, stale = self._frames_ids, result.frames, False
                 if result.errors == 0:
                     self._last_good = (frames_id, frames)
+                    self._good = result
             else:
                 (frames_id, frames), stale = self._last_good, True
             shown = tuple(dict.fromkeys(self.job.files + result.included))
             self.snapshot = Snapshot(old.version + 1, frames_id, frames, result.diagnostics,
                                      stale, True, result.seconds, time.time(), shown)
             self.evaluating = overtaken
+            self._looked_done = max(self._looked_done, looked)
             self.state.notify_all()
 
     def close(self) -> None:
@@ -270,6 +327,9 @@ class _Handler(BaseHTTPRequestHandler):
         if self.path == "/gesture":
             self._gesture(kind, length)
             return
+        if self.path == "/camera":
+            self._camera(kind, length)
+            return
         if self.path != "/parameters":
             self._send(404, b"not found\n", "text/plain; charset=utf-8", False)
             return
@@ -298,6 +358,17 @@ class _Handler(BaseHTTPRequestHandler):
                        "text/plain; charset=utf-8", False)
             return
         status, body = answer_post(self.server.gestures, self.rfile.read(int(length)))
+        self._send(status, body, "application/json", False)
+
+    def _camera(self, kind: str, length: str) -> None:
+        """``/camera``: the page's camera has stopped (castor.serve.camera)."""
+        from castor.serve.camera import MAX_BODY, answer_post
+
+        if kind != "application/json" or not length.isdigit() or int(length) > MAX_BODY:
+            self._send(400, b"send JSON (application/json), at most 4 kB\n",
+                       "text/plain; charset=utf-8", False)
+            return
+        status, body = answer_post(self.server.preview, self.rfile.read(int(length)))
         self._send(status, body, "application/json", False)
 
     def _same_origin(self) -> bool:

@@ -73,7 +73,7 @@ def test_an_emptied_number_box_sends_nothing(house):
         page = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
         sent = []
         page.on("request", lambda r: sent.append(json.loads(r.post_data))
-                if r.method == "POST" else None)
+                if r.method == "POST" and r.url.endswith("/parameters") else None)
         page.goto(server.url)
         page.wait_for_selector("body[data-version]", timeout=15000)
         page.click("#parameters-toggle")

@@ -393,7 +393,7 @@
   }
 
   // ---- the camera ----
-  function fit() {
+  function fit(tell = true) {
     if (!state.box) return;
     const [lo, hi] = state.box;
     state.camera.target = [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2];
@@ -401,6 +401,7 @@
     const half = Math.min(FOV / 2, Math.atan(Math.tan(FOV / 2) * aspect));
     state.camera.distance = (radius() / Math.sin(half)) * 1.02;
     redraw();
+    if (tell) cameraStopped();
   }
 
   function setView(name) {
@@ -408,6 +409,43 @@
     Object.assign(state.camera, { azimuth, elevation, ortho });
     for (const other of Object.keys(VIEWS)) $(`view-${other}`).classList.toggle("active", other === name);
     redraw();
+    cameraStopped();
+  }
+
+  // Once the camera stops (a turn, a pan or a zoom ended, a view chosen), the
+  // server is told where it is, so that it facets the curved surfaces for it
+  // (CLI.md, "Live preview": --pixel-error 0.5), and new frames follow.
+  const CAMERA_PAUSE = 300; // ms without a move before the camera counts as stopped
+  let cameraTimer = null, cameraSent = "";
+  function cameraStopped() {
+    clearTimeout(cameraTimer);
+    cameraTimer = setTimeout(sendCamera, CAMERA_PAUSE);
+  }
+
+  // The server answers once the frames faceted for the camera are shown (or
+  // after a few seconds): with the version then shown.
+  async function sendCamera() {
+    if (state.drag) return cameraStopped();
+    if (!gl || !state.box || !state.scene) return null;
+    resize();
+    const cam = state.camera;
+    const { towards, up } = basis(cam);
+    const body = {
+      server: state.scene.server,
+      eye: add(cam.target, scale(towards, cam.distance)), target: cam.target.slice(), up,
+      fov: (FOV * 180) / Math.PI, width: canvas.width, height: canvas.height, orthographic: cam.ortho,
+    };
+    const text = JSON.stringify(body);
+    if (text === cameraSent) return null;
+    cameraSent = text;
+    try {
+      const answer = await fetch("/camera", {
+        method: "POST", headers: { "Content-Type": "application/json" }, body: text, cache: "no-store" });
+      const data = await answer.json().catch(() => ({}));
+      return answer.ok ? data.version : null;
+    } catch (error) {
+      return null;
+    }
   }
 
   function noViewName() {
@@ -429,6 +467,7 @@
         Math.abs(e.clientX - pressed.x) + Math.abs(e.clientY - pressed.y) < 4) {
       copied(pressed.source);  // a click, not a turn of the camera
     }
+    if (state.drag && state.drag.moved) cameraStopped();
     state.drag = null;
     canvas.releasePointerCapture(e.pointerId);
     redraw();
@@ -444,6 +483,7 @@
     const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
     drag.x = e.clientX;
     drag.y = e.clientY;
+    drag.moved = true;
     const cam = state.camera;
     if (drag.pan) {
       const { right, up } = basis(cam);
@@ -465,10 +505,14 @@
     const amount = e.deltaMode === 1 ? e.deltaY * 30 : e.deltaY;
     state.camera.distance *= Math.exp(Math.max(-300, Math.min(300, amount)) * 0.0015);
     redraw();
+    cameraStopped();
   }, { passive: false });
   for (const name of Object.keys(VIEWS)) $(`view-${name}`).addEventListener("click", () => setView(name));
-  $("view-fit").addEventListener("click", fit);
-  window.addEventListener("resize", redraw);
+  $("view-fit").addEventListener("click", () => fit());
+  window.addEventListener("resize", () => {
+    redraw();
+    cameraStopped();
+  });
 
   // ---- frames of an animation, and the section plane ----
   function showFrame(index) {
@@ -588,6 +632,8 @@
     else if (!count) text = scene.diagnostics.length ? "no frame" : "no frame: the scene has no '>' command";
     else text = `${count} frame${count > 1 ? "s" : ""} · ${polygons.toLocaleString("en")} polygons${count > 1 ? " in all" : ""} · ` +
       `${scene.seconds.toFixed(2)} s at ${scene.finished}`;
+    if (count && scene.refaceted !== null && scene.refaceted !== undefined)
+      text += ` · faceted for this view in ${scene.refaceted.toFixed(2)} s`;
     if (evaluating && scene.evaluated) text += " · evaluating…";
     status.textContent = text;
     status.classList.toggle("stale", !!scene.stale);
@@ -605,6 +651,12 @@
         loadAgain = false;
         await loadOnce();
       } while (loadAgain);
+      // what is shown once loading settles: its version, and the triangles drawn
+      // (every frame's), for whoever checks that the facets follow the view
+      if (state.scene) {
+        document.body.dataset.triangles = String(state.scene.frames.reduce((s, f) => s + f.triangles, 0));
+        document.body.dataset.version = String(state.scene.version);
+      }
     } finally {
       loading = false;
     }
@@ -647,11 +699,17 @@
     updateSection();
     if (!state.fitted && state.box) {
       state.fitted = true;
-      fit();
+      fit(false);
     }
     showFrame(state.current);
     draw();
-    document.body.dataset.version = String(scene.version);
+    if (!cameraSent && state.box) {
+      // the first frames, faceted with the scene's tolerance: the view's own
+      // facets are waited for before the page says it is shown
+      clearTimeout(cameraTimer);
+      const version = await sendCamera();
+      if (version !== null && version !== undefined && version > state.version) loadAgain = true;
+    }
   }
 
   // the view as it is drawn, for editing.js (editing on screen)
@@ -671,6 +729,7 @@
       state.server = news.server;
       state.version = -1;
       state.framesKey = "";
+      cameraSent = ""; // a new server has not heard the camera
     }
     if (news.version !== state.version) load();
     else showStatus(state.scene, news.evaluating);
