@@ -249,8 +249,8 @@ class Takeoff:
         made yet, as the objects of one frame: the facetizer's patterns serve
         every copy of a part, and a frame's fixed costs are paid once. A tree
         that is a shared subtree moved (the chain of uses down to it), whose
-        subtree other wanted trees move too, is made once where it stands
-        alone and each copy moved (castor.bim.solids.Copy): 1,024 houses' walls are one
+        subtree other wanted trees move too, is made once at the identity and
+        each copy moved (castor.bim.solids.Copy): 1,024 houses' walls are one
         wall's solid and 1,024 placements."""
         from castor.csg import tree
 
@@ -269,14 +269,12 @@ class Takeoff:
                 alone.append((key, node))
         units = []
         for unit_key, found in copies.items():
-            if len(found) == 1 or unit_key in self._units:
-                if unit_key in self._units:
-                    units.append((unit_key, found))
-                else:
+            if unit_key not in self._units:
+                if len(found) == 1:  # made as it stands: the bytes of a lone element kept
                     alone.append(found[0][:2])
-                continue
-            inner = found[0][2][-1]
-            alone.append((("unit", unit_key), tree.Use(tree.IDENTITY, "", inner.shared)))
+                    continue
+                inner = found[0][2][-1]
+                alone.append((("unit", unit_key), tree.Use(tree.IDENTITY, "", inner.shared)))
             units.append((unit_key, found))
         self._frame(alone)
         for unit_key, found in units:
