@@ -19,7 +19,8 @@ from castor.csg import tree
 from castor.csg.paths import ROOT, Trail
 from castor.diagnostics import CastorError, EvaluationError, GeometryError, LimitError, Location
 from castor.language.expressions import evaluate, format_number
-from castor.language.scene import BooleanNode, NamedNode, SceneNode, PrimitiveNode, Repeat, TransformedNode
+from castor.language.scene import (BooleanNode, NamedNode, Number, PrimitiveNode, Repeat,
+                                   SceneNode, TransformedNode)
 from castor.settings import DEFAULT_TOLERANCE
 from castor.primitives import PRIMITIVES
 from castor.primitives.facets import linear_part, product, quantize, stretch_above
@@ -29,6 +30,7 @@ MAX_REPEAT = 1_000_000
 # Beyond this, double precision leaves too few digits for exact booleans.
 MAX_COORDINATE = 1e12
 _MISSING = object()
+_WITHIN = MAX_COORDINATE.__ge__  # abs(v) <= MAX_COORDINATE, as one call in C
 # shared subtrees remembered across frames (late binding makes most frames alike)
 _MEMO_LIMIT = 100_000
 
@@ -126,7 +128,14 @@ class Evaluator:
             self.errors.append(error)
 
     def _values(self, args, env) -> list[float] | None:
-        """The arguments' values; None, with every error recorded, if any fails."""
+        """The arguments' values; None, with every error recorded, if any fails.
+        (Numbers, most arguments, are read in place: a long statement has hundreds
+        of thousands; where one argument fails, all are evaluated again, one by one,
+        for every error: evaluating has no effect but its value or its error.)"""
+        try:
+            return [arg.value if type(arg) is Number else evaluate(arg, env) for arg in args]
+        except CastorError:
+            pass
         values, failed = [], False
         for arg in args:
             try:
@@ -225,7 +234,7 @@ class Evaluator:
 
     @staticmethod
     def _check_reach(local, trail, node: TransformedNode) -> None:
-        if not all(abs(v) <= MAX_COORDINATE for v in local):
+        if not all(map(_WITHIN, map(abs, local))):  # (a NaN is not within either)
             raise GeometryError(f"the transformations of {trail} reach beyond "
                                 f"{MAX_COORDINATE:g}, the largest coordinate castor handles",
                                 node.location)
@@ -284,26 +293,45 @@ class Evaluator:
         return tree.Boolean(op, tuple(operands), node.location)
 
     def _primitive(self, node: PrimitiveNode, env, matrix, stretch, tolerance, trail, rel):
-        here = trail.down(f"!{node.kind}")
         values = self._values(node.args, env)
         if values is None:
             return None
         colour = tuple(values[:3])
-        for name, c, arg in zip(("red", "green", "blue"), colour, node.args):
-            if not 0.0 <= c <= 1.0:
-                # a whole number up to 255 looks like a byte; 1.8 is a slip of its own
-                hint = (f"; if it is a 0..255 value, write {format_number(c)}/255"
-                        if 1 < c <= 255 and c == int(c) else "")
-                raise GeometryError(f"colour component {name} = {format_number(c)} of {here} is "
-                                    f"outside 0..1{hint}", arg.location)
+        if len(colour) != 3 or not (0.0 <= colour[0] <= 1.0 and 0.0 <= colour[1] <= 1.0
+                                    and 0.0 <= colour[2] <= 1.0):
+            _check_colour(colour, node, trail)
         shape = tuple(values[3:])
-        declared = PRIMITIVES[node.kind]
+        kind = node.kind
+        declared = PRIMITIVES[kind]
         if declared.check is not None:
-            declared.check(shape, node.location, here)
-        _check_reach(matrix, declared.extent(shape), node, here)
-        path = rel.down(f"!{node.kind}").steps()
-        return tree.Primitive(node.kind, shape, colour, matrix, tolerance, stretch, path,
-                              node.location)
+            declared.check(shape, node.location, trail.down(f"!{kind}"))
+        extent = _EXTENTS.get((kind, shape))
+        if extent is None:
+            if len(_EXTENTS) >= _EXTENTS_KEPT:
+                _EXTENTS.clear()
+            extent = _EXTENTS[kind, shape] = declared.extent(shape)
+        _check_reach(matrix, extent, node, trail)
+        # the path: rel.down(f"!{kind}").steps(), a segment after which no dot comes
+        return tree.Primitive(kind, shape, colour, matrix, tolerance, stretch,
+                              f"{rel.steps()}!{kind}", node.location)
+
+
+def _check_colour(colour, node: PrimitiveNode, trail: Trail) -> None:
+    """Refuse a colour component outside 0..1."""
+    here = trail.down(f"!{node.kind}")
+    for name, c, arg in zip(("red", "green", "blue"), colour, node.args):
+        if not 0.0 <= c <= 1.0:
+            # a whole number up to 255 looks like a byte; 1.8 is a slip of its own
+            hint = (f"; if it is a 0..255 value, write {format_number(c)}/255"
+                    if 1 < c <= 255 and c == int(c) else "")
+            raise GeometryError(f"colour component {name} = {format_number(c)} of {here} is "
+                                f"outside 0..1{hint}", arg.location)
+
+
+# the extent of each primitive's shape (PrimitiveKind.extent), by (kind, shape):
+# a long statement places thousands of primitives of a few shapes
+_EXTENTS: dict[tuple, float] = {}
+_EXTENTS_KEPT = 4096
 
 
 def _merged(errors: list[CastorError], starts: list[int], offset: int, trail: Trail,
@@ -340,11 +368,12 @@ def counted(word: str, numbers: list[int]) -> str:
     return f"{word}s " + ", ".join(str(n) for n in numbers)
 
 
-def _check_reach(matrix: tree.Matrix, extent: float, node: PrimitiveNode, here: Trail) -> None:
+def _check_reach(matrix: tree.Matrix, extent: float, node: PrimitiveNode, trail: Trail) -> None:
     """Refuse a primitive whose corners reach beyond MAX_COORDINATE (``extent``:
     the largest coordinate of its unit box, declared with the primitive)."""
-    for row in range(3):
-        a, b, c, t = matrix[4 * row: 4 * row + 4]
-        if (abs(a) + abs(b) + abs(c)) * extent + abs(t) > MAX_COORDINATE:
-            raise GeometryError(f"{here} reaches beyond {MAX_COORDINATE:g}, "
-                                "the largest coordinate castor handles", node.location)
+    a, b, c, t, d, e, f, u, g, h, i, v = matrix
+    if (abs(a) + abs(b) + abs(c)) * extent + abs(t) > MAX_COORDINATE or \
+            (abs(d) + abs(e) + abs(f)) * extent + abs(u) > MAX_COORDINATE or \
+            (abs(g) + abs(h) + abs(i)) * extent + abs(v) > MAX_COORDINATE:
+        raise GeometryError(f"{trail.down(f'!{node.kind}')} reaches beyond {MAX_COORDINATE:g}, "
+                            "the largest coordinate castor handles", node.location)

@@ -24,7 +24,7 @@ other parameters, an element moved — keeps its elements' identities, so that
 a coordinator's comparison of two versions sees what changed.
 
 ifcopenshell (about 200 MB) is imported here only, when an IFC file is made:
-``pip install 'castor[ifc]'``.
+``pip install '.[ifc]'`` in castor's directory (INSTALL).
 """
 
 from __future__ import annotations
@@ -38,7 +38,8 @@ from castor.formats._ifc_body import Styles, face_set, true_corner_first  # noqa
 from castor.formats.kinds import BuildingModel
 from castor.language.classes import BY_NAME, CLASSES, OUTSIDE_REFERENCE_VIEW
 
-INSTALL = "pip install 'castor[ifc]'"
+# from castor's directory ('castor[ifc]' would fetch PyPI's unrelated package named castor)
+INSTALL = "pip install '.[ifc]' in castor's directory, or pip install 'ifcopenshell>=0.8'"
 
 # the IFC4 classes an object may take: castor.language.classes' table, less
 # IfcSpace (a room is no element: tests/formats/test_ifc.py checks this list

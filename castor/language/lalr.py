@@ -28,11 +28,13 @@ class Failed(Exception):
 
 class Token(str):
     """A terminal as lark gives it to a transformer: its text, its type (the
-    terminal's name), and the line and column where it begins (from 1)."""
+    terminal's name), and where it begins in the text (``start_pos``, from 0: lark's
+    tokens have it too; their lines and columns follow from it, and the driver
+    spares counting them as it reads: castor.language.parse.Builder counts them
+    where it makes a location)."""
 
     type: str
-    line: int
-    column: int
+    start_pos: int
 
     def __repr__(self):
         return f"Token({self.type!r}, {str.__repr__(self)})"
@@ -53,11 +55,14 @@ def _callback(method, expand_single: bool, include, append_none: int):
     splices = tuple(splice for _, splice, _ in include)
     if not expand_single and not any(nones for _, _, nones in include):
         tail = [None] * append_none
+        inlined = method is _inlined  # its value is the list it is given: not called
         if not any(splices):
             if len(indices) == 1:
                 only = indices[0]
                 if tail:
                     return lambda children: method([children[only]] + tail)
+                if inlined:
+                    return lambda children: [children[only]]
                 return lambda children: method([children[only]])
             picked = itemgetter(*indices)
             if tail:
@@ -68,6 +73,13 @@ def _callback(method, expand_single: bool, include, append_none: int):
             return lambda children: method([children[first], *children[rest]])
         if splices == (True, False) and not tail:  # a list, one more child appended
             first, then = indices
+            if inlined:
+                def extended(children):
+                    kept = children[first]  # the inlined rule's list, given up to this one
+                    kept.append(children[then])
+                    return kept
+
+                return extended
 
             def appended(children):
                 kept = children[first]  # the inlined rule's list, given up to this one
@@ -234,53 +246,51 @@ class Parser:
             self._root_compiled = scan, frozenset(ignored), frozenset(newlines)
         return self._root_compiled
 
-    def _chain(self, below: int, state: int, kind: str, end_state: int) -> int:
-        """The state a chain of ``?rule``s of one child ends in (``expr: term``,
-        ``term: unary``, ...: four of them after each number), reduced one after
-        the other from ``state`` above ``below`` with ``kind`` next: each changes
-        the top state only, so that where the chain ends depends on these three
-        alone, and ``parse`` keeps it (``_chains``)."""
+    def _chain(self, below: int, state: int, kind: str, end_state: int) -> tuple:
+        """Where a run of rules of one child ends (``primary: NUMBER -> number``,
+        then ``expr: term``, ``term: unary``, ...: five of them after each number),
+        reduced one after the other from ``state`` above ``below`` with ``kind``
+        next, and the callbacks they call in turn on the value on top (none for a
+        ``?rule`` that passes its child up): each changes the top of the stack
+        only, so that the run depends on these three alone, and ``parse`` keeps
+        it (``_chains``)."""
         states, rules = self._states, self._rules
+        callbacks = []
         while True:
             action = states[state].get(kind)
             if action is None or action >= 0:
-                return state
-            origin, how, _, _ = rules[~action]
-            if how != _KEEP:
-                return state
+                break
+            origin, how, _, callback = rules[~action]
+            if how == _ONE:
+                callbacks.append(callback)
+            elif how != _KEEP:
+                break
             state = states[below][origin]
             if kind == "$END" and state == end_state:
-                return state
+                break
+        return state, tuple(callbacks)
 
     def parse(self, text: str, start: str):
         """The value the transformer gives the start rule; raises Failed. One loop
         reads each token (by the lexer of the state the parser is in), reduces as
         far as it allows and shifts it; only the tokens a callback is handed are
         made (``Token``). Its time is linear in the text's length."""
-        scan, ignored, newlines = self._root_lexer()
+        scan, ignored, _ = self._root_lexer()
         states, rules, kept = self._states, self._rules, self._kept
         chains = self._chains.setdefault(start, {})
         state, end_state = self._starts[start], self._ends[start]
         state_stack, value_stack = [state], []
         push_state, push_value = state_stack.append, value_stack.append
         next_found = scan(text).__next__
-        line, line_start, relexed = 1, 0, -1  # the next token's line, its start; _read's last
+        relexed = -1  # where _read last read a token
         while True:
             found = next_found()
             kind = found.lastgroup
             if kind in ignored:
-                if kind in newlines:
-                    value = found.group()
-                    count = value.count("\n")
-                    if count:
-                        line += count
-                        line_start = found.start() + value.rindex("\n") + 1
                 continue
-            row = states[state]
-            if kind not in row:
-                if kind == _END:
-                    kind = "$END"
-                else:  # not a token this state accepts: the state's own lexer reads it
+            action = states[state].get(kind)
+            if action is None:
+                if kind != _END:  # not a token this state accepts: the state's own lexer reads it
                     pos = found.start()
                     if pos == relexed:
                         raise Failed(kind)
@@ -288,36 +298,27 @@ class Parser:
                     found = self._read(text, pos, state)
                     next_found = chain((found,), scan(text, found.end())).__next__
                     continue
-            token = None
-            if kind in kept:
-                token = Token(found.group())
-                token.type, token.line, token.column = kind, line, found.start() - line_start + 1
-            if kind in newlines:
-                value = found.group()
-                count = value.count("\n")
-                if count:
-                    line += count
-                    line_start = found.start() + value.rindex("\n") + 1
-            while True:  # reduce as far as the token allows, then shift it
-                action = row.get(kind)
+                kind = "$END"
+                action = states[state].get(kind)
                 if action is None:
                     raise Failed(kind)
-                if action >= 0:  # (never on "$END": the tables have no such shift)
-                    push_state(action)
-                    push_value(token)
-                    state = action
-                    break
+            if kind in kept:
+                token = Token(found.group())
+                token.type, token.start_pos = kind, found.start()
+            else:
+                token = None
+            while action < 0:  # reduce as far as the token allows, then shift it
                 origin, how, size, callback = rules[~action]
-                if how == 0:  # _KEEP: one child passed up, only the state changes
-                    below = state_stack[-2]  # the same all along a chain of them
+                if how <= 1:  # _KEEP, _ONE: a run of rules of one child, the top replaced
+                    below = state_stack[-2]  # the same all along the run
                     key = (below, state, kind)
-                    state = chains.get(key)
-                    if state is None:
-                        state = chains[key] = self._chain(below, key[1], kind, end_state)
+                    run = chains.get(key)
+                    if run is None:
+                        run = chains[key] = self._chain(below, state, kind, end_state)
+                    state, callbacks = run
                     state_stack[-1] = state
-                elif how == 1:  # _ONE: the value replaced, the state too
-                    value_stack[-1] = callback(value_stack[-1:])
-                    state = state_stack[-1] = states[state_stack[-2]][origin]
+                    for callback in callbacks:
+                        value_stack[-1] = callback(value_stack[-1:])
                 else:
                     if how == 2:  # _PICK
                         value = value_stack[callback]
@@ -331,4 +332,10 @@ class Parser:
                     push_state(state)
                 if state == end_state and kind == "$END":
                     return value_stack[-1]
-                row = states[state]
+                action = states[state].get(kind)
+                if action is None:
+                    raise Failed(kind)
+            # (never a shift of "$END": the tables have none)
+            push_state(action)
+            push_value(token)
+            state = action

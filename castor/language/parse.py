@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import threading
+from bisect import bisect_right
 from functools import lru_cache
 from typing import Iterator
 
@@ -93,17 +94,37 @@ class Builder:
     @chunk.setter
     def chunk(self, chunk: Chunk | None) -> None:
         self._chunk = chunk
-        # where its first line is: (file, line, columns before it), for _at
-        self._first = (*chunk.origins[0], chunk.first_column) \
-            if chunk is not None and chunk.origins else None
+        # where its first line is: (file, line, columns before it, plus one), and
+        # where that line ends in the text, for _at
+        if chunk is not None and chunk.origins:
+            file, line = chunk.origins[0]
+            self._first = (file, line, chunk.first_column + 1)
+            end = chunk.text.find("\n")
+            self._first_end = len(chunk.text) if end < 0 else end
+        else:
+            self._first, self._first_end = None, -1
+        self._line_starts = None  # where each line begins in the text, once asked
 
     def _at(self, token: Token):
-        """Where a token is in the original file: Chunk.location, with the first
-        line's case inline (a long statement asks it of every number and name)."""
-        if token.line == 1 and self._first is not None:
+        """Where a token is in the original file, from where it begins in the
+        statement's text (``start_pos``, as both castor's driver and lark give
+        it): Chunk.location, the first line's case inline (a long statement asks
+        it of every number and name)."""
+        pos = token.start_pos
+        if pos < self._first_end:
             file, line, before = self._first
-            return _new_tuple(Location, (file, line, token.column + before))
-        return self._chunk.location(token.line, token.column)
+            return _new_tuple(Location, (file, line, pos + before))
+        return self._located(pos)
+
+    def _located(self, pos: int):
+        """Chunk.location of the character at ``pos`` in the statement's text."""
+        starts = self._line_starts
+        if starts is None:
+            import re
+
+            starts = self._line_starts = [0] + [m.end() for m in re.finditer("\n", self._chunk.text)]
+        line = bisect_right(starts, pos)
+        return self._chunk.location(line, pos - starts[line - 1] + 1)
 
     def _depth(self, depth: int, location) -> int:
         if depth > MAX_DEPTH:
@@ -259,11 +280,12 @@ class Builder:
     def number(self, children):
         token = children[0]
         value = float(token)
-        if token.line == 1 and self._first is not None:  # _at, inline: the most made node
+        pos = token.start_pos
+        if pos < self._first_end:  # _at, inline: the most made node
             file, line, before = self._first
-            location = _new_tuple(Location, (file, line, token.column + before))
+            location = _new_tuple(Location, (file, line, pos + before))
         else:
-            location = self._chunk.location(token.line, token.column)
+            location = self._located(pos)
         if value == math.inf:
             self.faults.append(EvaluationError(f"number '{token}' is too large", location))
             value = 0.0

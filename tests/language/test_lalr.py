@@ -1,5 +1,5 @@
 """castor's LALR driver (castor.language.lalr) reads what lark reads, as lark reads
-it: the same transformer calls with the same children, tokens, lines and columns,
+it: the same transformer calls with the same children, tokens and places,
 and it refuses what lark refuses (issue 18, item 18: reading a scene imports no
 lark). Compared on the examples and on thousands of random edits of them."""
 
@@ -22,7 +22,7 @@ EXAMPLES = sorted((ROOT / "examples").rglob("*.cas"))
 
 class Recorder:
     """A transformer that writes down every call: the rule and its children, tokens
-    with their type, line and column."""
+    with their type and where they begin in the text."""
 
     def __getattr__(self, name):
         if not name.islower() or name.startswith("_"):
@@ -35,8 +35,8 @@ class Recorder:
 
 
 def _plain(child):
-    if isinstance(child, str):
-        return (child.type, str(child), child.line, child.column)
+    if isinstance(child, str):  # (lines and columns follow from start_pos: Builder counts them)
+        return (child.type, str(child), child.start_pos)
     return child
 
 

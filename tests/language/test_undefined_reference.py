@@ -36,7 +36,7 @@ def test_the_stand_in_is_no_primitive():
     builder.chunk = Chunk("porte", (("s.cas", 1), ("s.cas", 1)), 0)
 
     class Token(str):
-        line, column = 1, 1
+        line, column, start_pos = 1, 1, 0  # (the builder reads start_pos)
 
     node = builder.reference([Token("porte")])
     assert isinstance(node, UndefinedReference) and not isinstance(node, PrimitiveNode)
