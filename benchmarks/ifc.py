@@ -17,6 +17,10 @@ openings, quantities), the IFC entities made with ifcopenshell's entity API,
 the STEP text written by ifcopenshell; and the import of ifcopenshell itself.
 
 Targets: house and pavilion <= 1 s, bus shelter <= 10 s; 1,024 houses measured.
+
+CASTOR_IFC_SCENES=house,pavilion runs some of the scenes only (by the start
+of their label); CASTOR_IFC_SIDE=N makes the blocks N x N houses instead of
+32 x 32 (the labels say how many).
 """
 
 import os
@@ -32,13 +36,17 @@ from houses import CASTOR
 
 RUNS = runs_from_env(3)
 ROOT = Path(__file__).resolve().parent.parent
+SIDE = int(os.environ.get("CASTOR_IFC_SIDE", "32"))  # houses along each side of a block
+HOUSES = f"{SIDE * SIDE:,} houses"
 
 BLOCK = CASTOR.replace("> $U[I = 0, 7]($U[J = 0, 7](@t(15 * I, 15 * J, 0) maison));",
-                       "> $U[I = 0, 31]($U[J = 0, 31](@t(15 * I, 15 * J, 0) maison));")
+                       f"> $U[I = 0, {SIDE - 1}]($U[J = 0, {SIDE - 1}](@t(15 * I, 15 * J, 0) "
+                       f"maison));")
 SITE = CASTOR.replace("> $U[I = 0, 7]($U[J = 0, 7](@t(15 * I, 15 * J, 0) maison));", "")
 SITE += "".join(f"maison_{i:02d}_{j:02d} = @t({15 * i}, {15 * j}, 0) maison;\n"
-                for i in range(32) for j in range(32))
-SITE += "> " + ", ".join(f"maison_{i:02d}_{j:02d}" for i in range(32) for j in range(32)) + ";\n"
+                for i in range(SIDE) for j in range(SIDE))
+SITE += "> " + ", ".join(f"maison_{i:02d}_{j:02d}" for i in range(SIDE)
+                         for j in range(SIDE)) + ";\n"
 
 # the same house, saying what it is: each of its openings an IfcOpeningElement
 # filled by a window or the door
@@ -56,9 +64,9 @@ colonne = @t(1 + C * 2.6, -1.5, 0) @h(0.2, 0.2, H) !pr(0.8, 0.8, 0.8, 16);  // [
 maison = $U($D(murs, ouvertures), toit, $U[C = 0, 3](colonne));
 """
 CLASSED_SITE = CLASSED + "".join(f"maison_{i:02d}_{j:02d} = @t({15 * i}, {15 * j}, 0) maison;\n"
-                                 for i in range(32) for j in range(32))
-CLASSED_SITE += "> " + ", ".join(f"maison_{i:02d}_{j:02d}" for i in range(32)
-                                 for j in range(32)) + ";\n"
+                                 for i in range(SIDE) for j in range(SIDE))
+CLASSED_SITE += "> " + ", ".join(f"maison_{i:02d}_{j:02d}" for i in range(SIDE)
+                                 for j in range(SIDE)) + ";\n"
 
 
 def _whole(args: list[str], cwd: str) -> tuple[float, float, float]:
@@ -116,10 +124,11 @@ def main() -> None:
     scenes = [("house", ROOT / "examples" / "house.cas", None, (), "1"),
               ("pavilion (two storeys)", ROOT / "examples" / "pavilion.cas", None, (), "1"),
               ("bus shelter", ROOT / "examples" / "bus_shelter.cas", None, ("ONE_FRAME",), "10"),
-              ("1,024 houses, one element", Path(work) / "block.cas", BLOCK, (), "-"),
-              ("1,024 houses, 1,024 elements", Path(work) / "site.cas", SITE, (), "-"),
-              ("1,024 houses with openings", Path(work) / "classed.cas", CLASSED_SITE, (), "-")]
+              (f"{HOUSES}, one element", Path(work) / "block.cas", BLOCK, (), "-"),
+              (f"{HOUSES}, {SIDE * SIDE:,} elements", Path(work) / "site.cas", SITE, (), "-"),
+              (f"{HOUSES} with openings", Path(work) / "classed.cas", CLASSED_SITE, (), "-")]
     chosen = os.environ.get("CASTOR_IFC_SCENES")  # e.g. "house,pavilion": some of them
+    # ("1" chooses the blocks of houses whatever their number: "1,024 houses", "16 houses")
     if chosen:
         scenes = [s for s in scenes if any(s[0].startswith(c) for c in chosen.split(","))]
     rows = []

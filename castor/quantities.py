@@ -13,6 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from castor.bim.solids import EMPTY, Copy, chain, footprint, section_area, shells
 from castor.mesh.frame import Frame, FrameObject
 from castor.mesh.arrays import components
 
@@ -179,110 +180,6 @@ class Summary:
 LEVEL_SLACK = 0.01  # levels this close are one; an element this far below a level is on it
 
 
-def section_area(obj: FrameObject, z: float) -> float:
-    """The area of the object's section by the plane at height ``z``: each
-    polygon crossing it gives a segment, oriented by its outward normal so that
-    the shoelace sum of the segments is the area inside (no loop over them)."""
-    from castor.mesh.arrays import fan_triangles
-
-    if obj.polygon_count == 0:
-        return 0.0
-    tris, _ = fan_triangles(obj.offsets, obj.indices)
-    corners = obj.vertices[tris]  # (T, 3, 3)
-    above = corners[:, :, 2] > z
-    crossing = above.any(axis=1) & ~above.all(axis=1)
-    corners = corners[crossing]
-    above = above[crossing]
-    if len(corners) == 0:
-        return 0.0
-    points = []
-    for i, j in ((0, 1), (1, 2), (2, 0)):
-        a, b = corners[:, i], corners[:, j]
-        cut = above[:, i] != above[:, j]
-        t = np.where(cut, (z - a[:, 2]) / np.where(cut, b[:, 2] - a[:, 2], 1.0), 0.0)
-        points.append((a + (b - a) * t[:, None], cut))
-    # two of the three sides are cut: the segment's ends
-    ends = np.stack([p for p, _ in points], axis=1)  # (T, 3, 3)
-    cuts = np.stack([c for _, c in points], axis=1)  # (T, 3)
-    order = np.argsort(~cuts, axis=1, kind="stable")[:, :2]
-    p = np.take_along_axis(ends, order[:, 0, None, None].repeat(3, axis=2), axis=1)[:, 0]
-    q = np.take_along_axis(ends, order[:, 1, None, None].repeat(3, axis=2), axis=1)[:, 0]
-    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    # the inside is on the left going along z x normal
-    along = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
-    flip = ((q - p)[:, :2] * along).sum(axis=1) < 0
-    p, q = np.where(flip[:, None], q, p), np.where(flip[:, None], p, q)
-    return float((p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]).sum() / 2)
-
-
-def shells(obj: FrameObject) -> list[FrameObject]:
-    """The object's separate closed surfaces, each an object of its own."""
-    if obj.polygon_count == 0:
-        return []
-    following = np.arange(1, len(obj.indices) + 1)
-    following[obj.offsets[1:] - 1] = obj.offsets[:-1]
-    label = components(len(obj.vertices), obj.indices, obj.indices[following])
-    of_polygon = label[obj.indices[obj.offsets[:-1]]]
-    pieces = []
-    for value in np.unique(of_polygon):
-        chosen = np.flatnonzero(of_polygon == value)
-        lengths = np.diff(obj.offsets)[chosen]
-        starts = obj.offsets[:-1][chosen]
-        take = np.concatenate([np.arange(s, s + n) for s, n in zip(starts, lengths)])
-        used, indices = np.unique(obj.indices[take], return_inverse=True)
-        offsets = np.concatenate([[0], np.cumsum(lengths)])
-        pieces.append(FrameObject(obj.vertices[used], offsets, indices.reshape(-1),
-                                  obj.origin_of[chosen], obj.origins, obj.name))
-    return pieces
-
-
-def footprint(vertices: np.ndarray) -> tuple[float, float, tuple[float, float]]:
-    """The smallest rectangle around the vertices seen from above: its long
-    side, its short side and the long side's direction. A block cut in a wall
-    at any angle has the wall's length along the long side and its thickness
-    across it."""
-    points = np.unique(np.round(vertices[:, :2], 9), axis=0)
-    if len(points) < 3:
-        span = points.max(axis=0) - points.min(axis=0) if len(points) else np.zeros(2)
-        return float(max(span)), float(min(span)), (1.0, 0.0)
-    hull = _hull(points)
-    edges = np.roll(hull, -1, axis=0) - hull
-    lengths = np.linalg.norm(edges, axis=1)
-    keep = lengths > 1e-12
-    along = edges[keep] / lengths[keep, None]
-    across = np.stack([-along[:, 1], along[:, 0]], axis=1)
-    u = hull @ along.T  # (points, directions)
-    v = hull @ across.T
-    a, b = u.max(axis=0) - u.min(axis=0), v.max(axis=0) - v.min(axis=0)
-    best = int(np.argmin(a * b))
-    # prefer the axes when they are as good (a box in a wall along x or y)
-    spans = hull.max(axis=0) - hull.min(axis=0)
-    if spans.prod() <= a[best] * b[best] * (1 + 1e-9):
-        return (float(spans.max()), float(spans.min()),
-                (1.0, 0.0) if spans[0] >= spans[1] else (0.0, 1.0))
-    if a[best] >= b[best]:
-        return float(a[best]), float(b[best]), tuple(map(float, along[best]))
-    return float(b[best]), float(a[best]), tuple(map(float, across[best]))
-
-
-def _hull(points: np.ndarray) -> np.ndarray:
-    """The convex hull of a few points in the plane, counter-clockwise
-    (Andrew's monotone chain; ``points`` sorted and distinct)."""
-    def half(seq):
-        chain: list = []
-        for p in seq:
-            while len(chain) >= 2 and _turn(chain[-2], chain[-1], p) <= 0:
-                chain.pop()
-            chain.append(p)
-        return chain[:-1]
-
-    return np.array(half(points) + half(points[::-1]))
-
-
-def _turn(a, b, c) -> float:
-    return float((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
-
-
 class Placed(NamedTuple):
     """An element measured and put on its storey."""
 
@@ -336,28 +233,100 @@ class Takeoff:
         self.polygons = polygons
         self.elements, self.openings = find(frame_tree)
         self._solids: dict = {}
+        self._copies: dict = {}  # key -> Copy: a solid that is a unit moved
+        self._units: dict = {}  # shared key -> the solid of a subtree copies move
+        self._unit_figures: dict = {}
+        self._unit_pieces: dict = {}
         self._storeys: list[tuple[str, float]] | None = None
         self._placed: list[Placed] | None = None
 
     def _made(self, key, node) -> FrameObject:
-        if key not in self._solids:
-            from castor.csg import tree
+        self._make_all([(key, node)])
+        return self._get(key)
 
+    def _make_all(self, wanted: list) -> None:
+        """The solids of ``wanted`` ((key, CSG tree or None) pairs), those not
+        made yet, as the objects of one frame: the facetizer's patterns serve
+        every copy of a part, and a frame's fixed costs are paid once. A tree
+        that is a shared subtree moved (the chain of uses down to it), whose
+        subtree other wanted trees move too, is made once at the identity and
+        each copy moved (castor.bim.solids.Copy): 1,024 houses' walls are one
+        wall's solid and 1,024 placements."""
+        from castor.csg import tree
+
+        alone: list = []  # (key, tree)
+        copies: dict[str, list] = {}  # the shared key of a unit -> its copies
+        for key, node in wanted:
+            if key in self._solids or key in self._copies:
+                continue
             if node is None:
-                self._solids[key] = FrameObject(np.zeros((0, 3)), np.zeros(1, np.int64),
-                                                np.zeros(0, np.int64), np.zeros(0, np.int64), [])
+                self._solids[key] = EMPTY
+                continue
+            uses = chain(node)
+            if uses:
+                copies.setdefault(uses[-1].shared.key, []).append((key, node, uses))
             else:
-                whole = self.frame_tree
-                frame_tree = tree.FrameTree(whole.number, whole.where, whole.location,
-                                            (tree.Object(str(key), node),))
-                # triangles: the figures are the same, and no polygons are written
-                merging = self.facetizer.merge_polygons
-                self.facetizer.merge_polygons = self.polygons
-                try:
-                    self._solids[key] = self.facetizer.frame(frame_tree).objects[0]
-                finally:
-                    self.facetizer.merge_polygons = merging
-        return self._solids[key]
+                alone.append((key, node))
+        units = []
+        for unit_key, found in copies.items():
+            if unit_key not in self._units:
+                if len(found) == 1:  # made as it stands: the bytes of a lone element kept
+                    alone.append(found[0][:2])
+                    continue
+                inner = found[0][2][-1]
+                alone.append((("unit", unit_key), tree.Use(tree.IDENTITY, "", inner.shared)))
+            units.append((unit_key, found))
+        self._frame(alone)
+        for unit_key, found in units:
+            if unit_key not in self._units:
+                self._units[unit_key] = self._solids.pop(("unit", unit_key))
+            for key, _, uses in found:
+                self._copies[key] = Copy(unit_key, uses)
+
+    def _frame(self, wanted: list) -> None:
+        """The solids of ``wanted`` ((key, tree) pairs) as the objects of one
+        frame, each checked against the polygon limit as before (the limit
+        times the objects, for the frame)."""
+        from castor.csg import tree
+
+        if not wanted:
+            return
+        whole = self.frame_tree
+        frame_tree = tree.FrameTree(whole.number, whole.where, whole.location,
+                                    tuple(tree.Object(str(key), node) for key, node in wanted))
+        # triangles: the figures are the same, and no polygons are written
+        facetizer = self.facetizer
+        merging, limit = facetizer.merge_polygons, facetizer.max_polygons
+        facetizer.merge_polygons = self.polygons
+        facetizer.max_polygons = limit * len(wanted)
+        try:
+            made = facetizer.frame(frame_tree).objects
+        finally:
+            facetizer.merge_polygons, facetizer.max_polygons = merging, limit
+        self._solids.update(zip((key for key, _ in wanted), made))
+
+    def _get(self, key) -> FrameObject:
+        """A solid made by _make_all: its own, or its unit's moved."""
+        found = self._solids.get(key)
+        if found is None:
+            copy = self._copies[key]
+            found = self._solids[key] = copy.moved(self._units[copy.unit])
+        return found
+
+    def _figures(self, key, name: str) -> Figures:
+        """The figures of a solid made by _make_all: a rigid copy's are its
+        unit's (volume, area, colours, shells are the same), with its own box."""
+        copy = self._copies.get(key)
+        if copy is None or not copy.rigid:
+            return object_figures(self._get(key), name)
+        if copy.unit not in self._unit_figures:
+            self._unit_figures[copy.unit] = object_figures(self._units[copy.unit], name)
+        unit = self._unit_figures[copy.unit]
+        if unit.bbox is None:
+            return unit._replace(name=name)
+        solid = self._get(key)
+        low, high = solid.vertices.min(axis=0).tolist(), solid.vertices.max(axis=0).tolist()
+        return unit._replace(name=name, bbox=(tuple(low), tuple(high)))
 
     def known(self, element, solid: FrameObject) -> None:
         """Take ``solid`` as the element's own (made already: a whole '>' object's)."""
@@ -367,11 +336,22 @@ class Takeoff:
         """The element's own solid, as polygons."""
         from castor.csg.elements import element_tree
 
-        return self._made(("element", element.number),
-                          element_tree(self.frame_tree, element, self.boxes))
+        key = ("element", element.number)
+        if key in self._solids or key in self._copies:
+            return self._get(key)
+        return self._made(key, element_tree(self.frame_tree, element, self.boxes))
+
+    def _all_elements(self) -> None:
+        """Every element's solid, made in one frame."""
+        from castor.csg.elements import element_tree
+
+        self._make_all([(("element", e.number), element_tree(self.frame_tree, e, self.boxes))
+                        for e in self.elements if ("element", e.number) not in self._solids
+                        and ("element", e.number) not in self._copies])
 
     def figures(self, element) -> Figures:
-        return object_figures(self.solid(element), element.name)
+        self.solid(element)
+        return self._figures(("element", element.number), element.name)
 
     def space_solid(self, index: int) -> FrameObject:
         from castor.csg import tree
@@ -391,6 +371,7 @@ class Takeoff:
         found = [(m.name, float(values[m.parameter])) for m in declared if m.parameter in values]
         if found:
             return sorted(found, key=lambda s: s[1])
+        self._all_elements()
         tops = sorted(f.bbox[1][2] for f in (self.figures(e) for e in self.elements
                                              if _is_floor(e)) if f.bbox is not None)
         levels: list[float] = []
@@ -415,6 +396,7 @@ class Takeoff:
         """Every element with a solid, measured, on its storey (by its bottom; a
         floor slab by its top)."""
         if self._placed is None:
+            self._all_elements()
             self._placed = []
             for element in self.elements:
                 f = self.figures(element)
@@ -434,16 +416,36 @@ class Takeoff:
         of_object: dict[int, list[Placed]] = {}
         for p in self.placed():
             of_object.setdefault(p.element.object, []).append(p)
+        self._make_all([(("opening", o.number), opening_tree(self.frame_tree, o))
+                        for o in self.openings])
         for opening in self.openings:
-            whole = self._made(("opening", opening.number), opening_tree(self.frame_tree, opening))
-            for k, piece in enumerate(shells(whole)):
-                f = object_figures(piece, opening.name)
+            for k, (piece, f, (width, thickness, direction)) in enumerate(
+                    self._pieces(("opening", opening.number), opening.name)):
                 (_, _, z0), (_, _, z1) = f.bbox
-                width, thickness, direction = footprint(piece.vertices)
                 out.append(Block(opening, k, piece, f,
                                  _host(of_object.get(opening.object, []), f.bbox),
                                  self.storey_at(z0), width, thickness, z1 - z0, z0, z1,
                                  direction))
+        return out
+
+    def _pieces(self, key, name: str) -> list:
+        """The separate blocks of an opening's solid, each with its figures and
+        footprint: a rigid copy's are its unit's moved (the footprint measured
+        again where the copy is turned)."""
+        copy = self._copies.get(key)
+        if copy is None or not copy.rigid:
+            return [(piece, object_figures(piece, name), footprint(piece.vertices))
+                    for piece in shells(self._get(key))]
+        if copy.unit not in self._unit_pieces:
+            self._unit_pieces[copy.unit] = [
+                (piece, object_figures(piece, name), footprint(piece.vertices))
+                for piece in shells(self._units[copy.unit])]
+        out = []
+        for piece, f, plan in self._unit_pieces[copy.unit]:
+            moved = copy.moved(piece)
+            low, high = moved.vertices.min(axis=0).tolist(), moved.vertices.max(axis=0).tolist()
+            out.append((moved, f._replace(name=name, bbox=(tuple(low), tuple(high))),
+                        plan if copy.translation else footprint(moved.vertices)))
         return out
 
     def rooms(self) -> list[Room]:

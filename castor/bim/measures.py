@@ -1,6 +1,7 @@
 """Base quantities as buildingSMART's quantity sets name them (Qto_WallBaseQuantities
 …), each only where castor's solids give it exactly; the volume and area of the
-other elements in ``Castor_Quantities``.
+other elements (and of roofs) in ``Castor_Quantities``; a stair's risers and
+treads, as its common property set has them, where exact.
 
 A quantity that depends on what a wall or slab *is* (its length, its
 thickness) is written only when the solid is that shape: a wall's Length and
@@ -44,6 +45,8 @@ BASE_SETS = {
     "IfcMember": "Qto_MemberBaseQuantities",
     "IfcPlate": "Qto_PlateBaseQuantities",
     "IfcFooting": "Qto_FootingBaseQuantities",
+    "IfcRoof": "Qto_RoofBaseQuantities",
+    "IfcStairFlight": "Qto_StairFlightBaseQuantities",
 }
 
 EXACT = 1e-9  # relative: a solid is "a box" when its volume says so to this
@@ -79,7 +82,7 @@ def _volumes(volume: float, voids: float) -> tuple[Quantity, ...]:
 def wall(solid: FrameObject, figures, voids: float) -> tuple[Quantity, ...]:
     """Height, volumes; Length, Width and NetSideArea when the wall is straight
     and of one thickness (``voids``: the volume its openings took)."""
-    from castor.quantities import footprint
+    from castor.bim.solids import footprint
 
     (_, _, bottom), (_, _, top) = figures.bbox
     height = top - bottom
@@ -102,6 +105,91 @@ def slab(solid: FrameObject, figures, voids: float) -> tuple[Quantity, ...]:
     if np.all((np.abs(z - bottom) <= 1e-9) | (np.abs(z - top) <= 1e-9)):
         found.insert(0, Quantity("Width", "length", top - bottom))
     return tuple(found)
+
+
+def roof(solid: FrameObject, voids: float) -> tuple[Quantity, ...]:
+    """NetArea: its outer surface, the faces that look up (a pitched roof's
+    slopes, a flat roof's top); GrossArea (the same) and ProjectedArea (their
+    plan) when no opening cut it, the area an opening took from a slope not
+    being known exactly."""
+    if solid.polygon_count == 0:
+        return ()
+    areas, normals = polygon_areas(solid)
+    up = normals[:, 2] > 1e-9
+    net = float(areas[up].sum())
+    if voids > 0:
+        return (Quantity("NetArea", "area", net),)
+    return (Quantity("GrossArea", "area", net), Quantity("NetArea", "area", net),
+            Quantity("ProjectedArea", "area", float((areas * normals[:, 2])[up].sum())))
+
+
+class Property(NamedTuple):
+    """A property of an element's common set besides its Reference."""
+
+    name: str  # as Pset_StairCommon names it: NumberOfRiser
+    type: str  # its IFC measure: IfcCountMeasure, IfcPositiveLengthMeasure
+    value: float | int
+
+
+def treads(solid: FrameObject) -> list[tuple[float, np.ndarray]]:
+    """A stair's treads: (height, plan points of the faces that look up there),
+    from the lowest, above its bottom."""
+    from castor.mesh.arrays import fan_triangles
+
+    if solid.polygon_count == 0:
+        return []
+    tris, _ = fan_triangles(solid.offsets, solid.indices)
+    corners = solid.vertices[tris]
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    length = np.linalg.norm(normal, axis=1)
+    up = (length > 1e-12) & (normal[:, 2] > (1 - 1e-9) * np.maximum(length, 1e-300))
+    heights = np.round(corners[up, 0, 2], 9)
+    bottom = float(solid.vertices[:, 2].min())
+    return [(float(h), corners[up][heights == h][:, :, :2].reshape(-1, 2))
+            for h in np.unique(heights) if h > bottom + 1e-9]
+
+
+def _equal(values: np.ndarray, scale: float) -> float | None:
+    """The value of ``values`` when they are all one (to 1e-9 of ``scale``)."""
+    if len(values) == 0 or np.ptp(values) > 1e-9 * max(1.0, scale):
+        return None
+    return float(values.mean())
+
+
+def stair(solid: FrameObject) -> tuple[Property, ...]:
+    """A stair's or flight's risers and treads, as its common property set has
+    them, each where the solid gives it exactly: one tread per level of faces
+    that look up above its bottom (the top step's included), one riser below
+    each; RiserHeight when every rise is the same; TreadLength (nosing to
+    nosing, along the line from the lowest tread to the highest) when every
+    going is the same."""
+    found = treads(solid)
+    if not found:
+        return ()
+    bottom = float(solid.vertices[:, 2].min())
+    levels = np.array([bottom] + [h for h, _ in found])
+    out = [Property("NumberOfRiser", "IfcCountMeasure", len(found)),
+           Property("NumberOfTreads", "IfcCountMeasure", len(found))]
+    rise = _equal(np.diff(levels), float(levels[-1]))
+    if rise is not None:
+        out.append(Property("RiserHeight", "IfcPositiveLengthMeasure", rise))
+    if len(found) >= 2:
+        middle = [(pts.min(axis=0) + pts.max(axis=0)) / 2 for _, pts in found]
+        up = middle[-1] - middle[0]
+        if np.linalg.norm(up) > 1e-9:
+            up = up / np.linalg.norm(up)
+            nosings = np.array([float((pts @ up).min()) for _, pts in found])
+            going = _equal(np.diff(nosings), float(np.abs(nosings).max()))
+            if going is not None and going > 0:
+                out.append(Property("TreadLength", "IfcPositiveLengthMeasure", going))
+    return tuple(out)
+
+
+def common_properties(ifc_class: str, solid: FrameObject) -> tuple[Property, ...]:
+    """What an element's common property set holds besides its Reference."""
+    if ifc_class in ("IfcStair", "IfcStairFlight"):
+        return stair(solid)
+    return ()
 
 
 def filler(width: float, height: float) -> tuple[Quantity, ...]:
@@ -131,9 +219,12 @@ def element_sets(ifc_class: str, solid: FrameObject, figures, voids: float = 0.0
         quantities = wall(solid, figures, voids)
     elif ifc_class == "IfcSlab":
         quantities = slab(solid, figures, voids)
+    elif ifc_class == "IfcRoof":
+        quantities = roof(solid, voids)
+        return ((QuantitySet(name, quantities),) if quantities else ()) + (castor(figures),)
     elif ifc_class in ("IfcDoor", "IfcWindow"):
         if size is None:  # not in an opening: its own box
-            from castor.quantities import footprint
+            from castor.bim.solids import footprint
 
             (_, _, bottom), (_, _, top) = figures.bbox
             size = (footprint(solid.vertices)[0], top - bottom)

@@ -15,19 +15,8 @@ from __future__ import annotations
 from typing import Callable, NamedTuple
 
 from castor.bim import measures
-from castor.language.classes import PROXY
+from castor.language.classes import OUTSIDE_REFERENCE_VIEW, PROXY
 from castor.mesh.frame import FrameObject
-
-# classes IFC4 has that buildingSMART's Reference View leaves out (they imply
-# material layers or parametric shapes), and the class it has instead
-OUTSIDE_REFERENCE_VIEW = {
-    "IfcBeamStandardCase": "IfcBeam", "IfcColumnStandardCase": "IfcColumn",
-    "IfcDoorStandardCase": "IfcDoor", "IfcMemberStandardCase": "IfcMember",
-    "IfcPlateStandardCase": "IfcPlate", "IfcSlabElementedCase": "IfcSlab",
-    "IfcSlabStandardCase": "IfcSlab", "IfcWallElementedCase": "IfcWall",
-    "IfcWallStandardCase": "IfcWall", "IfcWindowStandardCase": "IfcWindow",
-}
-
 
 class Storey(NamedTuple):
     name: str
@@ -48,6 +37,7 @@ class Part(NamedTuple):
     quantities: tuple  # measures.QuantitySet, …
     settings: tuple[tuple[str, str], ...] = ()  # hinge, swing
     size: tuple[float, float] | None = None  # a door's or window's overall width, height
+    properties: tuple = ()  # measures.Property, … of its common set (a stair's risers)
 
 
 class Void(NamedTuple):
@@ -63,6 +53,10 @@ class Void(NamedTuple):
 
 class Building(NamedTuple):
     title: str
+    # what the GlobalIds are made from besides each part's key: the title castor
+    # would give, whatever --title says (default_title), so that a model issued
+    # again under another title keeps its elements' identities
+    identity: str
     number: int  # the frame's
     where: str  # its '>' command's FILE:LINE
     parameters: tuple[tuple[str, float], ...]
@@ -99,7 +93,7 @@ def build(tree, frame, facetizer, title: str | None = None, classes: dict | None
     elements, placed = maker.elements()
     openings = maker.openings(elements, placed)
     spaces = maker.spaces()
-    return Building(title or default_title(frame), frame.number, frame.where, tree.parameters,
+    return Building(title or default_title(frame), default_title(frame), frame.number, frame.where, tree.parameters,
                     storeys, tuple(elements), tuple(openings), tuple(spaces))
 
 
@@ -225,7 +219,8 @@ class _Maker:
         for k, p in enumerate(placed):
             part = parts[k]
             parts[k] = part._replace(quantities=measures.element_sets(
-                part.ifc_class, part.solid, p.figures, taken[k]))
+                part.ifc_class, part.solid, p.figures, taken[k]),
+                properties=measures.common_properties(part.ifc_class, part.solid))
         return voids
 
     def hosts(self, block, placed: list) -> list:

@@ -293,6 +293,11 @@ def _less_parts(node, parts, location, boxes: Boxes):
     """``node``'s solid less the solids its classed parts take."""
     if not parts:
         return node
+    if type(node) is tree.Use and node.shared.child is not None and all(parts):
+        # moved as the node is: made once per shared subtree (1,024 copies of a
+        # house: the rest of each is one difference, not 1,024)
+        return _wrap(node, _less_parts(node.shared.child, tuple(p[1:] for p in parts),
+                                       location, boxes), "#part")
     taken = [_reach(node, p, lambda n: n, boxes) for p in parts]
     other = taken[0] if len(taken) == 1 else tree.Boolean("U", tuple(taken), location)
     return tree.Boolean("D", (node, other), location)

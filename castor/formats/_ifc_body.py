@@ -19,6 +19,7 @@ class Styles:
 
     def __init__(self, f, table, create):
         self.f, self.table, self.made, self.create = f, table, {}, create
+        self.bodies: dict = {}  # (id of indices, of offsets) -> polygons (_polygons)
 
     def __call__(self, m: int):
         if m not in self.made:
@@ -38,21 +39,48 @@ def face_set(f, solid, shift: float, material: np.ndarray | None = None, styles=
     create = styles.create if styles is not None else f.create_entity
     vertices = solid.vertices - np.array([0.0, 0.0, shift])
     coordinates = create("IfcCartesianPointList3D", vertices.tolist())
-    sizes = np.diff(solid.offsets)
-    ones = true_corner_first(solid.vertices, solid.offsets, solid.indices) + 1  # from 1
-    faces = _faces(f, ones, solid.offsets, sizes, np.arange(solid.polygon_count))
+    (rows, order), areas = _polygons(solid, styles)
+    make = face_maker(f)
+    faces = [None] * len(rows)
+    for place in order:
+        faces[place] = make(rows[place])
     item = create("IfcPolygonalFaceSet", coordinates, True, faces, None)
     if material is None:
         return item
-    from castor.bim.measures import polygon_areas
-
     used, index = np.unique(material, return_inverse=True)
-    areas = np.bincount(index, weights=polygon_areas(solid)[0], minlength=len(used))
+    areas = np.bincount(index, weights=areas(), minlength=len(used))
     colours = create("IfcColourRgbList", [list(map(float, styles.table[m].colour))
                                           for m in used.tolist()])
     create("IfcIndexedColourMap", item, None, colours, (index + 1).tolist())
     create("IfcStyledItem", item, [styles(int(used[int(np.argmax(areas))]))], None)
     return item
+
+
+def _polygons(solid, styles) -> tuple[list, object]:
+    """Each polygon's vertex numbers from 1 (true corner first), and a function
+    giving each polygon's area: the same as the last solid's when this one
+    is it translated, sharing its polygons (castor.quantities moves one
+    solid to each copy of a shared subtree: 1,024 houses' walls are measured
+    once; ``styles`` keeps them for the file)."""
+    from castor.bim.measures import polygon_areas
+    from castor.mesh.merge import _translated
+
+    known = getattr(styles, "bodies", {})
+    key = (id(solid.indices), id(solid.offsets))
+    last = known.get(key)
+    if last is not None and _translated(last[2], solid.vertices):
+        return last[3], last[4]
+    ones = true_corner_first(solid.vertices, solid.offsets, solid.indices) + 1  # from 1
+    rows = _rows(ones, solid.offsets)
+    found: list = []
+
+    def areas():
+        if not found:
+            found.append(polygon_areas(solid)[0])
+        return found[0]
+    if styles is not None:  # (the arrays kept: their ids stay theirs)
+        known[key] = (solid.indices, solid.offsets, solid.vertices, rows, areas)
+    return rows, areas
 
 
 def true_corner_first(vertices: np.ndarray, offsets: np.ndarray,
@@ -83,26 +111,34 @@ def true_corner_first(vertices: np.ndarray, offsets: np.ndarray,
     return indices[np.repeat(starts, sizes) + (local + shift) % np.repeat(sizes, sizes)]
 
 
-def _faces(f, ones: np.ndarray, offsets: np.ndarray, sizes: np.ndarray,
-           chosen: np.ndarray) -> list:
-    """An IfcIndexedPolygonalFace for each chosen polygon: the vertex tuples are cut
-    from one list, a size at a time, so that Python makes no slice per polygon."""
-    faces = [None] * len(chosen)
-    chosen_sizes = sizes[chosen]
-    make = face_maker(f)  # (looked up here: a test swaps it for create_entity)
-    for size in np.unique(chosen_sizes).tolist():
-        which = np.flatnonzero(chosen_sizes == size)
-        starts = offsets[chosen[which]]
-        rows = ones[starts[:, None] + np.arange(size)].tolist()
-        for place, row in zip(which.tolist(), rows):
-            faces[place] = make(row)
-    return faces
+def _rows(ones: np.ndarray, offsets: np.ndarray) -> tuple[list, list]:
+    """Each polygon's vertex numbers as a list, and the order the faces are made
+    in (by size, as the lists are cut): one array cut a size at a time, so
+    that Python makes no slice per polygon."""
+    sizes = np.diff(offsets)
+    rows, order = [None] * len(sizes), []
+    for size in np.unique(sizes).tolist():
+        which = np.flatnonzero(sizes == size)
+        starts = offsets[which]
+        places = which.tolist()
+        order.extend(places)
+        for place, row in zip(places, ones[starts[:, None] + np.arange(size)].tolist()):
+            rows[place] = row
+    return rows, order
 
 
 def face_maker(f):
     """A function from a polygon's vertex numbers to a new IfcIndexedPolygonalFace."""
-    make = entity_maker(f)
-    return lambda row: make("IfcIndexedPolygonalFace", row)
+    make = entity_maker(f)  # (looked up here: a test swaps it for create_entity)
+    quick = getattr(make, "create", None)
+    if quick is None:
+        return lambda row: make("IfcIndexedPolygonalFace", row)
+
+    def face(row):
+        entity = quick("IfcIndexedPolygonalFace", -1)
+        entity.set_attribute_value_py(0, row)
+        return entity
+    return face
 
 
 def entity_maker(f):
@@ -135,4 +171,5 @@ def entity_maker(f):
             if value is not None:
                 entity.set_attribute_value_py(index, value)
         return entity
+    make.create = create  # (face_maker's: one attribute, by its index)
     return make

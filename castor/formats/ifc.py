@@ -15,10 +15,13 @@ boolean for a reader to do). Each body is one closed face set
 properties each class's common set with its ``Reference``; the frame's
 parameters are ``Castor_Parameters`` on the project.
 
-Global ids are derived from the title and the names (UUID 5), not drawn at
-random, and the header's time stamp is fixed: the same scene gives the same
-file, and a model exported again keeps its elements' identities, so that a
-coordinator's comparison of two versions sees what changed.
+Global ids are derived (UUID 5) from the scene's identity (the title castor
+would give it: its first named '>' object, else its file's name; never
+--title) and each part's kind and name, numbered from a name's second use;
+not drawn at random, and the header's time stamp is fixed: the same scene
+gives the same file, and a model exported again — under another title, with
+other parameters, an element moved — keeps its elements' identities, so that
+a coordinator's comparison of two versions sees what changed.
 
 ifcopenshell (about 200 MB) is imported here only, when an IFC file is made:
 ``pip install '.[ifc]'`` in castor's directory (INSTALL).
@@ -33,49 +36,23 @@ from castor.formats import WriteInfo
 from castor.formats import _ifc_body as ifc_body
 from castor.formats._ifc_body import Styles, face_set, true_corner_first  # noqa: F401
 from castor.formats.kinds import BuildingModel
+from castor.language.classes import BY_NAME, CLASSES, OUTSIDE_REFERENCE_VIEW
 
 # from castor's directory ('castor[ifc]' would fetch PyPI's unrelated package named castor)
 INSTALL = "pip install '.[ifc]' in castor's directory, or pip install 'ifcopenshell>=0.8'"
 
-# the IFC4 classes an object may take: the concrete subtypes of IfcElement that
-# are physical things (no feature or virtual element) and need nothing but a
-# body (the 'StandardCase' and 'ElementedCase' classes require material layers
-# or parts; tests/formats/test_ifc.py checks this list against ifcopenshell's schema)
-ELEMENT_CLASSES = (
-    "IfcActuator", "IfcAirTerminal", "IfcAirTerminalBox", "IfcAirToAirHeatRecovery",
-    "IfcAlarm", "IfcAudioVisualAppliance", "IfcBeam", "IfcBoiler", "IfcBuildingElementPart",
-    "IfcBuildingElementProxy", "IfcBurner", "IfcCableCarrierFitting",
-    "IfcCableCarrierSegment", "IfcCableFitting", "IfcCableSegment", "IfcChiller",
-    "IfcChimney", "IfcCivilElement", "IfcCoil", "IfcColumn", "IfcCommunicationsAppliance",
-    "IfcCompressor", "IfcCondenser", "IfcController", "IfcCooledBeam", "IfcCoolingTower",
-    "IfcCovering", "IfcCurtainWall", "IfcDamper", "IfcDiscreteAccessory",
-    "IfcDistributionChamberElement", "IfcDistributionControlElement",
-    "IfcDistributionElement", "IfcDistributionFlowElement", "IfcDoor", "IfcDuctFitting",
-    "IfcDuctSegment", "IfcDuctSilencer", "IfcElectricAppliance",
-    "IfcElectricDistributionBoard", "IfcElectricFlowStorageDevice", "IfcElectricGenerator",
-    "IfcElectricMotor", "IfcElectricTimeControl", "IfcElementAssembly",
-    "IfcEnergyConversionDevice", "IfcEngine", "IfcEvaporativeCooler", "IfcEvaporator",
-    "IfcFan", "IfcFastener", "IfcFilter", "IfcFireSuppressionTerminal", "IfcFlowController",
-    "IfcFlowFitting", "IfcFlowInstrument", "IfcFlowMeter", "IfcFlowMovingDevice",
-    "IfcFlowSegment", "IfcFlowStorageDevice", "IfcFlowTerminal", "IfcFlowTreatmentDevice",
-    "IfcFooting", "IfcFurnishingElement", "IfcFurniture", "IfcGeographicElement",
-    "IfcHeatExchanger", "IfcHumidifier", "IfcInterceptor", "IfcJunctionBox", "IfcLamp",
-    "IfcLightFixture", "IfcMechanicalFastener", "IfcMedicalDevice", "IfcMember",
-    "IfcMotorConnection", "IfcOutlet", "IfcPile", "IfcPipeFitting", "IfcPipeSegment",
-    "IfcPlate", "IfcProtectiveDevice", "IfcProtectiveDeviceTrippingUnit", "IfcPump",
-    "IfcRailing", "IfcRamp", "IfcRampFlight", "IfcReinforcingBar", "IfcReinforcingMesh",
-    "IfcRoof", "IfcSanitaryTerminal", "IfcSensor", "IfcShadingDevice", "IfcSlab",
-    "IfcSolarDevice", "IfcSpaceHeater", "IfcStackTerminal", "IfcStair", "IfcStairFlight",
-    "IfcSwitchingDevice", "IfcSystemFurnitureElement", "IfcTank", "IfcTendon",
-    "IfcTendonAnchor", "IfcTransformer", "IfcTransportElement", "IfcTubeBundle",
-    "IfcUnitaryControlElement", "IfcUnitaryEquipment", "IfcValve", "IfcVibrationIsolator",
-    "IfcWall", "IfcWasteTerminal", "IfcWindow",
-)
+# the IFC4 classes an object may take: castor.language.classes' table, less
+# IfcSpace (a room is no element: tests/formats/test_ifc.py checks this list
+# against ifcopenshell's schema)
+ELEMENT_CLASSES = tuple(info.ifc for info in CLASSES if info.role != "space")
 # what a usage error lists: the classes of a building's parts
 COMMON_CLASSES = ("IfcWall", "IfcSlab", "IfcRoof", "IfcWindow", "IfcDoor", "IfcColumn",
                   "IfcBeam", "IfcStair", "IfcRailing", "IfcCovering", "IfcFurniture",
                   "IfcBuildingElementProxy")
-_BY_KEY = {name.lower(): name for name in ELEMENT_CLASSES}
+# every way of writing one: IfcWall, ifcwall, wall (as an annotation takes them),
+# and the classes the model writes as another (with a warning, as an annotation)
+_BY_KEY = {**{name: info.ifc for name, info in BY_NAME.items() if info.role != "space"},
+           **{name.lower(): name for name in OUTSIDE_REFERENCE_VIEW}}
 
 # the header's fixed time stamp: the same frame gives the same bytes (as 3MF's dates)
 TIME_STAMP = "1980-01-01T00:00:00"
@@ -108,15 +85,11 @@ def parse_classes_option(items: list[str]) -> tuple[tuple[str, str], ...]:
 
 
 def element_class(text: str) -> str:
-    """The IFC class ``text`` names (``IfcWall``, ``ifcwall`` or ``wall``);
-    ``ValueError`` with the message a usage error shows when it names none."""
-    from castor.bim.model import OUTSIDE_REFERENCE_VIEW
-
+    """The IFC class ``text`` names (``IfcWall``, ``ifcwall`` or ``wall``, as an
+    annotation names it); ``ValueError`` with the message a usage error shows
+    when it names none."""
     key = text.strip().lower()
     found = _BY_KEY.get(key) or _BY_KEY.get("ifc" + key)
-    if found is None:  # kept as written: the model says what it writes instead
-        found = next((c for c in OUTSIDE_REFERENCE_VIEW if c.lower() in (key, "ifc" + key)),
-                     None)
     if found is None:
         raise ValueError(f"--ifc-class: '{text}' is not an IFC4 element class; use one of "
                          f"{', '.join(COMMON_CLASSES)} (or another subtype of IfcElement)")
@@ -194,9 +167,28 @@ def _header(f, title: str) -> None:
     header.file_name.originating_system = f"castor {__version__}"
 
 
+# standard base 64's digits to IFC's (buildingSMART's GUID text)
+_TO_IFC = bytes.maketrans(
+    b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/",
+    b"0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_$")
+
+
+def guid(name: str) -> str:
+    """The GlobalId of ``name``: ``ifcopenshell.guid.compress(uuid.uuid5(castor's
+    namespace, name).hex)``, made without their Python (a file of 1,024 houses
+    has 160,000 of them; tests/formats/test_ifc_reissue.py checks it is the same)."""
+    import base64
+    import hashlib
+
+    digest = bytearray(hashlib.sha1(_GUID_SPACE.bytes + name.encode()).digest()[:16])
+    digest[6] = digest[6] & 0x0F | 0x50  # UUID version 5
+    digest[8] = digest[8] & 0x3F | 0x80  # its variant
+    return base64.b64encode(b"\0\0" + digest)[2:].translate(_TO_IFC).decode()
+
+
 class _Writer:
-    """The file being made: its entities' global ids (from the title and a key),
-    the placements of the storeys, the styles of the elements' colours."""
+    """The file being made: its entities' global ids (from the scene's identity
+    and a key), the placements of the storeys, the styles of the elements' colours."""
 
     def __init__(self, f, building):
         from castor.formats._mesh import materials
@@ -212,10 +204,7 @@ class _Writer:
         self.placed: dict[int, tuple] = {}  # id of an element's entity -> (placement, level)
 
     def guid(self, *key: str) -> str:
-        import ifcopenshell.guid
-
-        return ifcopenshell.guid.compress(
-            uuid.uuid5(_GUID_SPACE, "\0".join((self.building.title,) + key)).hex)
+        return guid("\0".join((self.building.identity,) + key))
 
     def placement(self, relative_to=None, level: float = 0.0):
         axes = self.axes if level == 0 else self.create(
@@ -298,7 +287,9 @@ class _Writer:
         for qto in part.quantities:
             self.quantities(entity, part.key, qto)
         if cls in COMMON_PSETS:
-            self.properties(entity, part.key, f"Pset_{cls[3:]}Common", {"Reference": part.name})
+            values = {"Reference": ("IfcIdentifier", part.name)}
+            values.update((p.name, (p.type, p.value)) for p in part.properties)
+            self.properties(entity, part.key, f"Pset_{cls[3:]}Common", values)
         return entity
 
     def typed(self, cls: str, part) -> dict:
@@ -315,6 +306,10 @@ class _Writer:
             values["CompositionType"] = "ELEMENT"
         if part.size is not None and self.has(cls, "OverallWidth"):
             values["OverallWidth"], values["OverallHeight"] = map(float, part.size)
+        for p in part.properties:  # an IfcStairFlight's NumberOfRisers …
+            attribute = "NumberOfRisers" if p.name == "NumberOfRiser" else p.name
+            if self.has(cls, attribute):
+                values[attribute] = p.value
         if cls == "IfcDoor":
             hinge = dict(part.settings).get("hinge", "left")
             values["OperationType"] = f"SINGLE_SWING_{hinge.upper()}"
@@ -333,10 +328,11 @@ class _Writer:
                None, [entity], quantities)
 
     def properties(self, entity, key: str, name: str, values: dict) -> None:
+        """A property set: ``values`` {name: (IFC type, value)}."""
         create = self.create
         pset = create("IfcPropertySet", self.guid(name, key), None, name, None, [
-            create("IfcPropertySingleValue", k, None, create("IfcIdentifier", v), None)
-            for k, v in values.items()])
+            create("IfcPropertySingleValue", k, None, create(kind, v), None)
+            for k, (kind, v) in values.items()])
         create("IfcRelDefinesByProperties", self.guid("defines", name, key), None, None, None,
                [entity], pset)
 
@@ -353,7 +349,7 @@ class _Writer:
                              self.shape(void.solid, level), None, "OPENING")
             create("IfcRelVoidsElement", guid("voids", *key), None, None, None, host, opening)
             self.properties(opening, void.key, "Pset_OpeningElementCommon",
-                            {"Reference": void.name})
+                            {"Reference": ("IfcIdentifier", void.name)})
             if void.filler is not None:
                 create("IfcRelFillsElement", guid("fills", *key), None, None, None, opening,
                        elements[void.filler])

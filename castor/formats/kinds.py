@@ -230,14 +230,13 @@ class BuildingModels(Kind):
         """An --ifc-class NAME=CLASS whose NAME is no object of the scene gives no
         element its class: most likely a typo; a CLASS the Reference View leaves
         out is written as the class it has instead."""
-        from castor.bim.model import OUTSIDE_REFERENCE_VIEW
+        from castor.language.classes import OUTSIDE_REFERENCE_VIEW, reference_view_note
         from castor.language.parse import suggestion
 
         said = [f"--ifc-class {name}: the scene has no object '{name}', so nothing is made "
                 f"an {cls}{suggestion(name, objects)}"
                 for name, cls in settings.bim.classes if name not in objects]
-        return said + [f"--ifc-class {name}={cls}: buildingSMART's IFC4 Reference View has no "
-                       f"{cls} (it implies material layers or a parametric shape); '{name}' is "
+        return said + [f"--ifc-class {name}={cls}: {reference_view_note(cls)}; '{name}' is "
                        f"written as an {OUTSIDE_REFERENCE_VIEW[cls]}"
                        for name, cls in settings.bim.classes if cls in OUTSIDE_REFERENCE_VIEW]
 

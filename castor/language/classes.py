@@ -108,9 +108,50 @@ CLASSES: tuple[ClassInfo, ...] = (
     ClassInfo("IfcCivilElement", "civil"),
     ClassInfo("IfcSpace", "space", _types("space", "parking", "gfa", "internal", "external"),
               (), "space"),
-)
+) + tuple(ClassInfo(f"Ifc{name}", name.lower(), _types()) for name in (
+    # every other IFC4 physical element: the concrete subtypes of IfcElement that
+    # are no feature or virtual element and need nothing but a body (the
+    # 'StandardCase' and 'ElementedCase' classes need material layers or parts:
+    # OUTSIDE_REFERENCE_VIEW); their short name is their IFC name's, their types
+    # only userdefined and notdefined (tests/formats/test_ifc.py checks the
+    # whole table against ifcopenshell's schema)
+    "Actuator AirTerminal AirTerminalBox AirToAirHeatRecovery Alarm AudioVisualAppliance "
+    "Boiler Burner CableCarrierFitting CableCarrierSegment CableFitting CableSegment Chiller "
+    "Coil CommunicationsAppliance Compressor Condenser Controller CooledBeam CoolingTower "
+    "Damper DistributionChamberElement DistributionControlElement DistributionElement "
+    "DistributionFlowElement DuctFitting DuctSegment DuctSilencer ElectricAppliance "
+    "ElectricDistributionBoard ElectricFlowStorageDevice ElectricGenerator ElectricMotor "
+    "ElectricTimeControl EnergyConversionDevice Engine EvaporativeCooler Evaporator Fan "
+    "Fastener Filter FireSuppressionTerminal FlowController FlowFitting FlowInstrument "
+    "FlowMeter FlowMovingDevice FlowSegment FlowStorageDevice FlowTerminal "
+    "FlowTreatmentDevice FurnishingElement HeatExchanger Humidifier Interceptor JunctionBox "
+    "Lamp LightFixture MechanicalFastener MedicalDevice MotorConnection Outlet PipeFitting "
+    "PipeSegment ProtectiveDevice ProtectiveDeviceTrippingUnit Pump ReinforcingBar "
+    "ReinforcingMesh SanitaryTerminal Sensor SolarDevice SpaceHeater StackTerminal "
+    "SwitchingDevice Tank Tendon TendonAnchor Transformer TubeBundle UnitaryControlElement "
+    "UnitaryEquipment Valve VibrationIsolator WasteTerminal").split())
 
 PROXY = "IfcBuildingElementProxy"
+
+# classes IFC4 has that buildingSMART's Reference View leaves out (they imply
+# material layers, parts or parametric shapes: IfcWallStandardCase's rule wants a
+# material layer set usage, and IFC4.3 deprecates it), and the class each is
+# written as: an annotation or --ifc-class naming one is taken, with a warning
+# (reference_view_note)
+OUTSIDE_REFERENCE_VIEW = {
+    "IfcBeamStandardCase": "IfcBeam", "IfcColumnStandardCase": "IfcColumn",
+    "IfcDoorStandardCase": "IfcDoor", "IfcMemberStandardCase": "IfcMember",
+    "IfcPlateStandardCase": "IfcPlate", "IfcSlabElementedCase": "IfcSlab",
+    "IfcSlabStandardCase": "IfcSlab", "IfcWallElementedCase": "IfcWall",
+    "IfcWallStandardCase": "IfcWall", "IfcWindowStandardCase": "IfcWindow",
+}
+
+
+def reference_view_note(cls: str) -> str:
+    """Why a class of OUTSIDE_REFERENCE_VIEW is written as another: the words
+    the annotation's warning and --ifc-class's share."""
+    return (f"buildingSMART's IFC4 Reference View has no {cls} (it implies material layers "
+            f"or a parametric shape)")
 STOREY = "storey"
 
 # every way of writing a class, in lower case: short names and IFC names
@@ -264,6 +305,9 @@ def read_object_annotation(text: str, location: Location) -> tuple[Classificatio
                              "level (R1 = 3.0; // [storey \"Étage\"]), not an object; the "
                              "object is unclassed", at)
     info = BY_NAME.get(head.lower())
+    replaced = next((c for c in OUTSIDE_REFERENCE_VIEW if c.lower() == head.lower()), None)
+    if replaced is not None:
+        info = BY_IFC[OUTSIDE_REFERENCE_VIEW[replaced]]
     if info is None:
         import difflib
 
@@ -302,8 +346,12 @@ def read_object_annotation(text: str, location: Location) -> tuple[Classificatio
             return None, Problem(f"annotation: '{word}' is not a type of {info.short}"
                                  f"{_closest(word, info.types)}{kinds}; the object is "
                                  f"unclassed", at)
-    return Classification(info.ifc, predefined, tuple(settings.items()), long_name, description,
-                          at), None
+    classification = Classification(info.ifc, predefined, tuple(settings.items()), long_name,
+                                    description, at)
+    if replaced is not None:
+        return classification, Problem(f"annotation: {reference_view_note(replaced)}; the "
+                                       f"object is written as an {info.ifc} ({info.short})", at)
+    return classification, None
 
 
 def read_parameter_annotation(name: str, text: str, location: Location) -> tuple[
