@@ -186,13 +186,18 @@ class _Maker:
         """The openings: each block a door or window cut, voiding the element it
         was cut from, filled by a door or window of its size; then each element's
         quantities, its openings' volume added to its gross volume."""
+        from castor.csg.elements import cuts_nothing
+
         voids: list[Void] = []
         taken = [0.0] * len(parts)  # volume cut out of each element by its openings
         index = {id(p.element): k for k, p in enumerate(placed)}
         of_object: dict[int, list] = {}
         for p in placed:
             of_object.setdefault(p.element.object, []).append(p)
-        for block in self.takeoff.blocks():
+        blocks = self.takeoff.blocks()
+        for opening in self.takeoff.idle(blocks):
+            self.warn(cuts_nothing(opening))
+        for block in blocks:
             opening, classification = block.opening, block.opening.classification
             hosts = self.hosts(block, of_object.get(opening.object, []))
             size = (block.width, block.height)
