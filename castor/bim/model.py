@@ -268,6 +268,7 @@ class _Maker:
         from castor.quantities import LEVEL_SLACK
 
         found = []
+        said: set[str] = set()  # the spaces an --ifc-class was said of
         lowest = self.levels[0]
         for room in self.takeoff.rooms():
             space = room.space
@@ -276,6 +277,12 @@ class _Maker:
                 self.warn(f"space '{space.name}' is below every storey (its floor at "
                           f"{bottom:g}, the lowest storey at {lowest.level:g}): it is on "
                           f"'{lowest.name}'")
+            chosen = self.classes.get(space.name)
+            if chosen not in (None, "IfcSpace") and space.name not in said:
+                said.add(space.name)
+                self.warn(f"--ifc-class {space.name}={chosen}: '{space.name}' is a space (a "
+                          f"room, left out of the solids: LANGUAGE.md §11), so it stays an "
+                          f"IfcSpace; the option is ignored")
             c = space.classification
             found.append(Part(self.key("space", space.name), "IfcSpace", c.predefined,
                               space.name, c.long_name, _description(c, space.where),
