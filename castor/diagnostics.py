@@ -17,6 +17,16 @@ MAX_ERRORS = 50
 USAGE_ERROR = 2
 
 
+def shown_name(name: str) -> str:
+    """A file name as castor shows and writes it: a byte that is not UTF-8
+    (which Python keeps as a surrogate, '\\udce9') shown as '<0xe9>', as the
+    command line's bad bytes are, so that messages and outputs are text."""
+    if name.isascii():
+        return name
+    return "".join(f"<0x{ord(c) - 0xdc00:02x}>" if "\udc80" <= c <= "\udcff" else c
+                   for c in name)
+
+
 class Location(NamedTuple):
     """A place in an original source file (after mapping cpp line markers)."""
 
