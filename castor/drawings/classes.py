@@ -76,6 +76,7 @@ class Stroke(NamedTuple):
     pen: float = SEEN_PEN
     dashed: bool = False
     closed: bool = False
+    chain: bool = False  # ISO 128's long-dashed dotted line (a section's cut line)
 
 
 class Arc(NamedTuple):

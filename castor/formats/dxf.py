@@ -78,6 +78,7 @@ class _To:
     def __init__(self, sheet, shift: float = 0.0, paper: bool = False, dashed: str = "CASTOR_DASHED",
                  style: str = "CASTOR"):
         self.sheet, self.shift, self.paper, self.dashed = sheet, shift, paper, dashed
+        self.chain = CHAINED + dashed.removeprefix(DASHED)  # CASTOR_CHAIN_50 beside CASTOR_DASHED_50
         self.paper_style = style  # the dimension style of its scale
         self.unit = 1.0 if paper else 1.0 / sheet.mm  # drawing units per paper mm
 
@@ -112,6 +113,8 @@ def _sheet_items(msp, to: _To, items, layer):
             attributes = {"layer": layer, "lineweight": _weight(item.pen)}
             if item.dashed:
                 attributes["linetype"] = to.dashed
+            elif item.chain:
+                attributes["linetype"] = to.chain
             for (a, b) in to.points(item.segments).tolist():
                 msp.add_line(a, b, dxfattribs=attributes)
         elif isinstance(item, Arc):
@@ -138,7 +141,7 @@ def _sheet_items(msp, to: _To, items, layer):
             text.set_placement((x, y), align=align)
 
 
-DASHED = "CASTOR_DASHED"
+DASHED, CHAINED = "CASTOR_DASHED", "CASTOR_CHAIN"
 
 
 def _linetypes(doc, mm: float, name: str = DASHED) -> str:
@@ -149,6 +152,18 @@ def _linetypes(doc, mm: float, name: str = DASHED) -> str:
     if name not in doc.linetypes:
         doc.linetypes.add(name, pattern=[(DASH + GAP) * k, DASH * k, -GAP * k],
                           description="Dashed __ __ __")
+    return name
+
+
+def _chain_linetype(doc, mm: float, name: str) -> str:
+    """ISO 128's long-dashed dotted line at the printed size (a section's cut line)."""
+    from castor.drawings.paper import CHAIN
+
+    k = 1 / mm
+    if name not in doc.linetypes:
+        dash, gap, dot, gap2 = CHAIN
+        doc.linetypes.add(name, pattern=[sum(CHAIN) * k, dash * k, -gap * k, dot * k, -gap2 * k],
+                          description="Chain __ . __ . __")
     return name
 
 
@@ -193,6 +208,9 @@ def _model(doc, msp, to: _To, paper_items: bool) -> None:
     names = _layer_names([l.name for l in drawing.layers], annotation | {"ground"})
     if drawing.symbols is not None:
         to.dashed = _linetypes(doc, sheet.mm, to.dashed)
+        if any(item.chain for group in sheet.groups for item in group.items
+               if isinstance(item, Lines)):
+            to.chain = _chain_linetype(doc, sheet.mm, to.chain)
 
     def outline(loop, name):
         points = [tuple(p) for p in to.model(loop).tolist()]

@@ -287,6 +287,7 @@ def _text(page, x, y, text, size):
 
 def _page(page, sheet) -> None:
     """One sheet on the canvas's page, then the page ended."""
+    from castor.drawings.paper import CHAIN
     from castor.drawings.sheet import DASH, GAP, Arc, Lines, Shape
 
     # millimetres, y down, as the sheet is laid out
@@ -302,11 +303,11 @@ def _page(page, sheet) -> None:
                     path.moveTo(x0, y0)
                     path.lineTo(x1, y1)
                 page.setLineWidth(item.pen)
-                if item.dashed:
-                    page.setDash(DASH, GAP)
+                if item.dashed or item.chain:
+                    page.setDash(list(CHAIN) if item.chain else [DASH, GAP])
                     page.setLineCap(0)
                 page.drawPath(path, stroke=1, fill=0)
-                if item.dashed:
+                if item.dashed or item.chain:
                     page.setDash()
                     page.setLineCap(1)
             elif isinstance(item, Arc):
