@@ -10,7 +10,8 @@ evaluation to the next), after a first evaluation that fills them:
   bus_shelter/shelter.cas, BENCH_RUNS saves.
 
 Each step is split into stages (CPU seconds of this process, median over the
-steps; the machine may be shared, CPU time is what changes least): the
+steps, and the best and worst; the machine may be shared, CPU time is
+what changes least, and the best step what changes least with the load): the
 engine's booleans, provenance (the triangles with their origins), the
 regularization, merging into polygons, the frame's compaction, the page's
 triangles (drawn) and layers, and the evaluation (the rest). Targets (CLI.md,
@@ -101,7 +102,8 @@ def report(title: str, steps: list[dict[str, float]]) -> None:
     print(f"{title}: median of {len(steps)} (CPU seconds of this process)")
     for stage in (*STAGES, "total (CPU)", "total (wall)"):
         values = [s[stage] for s in steps]
-        print(f"  {stage:16s} {statistics.median(values):7.3f}   worst {max(values):7.3f}")
+        print(f"  {stage:16s} {statistics.median(values):7.3f}   best {min(values):7.3f}"
+              f"   worst {max(values):7.3f}")
 
 
 def caches_line() -> str:

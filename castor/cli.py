@@ -15,7 +15,8 @@ import threading
 
 from castor import __version__
 from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
-from castor.options import OUTPUT_OPTIONS, TITLE_FIELDS, negative_values, option_value, parse_count
+from castor.options import (OUTPUT_OPTIONS, TITLE_FIELDS, negative_values, not_utf8, option_value,
+                            parse_count)
 from castor.settings import DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE
 
 
@@ -59,6 +60,10 @@ class _Parser(argparse.ArgumentParser):
     def error(self, message):
         if message.startswith("unrecognized arguments:"):
             message += self._closest(message.split(":", 1)[1].split())
+        # a byte that is not UTF-8 (kept by Python as a surrogate, repr'd by argparse
+        # as \udce9) shown as the byte
+        message = re.sub(r"[\udc80-\udcff]|\\udc([89a-f][0-9a-f])", lambda m: "<0x%s>" % (
+            m.group(1) or f"{ord(m.group()) - 0xdc00:02x}"), message)
         sys.stderr.write(f"castor: error: {message}\ntry 'castor --help'\n")
         sys.exit(USAGE_ERROR)
 
@@ -80,6 +85,7 @@ def _arguments(argv):
     """The parser and the parsed options, checked: a usage error exits (status 2)."""
     p = _parser()
     args = _parse(p, argv)
+    _check_texts(p, args)
     _check_values(p, args)
     _check_macros(p, args)
     _choose_format(p, args)
@@ -157,8 +163,16 @@ def _general_options(p: _Parser) -> None:
 def _parse(p: _Parser, argv) -> argparse.Namespace:
     """The options parsed; ``args.given``: the output options the command line gave."""
     unset = {option.dest: _NotGiven() for option in OUTPUT_OPTIONS}  # told apart from any value
-    args = p.parse_args(negative_values(argv, tuple(o.flag for o in OUTPUT_OPTIONS if o.signed)),
-                        namespace=argparse.Namespace(**unset))
+    argv = list(argv)
+    after = argv.index("--") if "--" in argv else len(argv)  # files only, after '--'
+    args, extra = p.parse_known_args(
+        negative_values(argv[:after], tuple(o.flag for o in OUTPUT_OPTIONS if o.signed)),
+        namespace=argparse.Namespace(**unset))
+    unknown = [word for word in extra if word.startswith("-") and word != "-"]
+    if unknown:  # only the unknown options: the scene files around them are no fault
+        p.error(f"unrecognized arguments: {' '.join(unknown)}")
+    # files between and after the options too, as cpp takes them
+    args.files += extra + argv[after + 1:]
     args.given = [option.flag for option in OUTPUT_OPTIONS
                   if getattr(args, option.dest) is not unset[option.dest] or unset[option.dest]]
     for option in OUTPUT_OPTIONS:
@@ -167,6 +181,24 @@ def _parse(p: _Parser, argv) -> argparse.Namespace:
             default = p._option_string_actions[option.flag].default
             setattr(args, option.dest, list(value) if value else default)
     return args
+
+
+# the options whose values are paths: a file's name may hold any bytes
+_PATHS = frozenset({"files", "output", "summary", "include_dirs", "parameter_file", "sheets"})
+
+
+def _check_texts(p: _Parser, args) -> None:
+    """Every other option's value is text: a byte that is not UTF-8 (a Latin-1
+    terminal's 'é', $'\\xe9') is a usage error that shows it as 0xe9, never an
+    internal error of the IFC writer or a letter dropped from a drawing."""
+    for action in p._actions:
+        if not action.option_strings or action.dest in _PATHS:
+            continue
+        value = getattr(args, action.dest, None)
+        for text in value if isinstance(value, list) else (value,):
+            problem = not_utf8(text) if isinstance(text, str) else None
+            if problem is not None:
+                p.error(f"{max(action.option_strings, key=len)}: {problem}")
 
 
 def _check_values(p: _Parser, args) -> None:

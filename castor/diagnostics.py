@@ -137,9 +137,14 @@ class Reporter:
         # unexpanded (its argument count), which its statement cannot parse
         self.explained: set[Location] = set()
 
+    def explains(self, err: CastorError) -> bool:
+        """Whether an error said at the place of ``err`` explains it (one message
+        per cause): it is not said."""
+        return bool(self.explained) and not isinstance(err, PreprocessError) and \
+            err.location is not None and self._placed(err.location)[0] in self.explained
+
     def error(self, err: CastorError) -> None:
-        if self.explained and not isinstance(err, PreprocessError) and err.location is not None \
-                and self._placed(err.location)[0] in self.explained:
+        if self.explains(err):
             return  # one message per cause
         self._keep("error", err.message, err.location)
         self.errors += 1

@@ -150,6 +150,8 @@ class Interpreter:
         count where an argument names a parameter that has no value after an
         #include that could not be read (it may be one of that file's macros,
         such as a colour's three components)."""
+        if self.reporter.explains(error):  # a macro use left unexpanded, said by the preprocessor
+            return True
         if isinstance(error, UndefinedParameter):
             return error.name in self.failed and error.name not in self.tables.parameters
         if isinstance(error, ArgumentCountError) and self.reporter.unread_includes:
@@ -279,12 +281,32 @@ class Interpreter:
                 continue
             if self.submit is not None:
                 self.submit(tree)
+            else:  # evaluated only (--check, an editor): its emptiness as the tree shows it
+                self._warn_if_empty(tree)
         for error, numbers in failures.values():
             if self._explained(error):
                 continue
             if len(values) > 1:
                 error.message += f" (in {frames_text(numbers)})"
             self.reporter.error(error)
+
+    def _warn_if_empty(self, tree) -> None:
+        """The warning a run gives a frame without polygons, where the tree shows
+        it without facetizing (castor.csg.emptiness)."""
+        from castor.csg.emptiness import certainly_empty, empty_message
+
+        if certainly_empty(tree):
+            self.reporter.warning(empty_message(tree.number), tree.location)
+
+    def warn_if_no_frame(self) -> None:
+        """After a run that wrote nothing, evaluating only (--check, an editor): a
+        scene without a '>' command (CLI.md: a lint gives a run's warnings)."""
+        if self.frames_attempted == 0 and not self.reporter.errors:
+            self.reporter.warning(NO_FRAME.format("would be"))
+
+
+# a scene without a '>' command: what castor says (written, or "would be")
+NO_FRAME = "the scene has no '>' command, so nothing {} written; '> OBJECT;' writes an object's polygons"
 
 
 def frames_text(numbers: list[int]) -> str:

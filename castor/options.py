@@ -119,6 +119,21 @@ def parse_count(text: str, option: str, low: int, high: int) -> int:
     return value
 
 
+def not_utf8(text: str) -> str | None:
+    """What is wrong with a command line's text that is not UTF-8 (Python keeps
+    each such byte as a lone surrogate, U+DC80..U+DCFF), shown as the byte
+    (0xe9) with the text before it and the text read as Latin-1; None if it is
+    UTF-8."""
+    bad = re.search("[\udc80-\udcff]", text)
+    if bad is None:
+        return None
+    byte = ord(bad.group()) - 0xdc00
+    latin1 = text.encode("utf-8", "surrogateescape").decode("latin-1")
+    where = f"after '{text[:bad.start()]}'" if bad.start() else "at the start"
+    return (f"byte 0x{byte:02x} {where} is not UTF-8; castor takes UTF-8 text, such as "
+            f"'{latin1}' if it was Latin-1")
+
+
 def negative_values(argv: list[str], options: tuple[str, ...]) -> list[str]:
     """``--view -30,20``: a value that starts with '-' joined to its option, so
     that argparse does not take it for an option."""

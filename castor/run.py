@@ -298,7 +298,7 @@ def executor_for(jobs: int, scheduler: str | None):
             from distributed import Client
         except ImportError:
             raise UsageError("error: --scheduler needs Dask's distributed package: "
-                             "pip install 'castor[cluster]'") from None
+                             "pip install '.[cluster]' in castor's directory") from None
         try:
             client = Client(scheduler, timeout="10s", set_as_default=False)
         except (OSError, TimeoutError, ValueError, TypeError) as exc:
@@ -422,9 +422,12 @@ def run(source: Source, reporter: Reporter, *, reading: ReadSettings = ReadSetti
         except TooManyErrors:
             pass
         _warn_after_run(chosen, settings, evaluation, interpreter, reporter)
-        if interpreter.frames_attempted == 0 and not how.check and not reporter.errors:
-            reporter.warning("the scene has no '>' command, so nothing was written; "
-                             "'> OBJECT;' writes an object's polygons")
+        if how.check:
+            interpreter.warn_if_no_frame()
+        elif interpreter.frames_attempted == 0 and not reporter.errors:
+            from castor.interpreter import NO_FRAME
+
+            reporter.warning(NO_FRAME.format("was"))
         _write_gathered(chosen, settings, sequencer, executor, output)
     except BaseException:
         if output is not None:

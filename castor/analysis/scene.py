@@ -140,6 +140,7 @@ def analyse(source: Source, reading: ReadSettings = ReadSettings(),
         interpreter = evaluate(source, reporter, None, reading=reading, evaluation=evaluation,
                                included=analysis.included, unreadable=unreadable,
                                cancelled=cancelled, interpreter=Recording)
+        interpreter.warn_if_no_frame()  # as castor --check
     except RecursionError:
         reporter.diagnostics.append(Diagnostic("error", "the scene is nested too deeply",
                                                Location(shown, 1, 1)))

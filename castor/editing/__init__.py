@@ -2,7 +2,8 @@
 solids of a frame, and gestures that become the smallest edits of the text.
 
 - ``document``: one evaluation of a scene's text, kept for the gestures on it;
-- ``solids`` and ``snap``: the point a ray from the camera snaps to;
+- ``solids``, ``snap`` and ``beside``: the point a ray from the camera snaps
+  to (``beside``: the corners and edges a ray passes near without meeting them);
 - ``places``: where an object of a frame is written, from its path;
 - ``gestures``: Place, Move and Measure;
 - ``text``: edits, short numbers, the text as written;

@@ -57,13 +57,16 @@ class Document:
     """What the pipeline made of one version of a scene's text."""
 
     def __init__(self, uri: str, text: str, read: Reader = read_file,
-                 reading: ReadSettings = ReadSettings()):
+                 reading: ReadSettings = ReadSettings(), evaluation=None):
+        """``evaluation``: castor.settings.EvaluationSettings, the ``--set``
+        values (the live preview's panel's) the frames are made with."""
         self.uri = uri
         self.path = uri_to_path(uri)
         self.text = text
         self.version = digest(text)
         self.read = read
         self.reading = reading
+        self.evaluation = evaluation
         self.frames: list = []  # castor.csg.tree.FrameTree, by number - 1
         self.statements: list = []  # ObjectDef and FrameCommand, in the order they ran
         self.objects: dict = {}  # name -> NamedNode, at the end
@@ -92,7 +95,8 @@ class Document:
         try:
             interpreter = evaluate(Source(text=self.text, name=self.path), self.reporter,
                                    frames.append, reading=self.reading,
-                                   evaluation=EvaluationSettings(), included=included,
+                                   evaluation=self.evaluation or EvaluationSettings(),
+                                   included=included,
                                    unreadable=self.reporter.unreadable, interpreter=Recording)
         except RecursionError:
             raise CommandError("the scene is nested too deeply to edit") from None
@@ -211,15 +215,24 @@ class Document:
         return self._prepared[number]
 
 
+def settings_key(evaluation) -> tuple:
+    """What of castor.settings.EvaluationSettings changes a scene's frames."""
+    if evaluation is None:
+        return ((), None)
+    return tuple(sorted(evaluation.overrides.items())), evaluation.tolerance
+
+
 class Cache:
-    """The last documents evaluated, by URI and version of their text: a snap
-    as the cursor moves reuses the evaluation and the prepared frame."""
+    """The last documents evaluated, by URI, version of their text and the
+    values of the parameters set (``--set``, the preview's panel): a snap as
+    the cursor moves reuses the evaluation and the prepared frame."""
 
     def __init__(self, read: Reader = read_file, reading: ReadSettings = ReadSettings(),
-                 size: int = 4):
+                 size: int = 4, evaluation=None):
         self.read = read
         self.reading = reading
         self.size = size
+        self.evaluation = evaluation  # EvaluationSettings, or None: the scene's own values
         self._documents: dict[tuple[str, str], Document] = {}
         import threading
 
@@ -232,12 +245,22 @@ class Cache:
         text = self.read(uri)
         if text is None:
             raise CommandError(f"cannot read '{uri_to_path(uri)}'")
-        key = (uri, digest(text))
+        key = (uri, digest(text), settings_key(self.evaluation))
         with self._lock:
             document = self._documents.get(key)
             if document is None or not document.current():
-                document = Document(uri, text, self.read, self.reading).evaluate()
+                document = Document(uri, text, self.read, self.reading,
+                                    self.evaluation).evaluate()
                 if len(self._documents) >= self.size:
                     self._documents.pop(next(iter(self._documents)))
                 self._documents[key] = document
         return document
+
+    def using(self, evaluation) -> "Cache":
+        """The same cache (its documents shared), evaluating with ``evaluation``
+        (castor.settings.EvaluationSettings: the frame shown's ``--set`` values)."""
+        import copy
+
+        other = copy.copy(self)
+        other.evaluation = evaluation
+        return other

@@ -10,7 +10,9 @@ wall's top under the roof; never a seam inside a union). Within 10 pixels,
 the first of corner, midpoint, centre, edge, then the axes (and the
 parallels and perpendiculars of the edges) from the previous point, wins;
 else the face (a flat face's point on a 0.05 m grid in its plane), or with
-nothing hit, the grid on the ground z = 0. A typed distance puts the point
+nothing hit, the grid on the ground z = 0. A corner or an edge the ray passes
+within 10 pixels of without meeting its solid (just outside an outline, over
+the ground or a face behind) is found by castor.editing.beside. A typed distance puts the point
 at that distance from the previous one, along the direction found.
 """
 
@@ -21,7 +23,8 @@ from typing import Callable, NamedTuple
 import numpy as np
 
 from castor.csg.paths import join
-from castor.editing.solids import Solids, distinct
+from castor.editing.beside import beside
+from castor.editing.solids import Solids, distinct, edge_along, edge_middle, is_corner
 
 RADIUS = 10.0  # pixels
 GRID = 0.05  # metres
@@ -85,6 +88,14 @@ class _View:
             out = across / (self.pixel * depth)
         return np.where(depth > 0, out, np.inf)
 
+    def nearest_first(self, points: np.ndarray) -> np.ndarray:
+        """The order of the points by their distance off the ray on the screen
+        (to a tenth of a pixel), then by depth: of two points drawn at the same
+        place (a plan's top and bottom corners), the one in front first."""
+        points = np.asarray(points, np.float64).reshape(-1, 3)
+        depth = (points - self.origin) @ self.direction
+        return np.lexsort((depth, np.round(self.pixels(points), 1)))
+
     def metres(self, point: np.ndarray) -> float:
         """The size of a pixel at ``point``."""
         if self.pixel_size is not None:
@@ -120,12 +131,15 @@ def snap(prepared: Prepared, origin, direction, pixel: float | None = None,
         hit = view.origin + t[0] * view.direction
         number = int(face[0] >> 32)
         plane = _features(solids, view, hit, number, int(face[0]), found)
+    if not found.get("corner"):  # beside the outline: the ground or a face behind is hit
+        beside(solids, view, RADIUS, found)
     if previous is not None:
         _inferences(solids, view, previous, found)
     result = None
     for kind in _ORDER:
         if found.get(kind):
-            point, name, leaf = min(found[kind], key=lambda item: view.pixels(item[0])[0])
+            points = np.array([item[0] for item in found[kind]])
+            point, name, leaf = found[kind][int(view.nearest_first(points)[0])]
             result = Snap(tuple(point), name, *prepared.named(leaf))
             break
     if result is None and hit is not None:
@@ -171,7 +185,7 @@ def _features(solids: Solids, view: _View, hit, number: int, face: int, found: d
         return plane  # the first feature in the order: no need to look further
     edges = _edges(solids, view, hit, radius, plane, normals[others], offsets[others])
     found["edge"] = [(point, "edge", number) for point, _ in edges]
-    middle = _middle(whole, plane, (edges[0][0], edges[0][1][1])) if edges else None
+    middle = edge_middle(whole, plane, (edges[0][0], edges[0][1][1])) if edges else None
     if middle is not None and view.pixels(middle)[0] <= RADIUS:
         found["midpoint"] = [(middle, "midpoint", number)]
     if not edges and _curved_near(solids, near):  # a column's rim round its flat top
@@ -277,56 +291,11 @@ def _edges(solids: Solids, view: _View, hit, radius: float, plane, normals, offs
             candidates.append((point, line))
     if not candidates:
         return []
-    ok = _edge_along(solids, np.array([c[0] for c in candidates]), plane,
+    ok = edge_along(solids, np.array([c[0] for c in candidates]), plane,
                      np.array([c[1][1] for c in candidates]))
     edges = [c for c, good in zip(candidates, ok) if good]
     edges.sort(key=lambda c: view.pixels(c[0])[0])
     return edges
-
-
-def _middle(solids: Solids, plane, line) -> np.ndarray | None:
-    """The middle of the edge along ``line`` (its point near the ray, its
-    direction): its ends are where the planes of the primitives along it cut
-    it and the edge stops."""
-    start, u = line
-    crossing = solids.along(start, u)
-    normals, offsets, _, _ = solids.gathered(crossing)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s = (offsets - normals @ start) / (normals @ u)
-    low, high = solids.traced.box
-    extent = float(np.abs(np.concatenate([low - start, high - start])).max()) * 2 + 1
-    s = np.unique(np.concatenate([s[np.isfinite(s) & (np.abs(s) <= extent)], [-extent, extent]]))
-    if len(s) < 2:
-        return None
-    middles = (s[:-1] + s[1:]) / 2
-    ok = _edge_along(solids, start + middles[:, None] * u, plane, u)
-    here = int(np.searchsorted(s, 0.0, side="right")) - 1
-    here = min(max(here, 0), len(ok) - 1)
-    if not ok[here]:
-        return None
-    first = last = here
-    while first > 0 and ok[first - 1]:
-        first -= 1
-    while last < len(ok) - 1 and ok[last + 1]:
-        last += 1
-    if first == 0 or last == len(ok) - 1:
-        return None  # runs out of the scene: no end
-    return start + (s[first] + s[last + 1]) / 2 * u
-
-
-def _edge_along(solids: Solids, points: np.ndarray, plane, u: np.ndarray) -> np.ndarray:
-    """Whether the solid has an edge along ``u`` (one direction, or one for each
-    point) at each point of a line in ``plane``: the plane carries a face on
-    one side of the line only."""
-    n = plane[0]
-    w = np.cross(n, u)
-    step, across = solids.step, solids.across
-    probes = np.concatenate([points + w * step + n * across, points + w * step - n * across,
-                             points - w * step + n * across, points - w * step - n * across])
-    inside = solids.inside(probes).reshape(4, -1)
-    left = inside[0] != inside[1]  # a face on the plane on this side of the line
-    right = inside[2] != inside[3]
-    return left != right
 
 
 def _corners(solids: Solids, view: _View, hit, radius: float, plane, normals, offsets) -> list:
@@ -349,32 +318,7 @@ def _corners(solids: Solids, view: _View, hit, radius: float, plane, normals, of
         return []
     _, first = np.unique(np.round(points / (1e-9 * solids.size)), axis=0, return_index=True)
     points = points[np.sort(first)]
-    return [p for p in points if _is_corner(solids, p, normals, offsets)]
-
-
-def _is_corner(solids: Solids, point: np.ndarray, normals, offsets) -> bool:
-    """Whether faces of the solid on three planes through ``point``, whose
-    normals span space, meet there."""
-    through = np.flatnonzero(np.abs(normals @ point - offsets) < 1e-8 * solids.size)
-    if len(through) < 3:
-        return False
-    angles = np.linspace(0, 2 * np.pi, 12, endpoint=False)
-    rows, probes, probe_normals = [], [], []
-    for k in through:
-        n = normals[k]
-        u = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
-        u /= np.linalg.norm(u)
-        v = np.cross(n, u)
-        ring = point + solids.step * (np.cos(angles)[:, None] * u + np.sin(angles)[:, None] * v)
-        probes.append(ring)
-        probe_normals.append(np.broadcast_to(n, ring.shape))
-        rows.append(np.full(len(ring), k))
-    carried = solids.carries(np.concatenate(probe_normals), np.concatenate(probes))
-    rows = np.concatenate(rows)
-    carrying = np.unique(rows[carried])
-    if len(carrying) < 3:
-        return False
-    return np.linalg.matrix_rank(normals[carrying], tol=1e-6) == 3
+    return [p for p in points if is_corner(solids, p, normals, offsets)]
 
 
 def _inferences(solids: Solids, view: _View, previous: np.ndarray, found: dict) -> None:

@@ -198,6 +198,76 @@ def distinct(normals: np.ndarray, offsets: np.ndarray, scale: float) -> np.ndarr
     return np.sort(rows)
 
 
+def edge_along(solids: Solids, points: np.ndarray, plane, u: np.ndarray) -> np.ndarray:
+    """Whether the solid has an edge along ``u`` (one direction, or one for each
+    point) at each point of a line in ``plane`` (its normal first: one, or one
+    for each point): the plane carries a face on one side of the line only."""
+    n = plane[0]
+    w = np.cross(n, u)
+    step, across = solids.step, solids.across
+    probes = np.concatenate([points + w * step + n * across, points + w * step - n * across,
+                             points - w * step + n * across, points - w * step - n * across])
+    inside = solids.inside(probes).reshape(4, -1)
+    left = inside[0] != inside[1]  # a face on the plane on this side of the line
+    right = inside[2] != inside[3]
+    return left != right
+
+
+def edge_middle(solids: Solids, plane, line) -> np.ndarray | None:
+    """The middle of the edge along ``line`` (its point near the ray, its
+    direction): its ends are where the planes of the primitives along it cut
+    it and the edge stops."""
+    start, u = line
+    crossing = solids.along(start, u)
+    normals, offsets, _, _ = solids.gathered(crossing)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = (offsets - normals @ start) / (normals @ u)
+    low, high = solids.traced.box
+    extent = float(np.abs(np.concatenate([low - start, high - start])).max()) * 2 + 1
+    s = np.unique(np.concatenate([s[np.isfinite(s) & (np.abs(s) <= extent)], [-extent, extent]]))
+    if len(s) < 2:
+        return None
+    middles = (s[:-1] + s[1:]) / 2
+    ok = edge_along(solids, start + middles[:, None] * u, plane, u)
+    here = int(np.searchsorted(s, 0.0, side="right")) - 1
+    here = min(max(here, 0), len(ok) - 1)
+    if not ok[here]:
+        return None
+    first = last = here
+    while first > 0 and ok[first - 1]:
+        first -= 1
+    while last < len(ok) - 1 and ok[last + 1]:
+        last += 1
+    if first == 0 or last == len(ok) - 1:
+        return None  # runs out of the scene: no end
+    return start + (s[first] + s[last + 1]) / 2 * u
+
+
+def is_corner(solids: Solids, point: np.ndarray, normals, offsets) -> bool:
+    """Whether faces of the solid on three planes through ``point``, whose
+    normals span space, meet there."""
+    through = np.flatnonzero(np.abs(normals @ point - offsets) < 1e-8 * solids.size)
+    if len(through) < 3:
+        return False
+    angles = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    rows, probes, probe_normals = [], [], []
+    for k in through:
+        n = normals[k]
+        u = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
+        u /= np.linalg.norm(u)
+        v = np.cross(n, u)
+        ring = point + solids.step * (np.cos(angles)[:, None] * u + np.sin(angles)[:, None] * v)
+        probes.append(ring)
+        probe_normals.append(np.broadcast_to(n, ring.shape))
+        rows.append(np.full(len(ring), k))
+    carried = solids.carries(np.concatenate(probe_normals), np.concatenate(probes))
+    rows = np.concatenate(rows)
+    carrying = np.unique(rows[carried])
+    if len(carrying) < 3:
+        return False
+    return np.linalg.matrix_rank(normals[carrying], tol=1e-6) == 3
+
+
 def _pruned(node, low: np.ndarray, high: np.ndarray):
     """The part of a compiled tree that decides about the points of the box
     (low, high): nodes whose boxes miss it are empty there."""

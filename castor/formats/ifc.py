@@ -21,7 +21,7 @@ file, and a model exported again keeps its elements' identities, so that a
 coordinator's comparison of two versions sees what changed.
 
 ifcopenshell (about 200 MB) is imported here only, when an IFC file is made:
-``pip install 'castor[ifc]'``.
+``pip install '.[ifc]'`` in castor's directory (INSTALL).
 """
 
 from __future__ import annotations
@@ -34,7 +34,8 @@ from castor.formats import _ifc_body as ifc_body
 from castor.formats._ifc_body import Styles, face_set, true_corner_first  # noqa: F401
 from castor.formats.kinds import BuildingModel
 
-INSTALL = "pip install 'castor[ifc]'"
+# from castor's directory ('castor[ifc]' would fetch PyPI's unrelated package named castor)
+INSTALL = "pip install '.[ifc]' in castor's directory, or pip install 'ifcopenshell>=0.8'"
 
 # the IFC4 classes an object may take: the concrete subtypes of IfcElement that
 # are physical things (no feature or virtual element) and need nothing but a

@@ -85,7 +85,9 @@ def facetizer_for(mesh, merge: bool):
 
 
 def _empty(tree) -> str:
-    return f"frame {tree.number} is empty: its objects have no volume"
+    from castor.csg.emptiness import empty_message  # as --check says it
+
+    return empty_message(tree.number)
 
 
 def _polygons(tree, settings, made, merge: bool = True):

@@ -19,6 +19,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 from castor.diagnostics import Location, PreprocessError, Reporter
+from castor.language import macro_calls
 
 MAX_INCLUDE_DEPTH = 200
 
@@ -64,6 +65,7 @@ class SourceLines:
                         text = handle.read()
                 except OSError:
                     text = ""
+            text = text.removeprefix("\ufeff")  # a byte-order mark: no column of line 1
             lines = self.files[file] = text.split("\n") if text else []
         return lines[number - 1] if 0 < number <= len(lines) else None
 
@@ -76,22 +78,6 @@ _PARAMETER = re.compile(r"[A-Za-z_]\w*(\s*\.\.\.)?|\.\.\.")
 _CONDITION = re.compile(r"Could not evaluate expression due to .* \(passed to evaluator: '(.*)'\)",
                         re.S)
 _ARGUMENT_COUNT = re.compile(r"Macro (\w+) requires (\d+) arguments but was passed (\d+)")
-
-
-def _argument_count(text: str, start: int) -> int:
-    """How many arguments the parentheses opened just before ``start`` hold (as
-    many as pcpp counts: an empty pair holds one), or -1 when they do not close."""
-    depth, count = 1, 1
-    for char in text[start:]:
-        if char == "(":
-            depth += 1
-        elif char == ")":
-            depth -= 1
-            if depth == 0:
-                return count
-        elif char == "," and depth == 1:
-            count += 1
-    return -1
 
 
 def _where(token, default: str = "<stdin>") -> Location:
@@ -135,24 +121,19 @@ class Hooks:
                    f"numbers, macros, defined(NAME) and C's operators")
         counted = _ARGUMENT_COUNT.fullmatch(msg)
         if counted and location is not None:
-            location, msg = self._argument_count(location, *counted.groups())
+            location, msg = macro_calls.argument_count(self, location, *counted.groups())
             # the use stays unexpanded, and the statement cannot parse: one message
             self.reporter.explained.add(location)
         self.reporter.error(PreprocessError(msg, location))
 
-    def _argument_count(self, location: Location, name: str, wanted: str, given: str):
-        """The place and castor's words for a macro use with the wrong number of
-        arguments: at the first use on the line with that many."""
-        text = self.originals.line(location.file, location.line)
-        column = 1
-        if text is not None:
-            self.reporter.source_lines[(location.file, location.line)] = text
-            uses = [(use.start() + 1, _argument_count(text, use.end()))
-                    for use in re.finditer(rf"(?<![\w]){re.escape(name)}\s*\(", text)]
-            column = next((c for c, n in uses if n == int(given)), uses[0][0] if uses else 1)
-        return (Location(location.file, location.line, column),
-                f"macro {name} takes {wanted} argument{'' if wanted == '1' else 's'}, but "
-                f"{given} {'was' if given == '1' else 'were'} given")
+    def collect_args(self, tokenlist, ignore_errors=False):
+        """pcpp's, and a macro call whose '(' never closes said at the call: pcpp
+        leaves it unexpanded without a word (as ``ignore_errors`` asks), and the
+        statement then failed in words about parameters and objects."""
+        found = super().collect_args(tokenlist, ignore_errors)
+        if found[0] == 0 and ignore_errors and not self.quiet and tokenlist:
+            macro_calls.unclosed(self, tokenlist[0])
+        return found
 
     def on_include_not_found(self, is_malformed, is_system_include, curdir, includepath):
         """Report the #include at its place and drop the directive: the run goes on,

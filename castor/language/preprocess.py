@@ -19,7 +19,11 @@ from castor.language.cpp import (Pass, SourceLines, escape, expansion_finder, ru
 
 __all__ = ["preprocess", "unsaved"]
 
-_DIRECTIVE = re.compile(r"^[ \t]*#", re.M)
+# a directive, but not a line marker of an earlier cpp ('# 12 "file.cas" 1', '#line 12'),
+# which the reader follows: text that went through cpp needs no second pass (whose
+# own #line markers, after a run of blank lines, would count the lines of its
+# input, not of the file the markers name)
+_DIRECTIVE = re.compile(r"^[ \t]*#(?![ \t]*(?:line[ \t]+)?\d)", re.M)
 
 
 # --- remembered passes -------------------------------------------------------

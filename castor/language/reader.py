@@ -61,6 +61,9 @@ class Chunk:
 # (a NUL in an #include's name) is left to the messages at its place.
 
 BLOCK = 1 << 20
+# A UTF-8 byte-order mark (EF BB BF) that an editor put at the start of a file:
+# skipped, as GNU cpp does, and not counted as a column of line 1 (vi does not)
+BOM = "\ufeff"
 _CONTROL = re.compile("[\x00-\x08\x0e-\x1f\x7f]")  # not tab, line ends, form feed
 CONTROLS_ALLOWED = 16  # and at most one character in a hundred
 
@@ -127,7 +130,7 @@ def text_of(name: str, data) -> str:
         except UnicodeEncodeError as exc:
             raise _undecoded(name, 1, "", exc) from None
         controls.add(data, 1, "")
-        return data
+        return data[1:] if data.startswith(BOM) else data
     decoder = codecs.getincrementaldecoder("utf-8")()
     parts: list[str] = []
     while True:
@@ -144,6 +147,8 @@ def text_of(name: str, data) -> str:
         if not block:
             break
     text = "".join(parts)
+    if text.startswith(BOM):  # a byte-order mark is no character of the scene
+        text = text[1:]
     if "\r" in text:  # as a text file's universal newlines
         text = text.replace("\r\n", "\n").replace("\r", "\n")
     return text
@@ -171,6 +176,8 @@ def lines_of(name: str, data) -> Iterator[str]:
                 text.encode("utf-8")
         except UnicodeError as exc:
             raise _undecoded(name, number, pending, exc) from None
+        if number == 1 and not pending and text.startswith(BOM):
+            text = text[1:]  # a byte-order mark is no character of the scene
         controls.add(text, number, pending)
         lines = (pending + text).split("\n")
         pending = lines.pop()

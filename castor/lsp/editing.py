@@ -115,14 +115,15 @@ class EditingFeatures:
         """Start the live preview of the buffers; its address. OSError if it
         cannot listen there."""
         from castor.serve.buffers import BufferPreview
-        from castor.serve.gestures import Gestures
+        from castor.serve.gestures import Gestures, shown_settings
         from castor.serve.server import PreviewServer
 
         path = os.path.abspath(path) if path else None
         preview = BufferPreview(reading, path)
         self.editing_cache.reading = reading
         self.gestures = Gestures(path_to_uri(path) if path else "", self.editing_cache,
-                                 editor=_BufferEditor(self), buffers=self.unsaved_buffers)
+                                 editor=_BufferEditor(self), buffers=self.unsaved_buffers,
+                                 settings=shown_settings(preview))
         self.preview_server = PreviewServer(preview.job, bind, port, preview=preview,
                                             gestures=self.gestures)
         from castor.pipeline import STACK_BYTES

@@ -96,7 +96,7 @@ class Caches:
         # not merged again; weighed in triangles
         self.merged = Bounded(max_entries=10_000, max_weight=1_000_000)
         # digest of one face's group of triangles, on its own vertices -> its
-        # polygons (merge._group_polygons): the faces a change did not touch,
+        # polygons (merge._groups_polygons): the faces a change did not touch,
         # inside a part that did change; weighed in triangles
         self.groups = Bounded(max_entries=100_000, max_weight=500_000)
 

@@ -35,9 +35,11 @@ def off_faces(manifold: adapter.Manifold) -> int:
     vertices, tris, faces = mesh.vertices, mesh.triangles, mesh.face_ids
     run_index, run_ids, placements = mesh.run_index, mesh.run_ids, mesh.placements
     tolerance = 1e-9 * max(1.0, float(np.abs(vertices).max()))
+    templates = [PROCESS.engine_ids.get(r) for r in run_ids.tolist()]
+    suspects = _suspects(mesh, templates, tolerance)
     bad = 0
-    for r in range(len(run_ids)):
-        template = PROCESS.engine_ids.get(int(run_ids[r]))
+    for r in range(len(run_ids)) if suspects is None else suspects:
+        template = templates[r]
         if template is None:
             continue
         low, high = run_index[r], run_index[r + 1]
@@ -53,6 +55,45 @@ def off_faces(manifold: adapter.Manifold) -> int:
         distance = np.abs(np.einsum("tkj,tj->tk", corners, normal) - offset[:, None])
         bad += int(np.count_nonzero(distance.max(axis=1) > tolerance))
     return bad
+
+
+def _suspects(mesh: adapter.EngineMesh, templates: list, tolerance: float):
+    """The runs that may have a triangle off its face: the distances of every
+    run at once, and the runs with one beyond half the tolerance (the count
+    itself is made run by run, as ``off_faces`` always made it, so that it
+    does not change by a rounding). None if a placement is flat."""
+    counts = np.diff(mesh.run_index)
+    known = np.array([t is not None for t in templates], dtype=bool) & (counts > 0)
+    runs = np.flatnonzero(known)
+    if not len(runs):
+        return []
+    base = np.zeros(len(templates), dtype=np.int64)
+    size = np.ones(len(templates), dtype=np.int64)
+    tables, planes, filled = {}, [], 0
+    for r in runs.tolist():
+        template = templates[r]
+        at = tables.get(id(template))
+        if at is None:
+            at = tables[id(template)] = filled
+            planes.append(template.planes)
+            filled += len(template.planes)
+        base[r], size[r] = at, len(template.planes)
+    try:
+        inverse = np.zeros((len(templates), 3, 3))
+        inverse[runs] = np.linalg.inv(mesh.placements[runs, :, :3])
+    except np.linalg.LinAlgError:
+        return None
+    run = np.repeat(np.arange(len(templates)), counts)
+    triangle = np.arange(mesh.run_index[0], mesh.run_index[-1])[known[run]]
+    run = run[known[run]]
+    plane = np.concatenate(planes)[np.minimum(mesh.face_ids[triangle], size[run] - 1) + base[run]]
+    m = np.einsum("tj,tjk->tk", plane[:, :3], inverse[run])  # rows: A^-T n
+    length = np.linalg.norm(m, axis=1)
+    safe = np.where(length > 0, length, 1.0)
+    offset = (plane[:, 3] + np.einsum("tj,tj->t", m, mesh.placements[run, :, 3])) / safe
+    corners = mesh.vertices[mesh.triangles[triangle]]
+    distance = np.abs(np.einsum("tkj,tj->tk", corners, m / safe[:, None]) - offset[:, None])
+    return np.unique(run[~(distance.max(axis=1) <= tolerance / 2)]).tolist()
 
 
 def checked(result: adapter.Manifold, *others) -> adapter.Manifold:

@@ -114,23 +114,45 @@ def _merge_group(v: np.ndarray, tris: np.ndarray) -> list[list[int]]:
     return list(polys.values())
 
 
-def _group_polygons(vertices: np.ndarray, tris: np.ndarray, known: Bounded | None) -> list:
-    """``_merge_group`` of one group, on its own vertices numbered in their
-    order (so the same polygons, whatever the other groups' vertices), or the
-    polygons of a group with the same points and triangles merged before
-    (``known``, caches.PROCESS.groups: a face that a parameter change did not
-    touch, from one frame to the next)."""
-    ids, local = np.unique(tris, return_inverse=True)
-    points = vertices[ids]
-    local = local.reshape(-1, 3)
-    key = None if known is None else digest(points, local.astype(np.int64, copy=False))
-    polygons = None if key is None else known.get(key)
-    if polygons is None:
-        polygons = _merge_group(points, local)
-        if key is not None:
-            known.put(key, polygons, len(local))
-    numbers = ids.tolist()
-    return [[numbers[i] for i in poly] for poly in polygons]
+def _groups_polygons(vertices: np.ndarray, triangles: np.ndarray, members: np.ndarray,
+                     starts: np.ndarray, known: Bounded | None):
+    """``_merge_group`` of each group of triangles (``members``, the groups
+    one after the other, each beginning at ``starts``), each on its own
+    vertices numbered in their order (so the same polygons, whatever the other
+    groups' vertices), or the polygons of a group with the same points and
+    triangles merged before (``known``, caches.PROCESS.groups: a face that a
+    parameter change did not touch, from one frame to the next). Every
+    group's own numbering is made at once; only the merging of a group not
+    known goes group by group. Returns each polygon's size, the vertex
+    numbers, and each polygon's group."""
+    n = len(vertices)
+    ends = np.r_[starts[1:], len(members)]
+    which = np.repeat(np.arange(len(starts), dtype=np.int64), ends - starts)
+    corners = np.repeat(which * n, 3) + triangles[members].ravel()
+    unique, inverse = np.unique(corners, return_inverse=True)
+    first = np.searchsorted(unique, np.arange(len(starts), dtype=np.int64) * n)
+    local = (inverse.ravel() - np.repeat(first[which], 3)).reshape(-1, 3)
+    points = vertices[unique % n]
+    last = np.r_[first[1:], len(unique)]
+    sizes, flat, shift, group = [], [], [], []
+    for k, (t0, t1, p0, p1) in enumerate(zip(starts.tolist(), ends.tolist(), first.tolist(),
+                                              last.tolist())):
+        group_points, group_local = points[p0:p1], local[t0:t1]
+        key = None if known is None else digest(group_points, group_local)
+        polygons = None if key is None else known.get(key)
+        if polygons is None:
+            polygons = _merge_group(group_points, group_local)
+            if key is not None:
+                known.put(key, polygons, len(group_local))
+        for poly in polygons:
+            sizes.append(len(poly))
+            flat.extend(poly)
+        shift.append(p0)
+        group.append(len(polygons))
+    sizes = np.array(sizes, np.int64)
+    group = np.repeat(np.arange(len(starts)), group)
+    indices = unique[np.array(flat, np.int64) + np.repeat(np.array(shift, np.int64)[group], sizes)] % n
+    return sizes, indices, group
 
 
 def _sub(p, q):
@@ -280,17 +302,11 @@ def merge(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
 
     big = order[size[order] > 2]
     if len(big):
-        big_groups = group[big]
-        bounds = np.flatnonzero(np.diff(big_groups)) + 1
-        sizes, indices, sources = [], [], []
-        for members in np.split(big, bounds):
-            for poly in _group_polygons(vertices, triangles[members], groups):
-                sizes.append(len(poly))
-                indices.extend(poly)
-                sources.append(members[0])
-        out_sizes.append(np.array(sizes, np.int64))
-        out_indices.append(np.array(indices, np.int64))
-        out_source.append(np.array(sources, np.int64))
+        starts = np.r_[0, np.flatnonzero(np.diff(group[big])) + 1]
+        sizes, indices, owner = _groups_polygons(vertices, triangles, big, starts, groups)
+        out_sizes.append(sizes)
+        out_indices.append(indices)
+        out_source.append(big[starts[owner]])
     del general
 
     sizes = np.concatenate(out_sizes)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from castor.mesh import adapter
-from castor.mesh.arrays import digest, paired, plane_sign, row_hash, shared_across
+from castor.mesh.arrays import components, cross, digest, norm, paired, plane_sign, row_hash, shared_across
 from castor.mesh.caches import PROCESS
 from castor.mesh.checks import off_faces
 from castor.mesh.flat import flat_triangles, without_flat_triangles
@@ -32,7 +32,7 @@ def regular(manifold: adapter.Manifold) -> adapter.Manifold:
     manifold3d keeps a result 2-manifold, not regular: solids that only touch
     intersect into a closed sheet of zero volume, a difference of coincident
     solids leaves one. Regularization (LANGUAGE.md §4.3, §7) removes them."""
-    if manifold.is_empty():
+    if manifold.is_empty() or (_many_shells(manifold) and not _may_have_sheets(manifold)):
         return manifold
     shells = adapter.decompose(manifold)
     kept = [shell for shell in shells if not _sheet(shell)]
@@ -49,6 +49,43 @@ def regular(manifold: adapter.Manifold) -> adapter.Manifold:
     # sheet stays, to be cut out of the triangles at the end (regular_triangles)
     cut = adapter.intersect(manifold, outer[0] if len(outer) == 1 else adapter.compose(outer))
     return manifold if off_faces(cut) else cut
+
+
+# The engine's decomposition costs about as much per shell as finding the
+# shells and their volumes from the triangles costs per this many triangles.
+TRIANGLES_PER_SHELL = 2000
+
+
+def _many_shells(manifold: adapter.Manifold) -> bool:
+    """Whether the solid has shells enough for ``_may_have_sheets`` to cost
+    less than the engine's decomposition (a few shells of many triangles are
+    decomposed, as always): its genus (1 - V/2 + E/2 - T/2, summed over its
+    shells, each at most 0 if it has no handle) says at least how many."""
+    at_least = 1 - manifold.genus()
+    return at_least >= 4 and manifold.num_tri() <= TRIANGLES_PER_SHELL * at_least
+
+
+def _may_have_sheets(manifold: adapter.Manifold) -> bool:
+    """Whether a shell of the solid may be a sheet (``_sheet``), found
+    without the engine's decomposition (the larger part of ``regular``): each
+    shell's volume and area from its triangles (shells joined by their
+    vertices, as the engine joins them). False only where every shell's volume
+    is four times what a sheet's may be, with every shell's size taken as the
+    whole solid's (at least its own): the engine's own figures, rounded
+    otherwise, could not find a sheet either."""
+    mesh = adapter.to_arrays(manifold)
+    vertices, triangles = mesh.vertices, mesh.triangles
+    if not len(triangles):
+        return True
+    label = components(len(vertices), np.concatenate([triangles.ravel(), mesh.merge_from]),
+                       np.concatenate([triangles[:, [1, 2, 0]].ravel(), mesh.merge_to]))
+    shell = np.unique(label[triangles[:, 0]], return_inverse=True)[1].ravel()
+    corners = vertices[triangles] - vertices.mean(axis=0)
+    normal = cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    area = np.bincount(shell, norm(normal) / 2)
+    volume = np.bincount(shell, np.einsum("tj,tj->t", corners[:, 0], normal) / 6)
+    size = max(1.0, float(np.abs(vertices).max()))
+    return not bool(np.all(np.abs(volume) > 4 * SHEET * size * area / 2))
 
 
 def _sheet(shell: adapter.Manifold) -> bool:

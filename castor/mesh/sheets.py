@@ -121,6 +121,8 @@ class _Resolver:
         self.crossings: dict[tuple, int] = {}
         self.on_edge: dict[tuple[int, int], set[int]] = {}
         self.log: _Log | None = None  # what the plane being resolved did (_Log)
+        self.flat: dict[int, tuple[float, float]] = {}
+        self.lines: dict | None = None  # _lines
 
     # points: original vertices keep their numbers; new ones follow
     def point(self, v: int) -> np.ndarray:
@@ -222,6 +224,7 @@ class _Resolver:
         e1 /= np.linalg.norm(e1)
         e2 = np.cross(normal, e1)
         self.e1, self.e2 = e1, e2
+        self.flat: dict[int, tuple[float, float]] = {}  # point -> its (x, y) in this plane
         tiny = 1e-12 * self.scale ** 2
         # every triangle as a convex piece, counter-clockwise in the plane's
         # frame: (vertex, support of the edge that leaves it), and its triangle
@@ -257,8 +260,12 @@ class _Resolver:
             replaced[i] = [[v for v, _ in (piece if facing else piece[::-1])] for piece, facing in kept]
 
     def _xy(self, v):
-        q = self.point(v)
-        return (float(q @ self.e1), float(q @ self.e2))
+        """The point's coordinates in the plane's frame, computed once per plane."""
+        known = self.flat.get(v)
+        if known is None:
+            q = self.point(v)
+            known = self.flat[v] = (float(q @ self.e1), float(q @ self.e2))
+        return known
 
     def _subtract(self, piece, cutter):
         """Convex pieces of ``piece`` outside the convex piece ``cutter`` (both
@@ -365,6 +372,7 @@ class _Resolver:
 
     def _with_edge_points(self, outline: list[int]) -> list[int]:
         """The outline with the points that lie on its edges put in, in order."""
+        lines = self._lines()
         out = []
         n = len(outline)
         for k in range(n):
@@ -374,11 +382,10 @@ class _Resolver:
             if not points:
                 # an edge of a piece may lie along an original edge without
                 # being one: look along every edge that holds points, its
-                # ends included
+                # ends included, that holds u
                 points = set()
-                for (i, j), extra in self.on_edge.items():
-                    line = {i, j} | extra
-                    if u in line and v in line:
+                for line in lines.get(u, ()):
+                    if v in line:
                         points |= line
             if points:
                 pu, pv = self.point(u), self.point(v)
@@ -393,6 +400,17 @@ class _Resolver:
                         inside.append((t, w))
                 out.extend(w for _, w in sorted(inside))
         return out
+
+    def _lines(self) -> dict[int, list[set[int]]]:
+        """Every edge that holds points, as the set of its ends and points,
+        under each of them (made once, when the planes are done)."""
+        if self.lines is None:
+            self.lines = {}
+            for (i, j), extra in self.on_edge.items():
+                line = {i, j} | extra
+                for w in line:
+                    self.lines.setdefault(w, []).append(line)
+        return self.lines
 
     def _fan(self, outline: list[int]) -> list[list[int]]:
         """Triangles of a convex outline; with points on its sides, a fan from
@@ -552,11 +570,12 @@ def _overlap_area(p: list, q: list) -> float:
     out = p
     for k in range(len(q)):
         (ax, ay), (bx, by) = q[k], q[(k + 1) % len(q)]
+        dx, dy = bx - ax, by - ay
+        sides = [dx * (y - ay) - dy * (x - ax) for x, y in out]
         points, n = [], len(out)
         for m in range(n):
             (ux, uy), (vx, vy) = out[m], out[(m + 1) % n]
-            su = (bx - ax) * (uy - ay) - (by - ay) * (ux - ax)
-            sv = (bx - ax) * (vy - ay) - (by - ay) * (vx - ax)
+            su, sv = sides[m], sides[(m + 1) % n]
             if su >= 0:
                 points.append((ux, uy))
             if (su > 0 > sv) or (su < 0 < sv):

@@ -42,11 +42,14 @@ class FileEditor:
 class Gestures:
     """The gestures made on the page on one scene, and their Undo."""
 
-    def __init__(self, uri: str, cache: Cache, editor=None, buffers=None):
+    def __init__(self, uri: str, cache: Cache, editor=None, buffers=None, settings=None):
         """``editor.apply(edit, label)`` makes an edit (CommandError if it cannot);
-        ``buffers()``, an editor's unsaved texts by path (read by #include)."""
+        ``buffers()``, an editor's unsaved texts by path (read by #include);
+        ``settings()``, the castor.settings.EvaluationSettings of the frames the
+        page shows (the panel's ``--set`` values): gestures snap on those frames."""
         self.uri = uri
         self.cache = cache
+        self.settings = settings
         self.editor = editor if editor is not None else FileEditor(cache, uri)
         self.buffers = buffers
         self.lock = threading.Lock()  # one gesture at a time
@@ -71,11 +74,12 @@ class Gestures:
             raise CommandError("an edit names the version of the text it was made on "
                                "('version', as a snap's answer gives it)")
         with self.lock, self._unsaved():
-            text = self.cache.read(self.uri)
+            cache = self.cache if self.settings is None else self.cache.using(self.settings())
+            text = cache.read(self.uri)
             if text is None:
                 raise CommandError(f"cannot read '{uri_to_path(self.uri)}'")
-            document = self.cache.document(self.uri)
-            answer = {"result": execute(command, arguments, self.cache),
+            document = cache.document(self.uri)
+            answer = {"result": execute(command, arguments, cache),
                       "version": text_version(text)}
             if command in EDITS:
                 answer["written"] = self._make(answer["result"], document, EDITS[command])
@@ -177,14 +181,22 @@ def palette() -> list[str]:
     return out
 
 
-def file_gestures(job) -> Gestures | None:
+def file_gestures(job, preview=None) -> Gestures | None:
     """The gestures of ``castor --serve`` on its scene file (None for a scene
-    read from several files or standard input: which file to write is unclear)."""
+    read from several files or standard input: which file to write is unclear),
+    made on the frames as ``preview`` (castor.serve.server.Preview) shows them,
+    with its panel's values."""
     source = job.source
     if source.text is not None or len(source.files) != 1 or source.streamed:
         return None
     uri = path_to_uri(source.files[0])
-    return Gestures(uri, Cache(reading=job.reading))
+    return Gestures(uri, Cache(reading=job.reading),
+                    settings=shown_settings(preview) if preview is not None else None)
+
+
+def shown_settings(preview):
+    """The EvaluationSettings of the frames ``preview`` shows, as they change."""
+    return lambda: preview.job.evaluation
 
 
 def answer_post(gestures: Gestures | None, body: bytes) -> tuple[int, bytes]:

@@ -512,7 +512,8 @@ class PreviewServer:
             except OSError as exc:
                 if exc.errno != errno.EADDRINUSE or candidate == candidates[-1]:
                     raise
-        self.httpd.gestures = gestures if gestures is not None else file_gestures(job)
+        self.httpd.gestures = gestures if gestures is not None else \
+            file_gestures(job, self.preview)
         self.threads: list[threading.Thread] = []
 
     @property

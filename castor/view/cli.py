@@ -16,6 +16,10 @@ class _Parser(argparse.ArgumentParser):
     """A usage error is its one line and a hint, never the usage text (CLI.md)."""
 
     def error(self, message):
+        if message.startswith("unrecognized arguments:"):  # only the unknown options
+            words = message.split(":", 1)[1].split()
+            message = "unrecognized arguments: " + " ".join(
+                [w for w in words if w.startswith("-") and w != "-"] or words)
         sys.stderr.write(f"castor-view: error: {message}\ntry 'castor-view --help'\n")
         sys.exit(USAGE_ERROR)
 

@@ -54,7 +54,7 @@ def test_ci_runs_the_readme_test_command_exactly():
 def test_using_it_has_its_commands():
     commands = using_it()
     assert len(commands) >= 15
-    assert commands[0].startswith("cpp examples/house.cas | castor")
+    assert commands[0].startswith("cpp -C examples/house.cas | castor")
 
 
 def _outputs(command: str) -> list[str]:

@@ -74,7 +74,26 @@
   panel.append(prompt, error, result);
   const marker = element("div", { id: "edit-marker", hidden: "" });
   const feature = element("div", { id: "edit-feature", hidden: "" });
-  canvas.parentElement.append(panel, marker, feature);
+  // the rubber band: from the first point to the one under the pointer (Place:
+  // the box's outline), drawn over the canvas, with the running length
+  const SVG = "http://www.w3.org/2000/svg";
+  const band = document.createElementNS(SVG, "svg");
+  band.id = "edit-band";
+  band.setAttribute("aria-hidden", "true");
+  // styled through the CSSOM: the page's policy refuses style attributes
+  Object.assign(band.style, { position: "absolute", left: "0", top: "0", width: "100%", height: "100%",
+    pointerEvents: "none", zIndex: "1", overflow: "hidden" });
+  const bandPath = document.createElementNS(SVG, "path");
+  bandPath.setAttribute("fill", "none");
+  bandPath.setAttribute("stroke", "#0a7d2c");
+  bandPath.setAttribute("stroke-width", "2");
+  bandPath.setAttribute("stroke-linejoin", "round");
+  band.append(bandPath);
+  const bandLength = element("div", { id: "edit-length", role: "status", "aria-label": "length", hidden: "" });
+  Object.assign(bandLength.style, { position: "absolute", padding: "1px 5px", fontSize: "11px",
+    pointerEvents: "none", zIndex: "1", background: "rgba(255, 255, 255, 0.9)", border: "1px solid #0a7d2c",
+    borderRadius: "3px", fontFamily: "ui-monospace, 'DejaVu Sans Mono', monospace", whiteSpace: "nowrap" });
+  canvas.parentElement.append(panel, band, marker, feature, bandLength);
 
   // ---- the server ----
   async function gesture(command, args) {
@@ -153,6 +172,7 @@
     if (!at) {
       marker.hidden = feature.hidden = true;
       delete document.body.dataset.snapped;
+      startBand();
       return;
     }
     marker.style.left = `${at[0]}px`;
@@ -163,6 +183,86 @@
     feature.textContent = [snap.feature, snap.source, snap.path].filter(Boolean).join(" · ");
     marker.hidden = feature.hidden = false;
     document.body.dataset.snapped = snap.feature;
+    startBand();
+  }
+
+  // ---- the rubber band ----
+  // The segments (pairs of scene points) and the length shown between the
+  // first point and the one under the pointer, or null.
+  function stretched() {
+    const first = state.points[0], now = state.snap;
+    if (!state.tool || !first || !now || !now.point) return null;
+    const a = first.point, b = now.point;
+    if (state.tool !== "place") {
+      const d = sub(b, a);
+      return { segments: [[a, b]], text: `${round(Math.hypot(d[0], d[1], d[2]))} m`, at: [a, b] };
+    }
+    // Place: the box's outline, its base in the first corner's plane across
+    // the side the two corners leave flat (as place() writes it)
+    const second = state.height ? state.points[1].point : b;
+    const size = sub(second, a);
+    let flat = 2;
+    for (const k of [0, 1, 2]) if (Math.abs(size[k]) < Math.abs(size[flat]) - 1e-9) flat = k;
+    const [u, v] = [0, 1, 2].filter((k) => k !== flat);
+    const corner = (du, dv, dh) => {
+      const p = a.slice();
+      p[u] += du ? size[u] : 0;
+      p[v] += dv ? size[v] : 0;
+      p[flat] += dh;
+      return p;
+    };
+    const ring = (h) => [[corner(0, 0, h), corner(1, 0, h)], [corner(1, 0, h), corner(1, 1, h)],
+      [corner(1, 1, h), corner(0, 1, h)], [corner(0, 1, h), corner(0, 0, h)]];
+    const sides = `${round(Math.abs(size[u]))} × ${round(Math.abs(size[v]))}`;
+    if (!state.height) return { segments: ring(0), text: `${sides} m`, at: [a, second] };
+    const h = state.dragged || 0;
+    const segments = ring(0);
+    if (h) {
+      segments.push(...ring(h));
+      for (const [du, dv] of [[0, 0], [1, 0], [1, 1], [0, 1]]) segments.push([corner(du, dv, 0), corner(du, dv, h)]);
+    }
+    return { segments, text: h ? `${sides} × ${round(Math.abs(h))} m` : `${sides} m`, at: [a, corner(0, 0, h)] };  // the upright away from the pointer's
+  }
+
+  let bandShown = "";
+  function drawBand() {
+    const drawn = stretched();
+    let path = "", label = null;
+    if (drawn) {
+      for (const [p, q] of drawn.segments) {
+        const s = project(p), e = project(q);
+        if (s && e) path += `M${s[0].toFixed(1)} ${s[1].toFixed(1)}L${e[0].toFixed(1)} ${e[1].toFixed(1)}`;
+      }
+      const s = project(drawn.at[0]), e = project(drawn.at[1]);
+      if (path && s && e) label = [(s[0] + e[0]) / 2, (s[1] + e[1]) / 2];
+    }
+    const key = `${path}|${drawn && label ? drawn.text : ""}|${label}`;
+    if (key === bandShown) return;
+    bandShown = key;
+    bandPath.setAttribute("d", path);
+    if (!label) {
+      bandLength.hidden = true;
+      delete document.body.dataset.band;
+      return;
+    }
+    bandLength.textContent = drawn.text;
+    bandLength.style.left = `${label[0] + 8}px`;
+    bandLength.style.top = `${label[1] - 22}px`;
+    bandLength.hidden = false;
+    document.body.dataset.band = drawn.text;
+  }
+
+  // While a gesture is under way the band follows the view too (turned,
+  // zoomed): re-projected at each animation frame, redrawn only if it moved.
+  let banding = false;
+  function followBand() {
+    drawBand();
+    banding = Boolean(state.tool && state.points.length);
+    if (banding) requestAnimationFrame(followBand);
+  }
+  function startBand() {
+    if (!banding) followBand();
+    else drawBand();
   }
 
   function showWritten(lines) {
@@ -185,6 +285,7 @@
 
   function prompted() {
     document.body.dataset.points = String(state.points.length);
+    startBand();
     if (!state.tool) {
       panel.hidden = !result.textContent;
       prompt.textContent = "";
@@ -233,6 +334,7 @@
     const [first, second] = state.points;
     if (state.tool === "place") {
       state.height = true;
+      state.dragged = null;
       prompted();
       value.focus();
       return;
@@ -252,9 +354,11 @@
   async function measureFirst(snap) {
     const lines = [`point ${snap.point.map(round).join(", ")} (${snap.feature})`];
     if (snap.path) {
+      // the face under the pointer, if it is the snapped object's: a corner
+      // snapped beside an outline has the ground or another face behind it
       const face = (await gesture("castor.measure", { frame: frameNumber(), origin: snap.ray.origin,
-        direction: snap.ray.direction })).result;
-      if (face && face.area !== undefined) lines.push(`face ${round(face.area)} m²`);
+        direction: snap.ray.direction }).catch(() => ({}))).result;
+      if (face && face.area !== undefined && face.path === snap.path) lines.push(`face ${round(face.area)} m²`);
       const name = /^\(([^)]+)\)/.exec(snap.path);
       if (name) {
         const o = (await gesture("castor.measure", { frame: frameNumber(), object: name[1] })).result;

@@ -1,10 +1,14 @@
 " A small client of castor --lsp for Vim 9 as Debian ships it (no language
 " client installed): the server's diagnostics as signs and in the location
-" list, updated as one types. With yegappan/lsp, vim-lsp or ALE installed,
-" plugin/castor_lsp.vim hands the server to them instead.
+" list, updated as one types; its messages (the live preview's address under
+" castor --lsp --serve) echoed; the edits it asks for (workspace/applyEdit: a
+" gesture made on the preview) made in the buffers, unsaved, undone with u.
+" With yegappan/lsp, vim-lsp or ALE installed, plugin/castor_lsp.vim hands the
+" server to them instead.
 let s:servers = {}  " root -> {job, channel, ready, waiting}
 let s:versions = {}  " buffer number -> version sent
 let s:diagnostics = {}  " buffer number -> the last diagnostics as location list items
+let s:messages = []  " the server's window/showMessage texts
 
 function! s:Uri(path) abort
   return 'file://' . substitute(fnamemodify(a:path, ':p'), '[^A-Za-z0-9/._~-]',
@@ -58,7 +62,8 @@ function! s:Start(root) abort
   let l:server.channel = job_getchannel(l:server.job)
   let l:folder = [#{uri: s:Uri(a:root), name: a:root}]
   call ch_sendexpr(l:server.channel, #{method: 'initialize', params: #{processId: getpid(),
-        \ rootUri: s:Uri(a:root), workspaceFolders: l:folder, capabilities: {}}},
+        \ rootUri: s:Uri(a:root), workspaceFolders: l:folder,
+        \ capabilities: #{workspace: #{applyEdit: v:true}}}},
         \ #{callback: function('s:Initialized', [l:server])})
   return l:server
 endfunction
@@ -108,8 +113,68 @@ function! s:Notify(buffer, method) abort
 endfunction
 
 function! s:Received(channel, message) abort
-  if get(a:message, 'method', '') ==# 'textDocument/publishDiagnostics'
+  let l:method = get(a:message, 'method', '')
+  if l:method ==# 'textDocument/publishDiagnostics'
     call s:Show(a:message.params)
+  elseif l:method ==# 'window/showMessage'
+    call add(s:messages, a:message.params.message)
+    echomsg a:message.params.message
+  elseif l:method ==# 'workspace/applyEdit' && has_key(a:message, 'id')
+    call s:Answer(a:channel, a:message.id, s:Apply(a:message.params.edit))
+  endif
+endfunction
+
+" The answer to a request of the server, written whole: Vim 9.0's lsp mode
+" refuses the string ids that pygls gives its requests (E475).
+function! s:Answer(channel, id, result) abort
+  let l:body = json_encode(#{jsonrpc: '2.0', id: a:id, result: a:result})
+  call ch_sendraw(a:channel, 'Content-Length: ' . len(l:body) . "\r\n\r\n" . l:body)
+endfunction
+
+" workspace/applyEdit: each file's edits, the last in the text first, made in
+" its buffer (loaded if it is not), unsaved; the server told of the new text.
+function! s:Apply(edit) abort
+  try
+    for [l:uri, l:edits] in items(get(a:edit, 'changes', {}))
+      let l:buffer = bufadd(s:Path(l:uri))
+      call bufload(l:buffer)
+      for l:e in sort(copy(l:edits), {a, b -> s:Compare(b.range.start, a.range.start)})
+        call s:Replace(l:buffer, l:e.range, l:e.newText)
+      endfor
+      call s:Changed(l:buffer)
+    endfor
+  catch
+    return #{applied: v:false, failureReason: v:exception}
+  endtry
+  return #{applied: v:true}
+endfunction
+
+function! s:Compare(p, q) abort
+  return a:p.line != a:q.line ? a:p.line - a:q.line : a:p.character - a:q.character
+endfunction
+
+" One TextEdit: the lines of its range replaced by the text they become.
+function! s:Replace(buffer, range, text) abort
+  let l:count = getbufinfo(a:buffer)[0].linecount
+  let l:first = a:range.start.line + 1
+  let l:last = min([a:range.end.line + 1, l:count])
+  let l:lines = l:first <= l:last ? getbufline(a:buffer, l:first, l:last) : []
+  let l:head = strcharpart(get(l:lines, 0, ''), 0, a:range.start.character)
+  let l:tail = a:range.end.line + 1 <= l:count
+        \ ? strcharpart(getbufline(a:buffer, a:range.end.line + 1)[0], a:range.end.character) : ''
+  let l:new = split(l:head . a:text . l:tail, "\n", 1)
+  if a:range.end.line + 1 > l:count && len(l:new) > 1 && l:new[-1] ==# ''
+    call remove(l:new, -1)  " the text's last line end: Vim writes it itself
+  endif
+  let l:old = max([l:last - l:first + 1, 0])
+  let l:same = min([l:old, len(l:new)])
+  if l:same > 0
+    call setbufline(a:buffer, l:first, l:new[: l:same - 1])
+  endif
+  if len(l:new) > l:old
+    call appendbufline(a:buffer, l:first + l:old - 1, l:new[l:old :])
+  elseif l:old > len(l:new)
+    call deletebufline(a:buffer, l:first + len(l:new), l:first + l:old - 1)
   endif
 endfunction
 
@@ -137,6 +202,11 @@ endfunction
 " The diagnostics last shown for a buffer (for scripts and tests).
 function! castor#client#diagnostics(buffer) abort
   return get(s:diagnostics, a:buffer, [])
+endfunction
+
+" The messages the server showed (the live preview's address).
+function! castor#client#messages() abort
+  return copy(s:messages)
 endfunction
 
 function! castor#client#servers() abort
