@@ -105,7 +105,7 @@ def export_set(drawing_set) -> bytes:
     width, height = index_paper(drawing_set.sheets)
     page = pdfcanvas.Canvas(out, pagesize=(width * MM, height * MM), invariant=1,
                             pageCompression=1)
-    project = drawing_set.project.get("project", "") or drawing_set.sheets[0].title
+    project = drawing_set.project.get("project", "") or drawing_set.title
     page.setTitle(f"{project}: drawing set")
     page.setCreator("castor")
     _index(page, drawing_set, width, height)
@@ -139,7 +139,7 @@ def _index(page, drawing_set, width: float, height: float) -> None:
     drawing, scale, paper and revision, as their title blocks give them."""
     project = drawing_set.project
     x, right = INDEX_MARGIN, width - INDEX_MARGIN
-    title = project.get("project", "") or drawing_set.sheets[0].title
+    title = project.get("project", "") or drawing_set.title
     extra = "   ".join(f"{name} {project[key]}" for key, name in (
         ("number", "No."), ("drawn", "Drawn"), ("checked", "Checked"),
         ("revision", "Rev")) if project.get(key))

@@ -137,6 +137,16 @@ def test_a_register_sheets_title_is_its_pdfs_title(tmp_path):
     assert re.search(r"Title:\s+Plan du rez: Plan z = 1.20", info)
 
 
+@needs_poppler
+def test_without_a_project_title_the_index_is_titled_as_the_scene_not_its_first_sheet(tmp_path):
+    (tmp_path / "r.toml").write_text(BARE)
+    castor(tmp_path, HOUSE, "--sheets", "r.toml", "-o", "set.pdf")
+    assert page_text(tmp_path / "set.pdf", 1).splitlines()[0].strip() == "maison"
+    info = subprocess.run(["pdfinfo", str(tmp_path / "set.pdf")], capture_output=True,
+                          text=True).stdout
+    assert re.search(r"Title:\s+maison: drawing set", info)
+
+
 @pytest.mark.parametrize("text, message", [
     ('[[sheet]]\nnumber = "A-101\ndrawing = "plan z=1.2"\n',
      "r.toml:2:16: not valid TOML: illegal character '\\n' (is a string's closing quote "
