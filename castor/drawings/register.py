@@ -60,13 +60,13 @@ class Register(NamedTuple):
                   "revision": self.project.get("revision", "")}
         return tuple((k, v) for k, v in fields.items() if v)
 
-    def overridden(self, names) -> list[str]:
-        """Of the command line's title block fields ``names`` (--project ...),
-        those the register gives its own of, for every sheet or some: where it
-        gives one, the register's is printed."""
+    def overridden(self, fields) -> list[str]:
+        """Of the command line's title block fields (name, text) (--project ...),
+        the names of those the register gives another value of, for every
+        sheet or some: where it gives one, the register's is printed."""
         given = dict(self.project_fields())
-        return [name for name in names if name in given
-                or (name == "revision" and any(e.revision for e in self.sheets))]
+        return [name for name, text in fields if given.get(name, text) != text
+                or (name == "revision" and any(e.revision not in ("", text) for e in self.sheets))]
 
     def fields(self, entry: SheetEntry) -> tuple[tuple[str, str], ...]:
         """The title block's fields of one sheet (castor.settings.DrawingSettings.fields)."""

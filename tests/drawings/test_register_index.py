@@ -160,3 +160,13 @@ def test_a_toml_syntax_error_is_a_usage_error_at_its_line_and_column(tmp_path, t
     said = castor(tmp_path, HOUSE, "--sheets", "r.toml", "-o", "set.pdf", status=2)
     assert said.splitlines()[0] == f"castor: error: {message}"
     assert not (tmp_path / "set.pdf").exists()
+
+
+def test_a_field_the_register_gives_alike_is_no_warning(tmp_path):
+    (tmp_path / "r.toml").write_text('[project]\ntitle = "Maison"\nrevision = "B"\n' + BARE)
+    said = castor(tmp_path, HOUSE, "--sheets", "r.toml", "--revision", "B", "--project", "Maison",
+                  "--number", "7", "-o", "s-%d.svg")
+    assert said == ""
+    said = castor(tmp_path, HOUSE, "--sheets", "r.toml", "--revision", "C", "-o", "s-%d.svg")
+    assert said.splitlines() == ["castor: warning: --revision has no effect where the register "
+                                 "gives its own (r.toml); the register's is printed there"]
