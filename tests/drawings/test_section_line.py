@@ -9,25 +9,9 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from tests.support.symbols import HOUSE, SVG, castor
+from tests.support.symbols import HOUSE, SVG, castor, register
 
-REGISTER = """\
-[project]
-sheet = "A3"
-scale = "1:50"
-
-[[sheet]]
-number = "A-101"
-drawing = "plan z=1.2"
-
-[[sheet]]
-number = "A-201"
-drawing = "section x=3"
-
-[[sheet]]
-number = "A-202"
-drawing = "section y=2"
-"""
+REGISTER = register(("A-101", "plan z=1.2"), ("A-201", "section x=3"), ("A-202", "section y=2"))
 
 
 def segments(path) -> list:
