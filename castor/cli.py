@@ -14,7 +14,8 @@ import sys
 import threading
 
 from castor import __version__
-from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
+from castor.diagnostics import (USAGE_ERROR, CastorError, ClosedStdout, Reporter, UsageError,
+                                stdout_failed)
 from castor.options import (OUTPUT_OPTIONS, TITLE_FIELDS, negative_values, not_utf8, option_value,
                             parse_count)
 from castor.settings import DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE
@@ -437,7 +438,7 @@ def _status(outcome) -> int:
     if isinstance(outcome, Unwritable):
         sys.stderr.write(f"castor: error: {outcome}\n")
         return USAGE_ERROR
-    if _stdout_failed(outcome):
+    if stdout_failed(outcome):
         # standard output itself failed (a full disk behind a redirection)
         sys.stderr.write(f"castor: error: cannot write to standard output: "
                          f"{(outcome.strerror or str(outcome)).lower()}\n")
@@ -549,7 +550,7 @@ def entry() -> None:
     at once. Output is flushed first.
     """
     if sys.stdout is None:  # started with standard output closed ('>&-')
-        sys.stdout = _Closed()
+        sys.stdout = ClosedStdout()
     status = main()
     from castor.run import release_processes
 
@@ -566,47 +567,6 @@ def entry() -> None:
         signal.signal(signal.SIGPIPE, signal.SIG_DFL)
         os.kill(os.getpid(), signal.SIGPIPE)
     os._exit(status)
-
-
-# what writing a stream can fail with (a full disk or quota, a file too large, a
-# device's error, a descriptor closed or non-blocking); a broken pipe is said apart
-_WRITE_ERRORS = ("ENOSPC", "EDQUOT", "EFBIG", "EIO", "EBADF", "EAGAIN", "EPIPE")
-
-
-def _stdout_failed(outcome) -> bool:
-    """Whether ``outcome`` is standard output failing: an OSError of writing a
-    stream, naming no file (an OSError that names one, or of another kind, such
-    as a file of castor's own missing, is not: an internal error)."""
-    import errno
-
-    return (isinstance(outcome, OSError) and outcome.filename is None
-            and outcome.errno in {getattr(errno, name, None) for name in _WRITE_ERRORS} - {None})
-
-
-class _Closed:
-    """Standard output when castor was started without one: writing to it fails
-    as writing to a closed descriptor does (EBADF), and is said so; a run that
-    writes nothing there (--check, -o FILE) is not hindered."""
-
-    def write(self, data) -> int:
-        import errno
-
-        raise OSError(errno.EBADF, "standard output is closed")
-
-    def flush(self) -> None:
-        pass
-
-    def fileno(self) -> int:
-        import io
-
-        raise io.UnsupportedOperation("standard output is closed")
-
-    def isatty(self) -> bool:
-        return False
-
-    @property
-    def buffer(self):
-        return self
 
 
 def _quiet_stdout() -> None:
