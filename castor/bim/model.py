@@ -197,6 +197,12 @@ class _Maker:
         blocks = self.takeoff.blocks()
         for opening in self.takeoff.idle(blocks):
             self.warn(cuts_nothing(opening))
+        for opening in {o.name: o for o in self.takeoff.openings}.values():
+            chosen, own = self.classes.get(opening.name), opening.classification.ifc_class
+            if chosen not in (None, own):
+                self.warn(f"--ifc-class {opening.name}={chosen}: '{opening.name}' is a "
+                          f"{opening.classification.short} filling an opening (LANGUAGE.md "
+                          f"§11), so it stays an {own}; the option is ignored")
         for block in blocks:
             opening, classification = block.opening, block.opening.classification
             hosts = self.hosts(block, of_object.get(opening.object, []))

@@ -30,3 +30,20 @@ def test_a_space_made_a_wall_by_the_option_stays_a_space_and_is_said(tmp_path):
     model = ifcopenshell.open(str(out))
     assert [s.Name for s in model.by_type("IfcSpace")] == ["sejour"]
     assert [w.Name for w in model.by_type("IfcWall")] == ["mur"]
+
+
+def test_a_door_filling_an_opening_made_a_window_by_the_option_is_said(tmp_path):
+    scene = write(tmp_path, "door.cas", """\
+porte = @t(1, -0.1, 0) @h(0.9, 0.5, 2.1) !cu(0.2, 0.3, 0.8);  // [door]
+mur = $D(@h(4, 0.3, 2.5) !cu(0.9, 0.9, 0.8), porte);  // [wall]
+> mur;
+""")
+    out = tmp_path / "door.ifc"
+    status, _, err = run("-o", str(out), "--ifc-class", "porte=IfcWindow", str(scene))
+    assert status == 0
+    assert err == (f"{scene}:3:1: warning: --ifc-class porte=IfcWindow: 'porte' is a door "
+                   "filling an opening (LANGUAGE.md §11), so it stays an IfcDoor; the option "
+                   "is ignored\n > mur;\n ^\n"), err
+    model = ifcopenshell.open(str(out))
+    assert [d.Name for d in model.by_type("IfcDoor")] == ["porte"]
+    assert not model.by_type("IfcWindow")
