@@ -80,8 +80,7 @@ class Snapshot:
     def as_json(self, server: str, evaluating: bool, faceting: bool = False) -> bytes:
         return json.dumps({
             "server": server, "version": self.version, "evaluating": evaluating,
-            "faceting": faceting,
-            "evaluated": self.evaluated,
+            "faceting": faceting, "evaluated": self.evaluated,
             "stale": self.stale, "seconds": round(self.seconds, 4),
             "refaceted": None if self.refaceted is None else round(self.refaceted, 4),
             "finished": time.strftime("%H:%M:%S", time.localtime(self.finished))
@@ -102,9 +101,7 @@ class Preview:
         # outlived a server knows by this name that the versions are new ones
         self.name = secrets.token_hex(6)
         self.snapshot = Snapshot(files=job.files)
-        self.evaluating = True
-        # what is under way is a refacet for the page's camera (nothing evaluated)
-        self.faceting = False
+        self.evaluating, self.faceting = True, False  # faceting: a refacet, nothing evaluated
         self.state = threading.Condition()
         self.stop = threading.Event()
         self._wanted = 1  # evaluations asked for (the first, then one per save)
@@ -196,9 +193,8 @@ class Preview:
                     self._looked_done = looked  # nothing shown to facet again yet
                     self.state.notify_all()
                     continue
-                refacet = generation == done
-                if not self.evaluating or self.faceting != refacet:
-                    self.evaluating, self.faceting = True, refacet
+                if (self.evaluating, self.faceting) != (True, generation == done):
+                    self.evaluating, self.faceting = True, generation == done
                     self.state.notify_all()
             started_ns = time.time_ns()
             stale = lambda: self._wanted != generation or self.stop.is_set()  # noqa: E731
@@ -297,10 +293,8 @@ class _Handler(BaseHTTPRequestHandler):
             self._send(200, self.server.pages[name], kind, head)
         elif path == "/scene.json":
             with preview.state:
-                snapshot, evaluating = preview.snapshot, preview.evaluating
-                faceting = preview.faceting
-            self._send(200, snapshot.as_json(preview.name, evaluating, faceting),
-                       "application/json", head)
+                snapshot, busy = preview.snapshot, preview.state_key()[1:]
+            self._send(200, snapshot.as_json(preview.name, *busy), "application/json", head)
         elif path == "/parameters.json":
             self._send(200, json.dumps(preview.panel.as_json()).encode(), "application/json",
                        head)
