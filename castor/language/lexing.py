@@ -6,15 +6,14 @@ alternatives, in lark's order; at each position the first alternative that
 matches wins. A long statement is mostly punctuation and blanks (``, `` after
 each number), which lark's order tries after eleven other terminals. Here:
 
-* a terminal is *movable* when no terminal before it that is not movable
-  itself may match from a position where it matches (proven by the first
-  characters of one of the two: a known, finite set that the other cannot
-  start with; neither may match nothing). Moving the movable
-  ones first, in their own order, changes no match: at any position the
-  terminal that won still wins (see ``order``);
-* an ignored terminal that is movable, that no other terminal may start where
-  it does, and that has no group of its own (the blanks, WS) is also read, at most once, before the alternatives, as part of the next
-  token's match (``(?:WS)?(?:...)``), which spares a match and a turn of the
+* a terminal is tried before one that lark tries before it only where the two
+  can never match from the same position (proven by the first characters of
+  one of them: a known, finite set that the other cannot start with; neither
+  may match nothing). Then at any position the terminal that won still wins;
+  the punctuation comes first;
+* an ignored terminal that no other terminal may start where it does, and
+  that has no group of its own (the blanks, WS) is also read, at most once,
+  before the alternatives, as part of the next token's match (``(?:WS)?(?:...)``), which spares a match and a turn of the
   parser's loop per run of blanks. The token then begins at its group, not at
   the match (``Match.start(kind)``).
 
@@ -183,55 +182,56 @@ def _disjoint(a, b) -> bool:
     return False
 
 
-def movable(pieces, flags: int) -> list[str]:
-    """The names of the terminals that may be tried first (module docstring), in
-    the order to try them: the fewest first characters first, where that keeps
-    the order of any two that may start alike."""
+def faster_order(pieces, flags: int) -> list[str]:
+    """The names of the terminals in the order to try them (module docstring):
+    those of a known set of first characters first, the shortest expressions
+    (punctuation) first among them, where no terminal passes one before it
+    in lark's order that may match from the same position."""
     if flags & re.IGNORECASE:
-        return []
-    parsed = [(name, sre.parse(text, flags).data) for name, text in pieces]
-    moved: list[tuple[int, str, list]] = []
-    for index, (name, seq) in enumerate(parsed):
-        kept = {n for _, n, _ in moved}
-        if all(_disjoint(seq, s) for n, s in parsed[:index] if n not in kept):
-            moved.append((index, name, seq))
+        return [name for name, _ in pieces]
+    parsed = [sre.parse(text, flags).data for _, text in pieces]
+    sizes = []
+    for seq in parsed:
+        firsts = first_set(seq)
+        sizes.append(_LARGEST_SET + 1 if firsts is None else len(firsts))
+    disjoint: dict = {}
 
-    def size(entry) -> int:
-        firsts = first_set(entry[2])
-        return _LARGEST_SET + 1 if firsts is None else len(firsts)
+    def apart(a: int, b: int) -> bool:
+        if (a, b) not in disjoint:
+            disjoint[a, b] = disjoint[b, a] = _disjoint(parsed[a], parsed[b])
+        return disjoint[a, b]
 
-    preferred = sorted(moved, key=size)
-    for i, (index, _, seq) in enumerate(preferred):
-        for other, _, other_seq in preferred[i + 1:]:
-            if other < index and not _disjoint(seq, other_seq):
-                return [name for _, name, _ in moved]  # lark's order kept among them
-    return [name for _, name, _ in preferred]
+    left, chosen = list(range(len(pieces))), []
+    while left:  # the earliest one left may always come next: some one is taken
+        index = min((i for i in left if all(apart(i, j) for j in left if j < i)),
+                    key=lambda i: (sizes[i] > _LARGEST_SET, len(pieces[i][1]), i))
+        left.remove(index)
+        chosen.append(pieces[index][0])
+    return chosen
 
 
 def order(pattern: str, flags: int, ignored) -> tuple[str, str]:
-    """The root expression's alternatives reordered (the movable ones first) and
-    the prefix read before them (the movable ignored terminals without groups
-    of their own, '' if none): the same tokens, the same types, from any
-    position; the expression unchanged where it cannot be proven."""
+    """The root expression's alternatives reordered (faster_order) and the prefix
+    read before them (the ignored terminals that no other may start like and
+    without groups of their own, '' if none): the same tokens, the same types,
+    from any position; lark's order where it cannot be proven."""
     pieces = alternatives(pattern, flags)
     if pieces is None:
         return pattern, ""
-    moved = movable(pieces, flags)
+    names = faster_order(pieces, flags)
     texts = dict(pieces)
-    first = [texts[name] for name in moved]
-    rest = [text for name, text in pieces if name not in moved]
     skipped = []
     parsed = {name: sre.parse(text, flags).data for name, text in pieces}
     for name, text in pieces:
-        if name not in moved or name not in ignored:
+        if name not in ignored:
             continue
         inner = text[len(f"(?P<{name}>"):-1]
         firsts = first_set(parsed[name])
         others = [seq for other, seq in parsed.items() if other != name]
         # no other terminal may start where it does, so that it wins there in
         # any order; and it has no group of its own
-        if (not any(can_start(s, ch) for s in others for ch in firsts)
+        if (firsts is not None and not any(can_start(s, ch) for s in others for ch in firsts)
                 and sre.parse(inner, flags).state.groups == 1):
             skipped.append(inner)
     prefix = f"(?:{'|'.join(skipped)})?" if skipped else ""
-    return "|".join(first + rest), prefix
+    return "|".join(texts[name] for name in names), prefix
