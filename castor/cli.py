@@ -480,6 +480,10 @@ def _warn_without_effect(args, reporter) -> None:
             if option in args.given:
                 reporter.warning(f"{option} has no effect with --sheets (each sheet's drawing, "
                                  "scale and paper are the register's); it is ignored")
+        for name in args.sheets.overridden([(n, getattr(args, n)) for n in TITLE_FIELDS
+                                            if getattr(args, n)]):
+            reporter.warning(f"--{name} has no effect where the register gives its own "
+                             f"({args.sheets.path}); the register's is printed there")
 
 
 def _stop_on_signals() -> list[int]:

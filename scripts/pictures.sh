@@ -24,5 +24,10 @@ for drawing in "plan --section z=1.2" "section --section x=3" "front --view fron
     SOURCE_DATE_EPOCH=1767225600 castor "$@" -o "$tmp/$name.svg" examples/house.cas
     rsvg-convert -w 1000 -b white "$tmp/$name.svg" -o "$out/house-$name.png"
 done
+# the pavilion's set (its register examples/pavilion-sheets.toml): the plan and the section pages
+SOURCE_DATE_EPOCH=1767225600 castor examples/pavilion.cas --sheets examples/pavilion-sheets.toml \
+    -o "$tmp/pavilion.pdf"
+pdftoppm -png -r 90 -f 2 -l 2 -singlefile "$tmp/pavilion.pdf" "$out/pavilion-plan"
+pdftoppm -png -r 90 -f 4 -l 4 -singlefile "$tmp/pavilion.pdf" "$out/pavilion-section"
 rm -r "$tmp"
 echo "pictures written to $out"

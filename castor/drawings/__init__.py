@@ -79,8 +79,13 @@ class DrawingSet:
     register's order, with the register and -o's path."""
 
     def __init__(self, register, entries: list, sheets: list, target: str | None,
-                 number: int = 1):
+                 number: int = 1, project: dict | None = None, title: str = ""):
         self.register = register  # castor.drawings.register.Register
+        # the set's title without a project title: --title, or the '>' object's name
+        self.title = title or (sheets[0].title if sheets else "castor")
+        # the project's title block fields (project, number, drawn, checked,
+        # revision): the register's [project], else the command line's
+        self.project = project if project is not None else dict(register.project_fields())
         self.entries = entries  # its SheetEntry for each sheet
         self.sheets = sheets  # castor.drawings.sheet.Sheet ...
         # -o's path: a %d pattern gives a file per sheet (castor.formats.svg.sheet_files)
@@ -125,4 +130,7 @@ def set_of(tree, frame, settings, title: str | None = None, warn=None, facetizer
                            str(exc)).replace("use a larger --sheet", "use a larger sheet")
             raise CastorError(f"sheet {entry.number} ({entry.drawing}): {words}",
                               Location(register.path, entry.line, 1)) from None
-    return DrawingSet(register, list(register.sheets), sheets, target, tree.number)
+    project = {name: plain(str(text)) for name, text in
+               tuple(settings.fields) + register.project_fields() if plain(str(text))}
+    return DrawingSet(register, list(register.sheets), sheets, target, tree.number, project,
+                      title_of(tree, title))

@@ -76,6 +76,7 @@ class Stroke(NamedTuple):
     pen: float = SEEN_PEN
     dashed: bool = False
     closed: bool = False
+    chain: bool = False  # ISO 128's long-dashed dotted line (a section's cut line)
 
 
 class Arc(NamedTuple):
@@ -127,10 +128,13 @@ def classify(drawing, takeoff, warn=None) -> None:
     symbols = Symbols()
     drawing.symbols = symbols
     plan = drawing.section is not None and drawing.section.axis == "z"
-    if drawing.section is not None:
-        _regions(drawing, takeoff, symbols, plan)
-    symbols.storeys = [level for _, level in takeoff.storeys()]
     blocks = takeoff.blocks()  # measured once: each call measures them again
+    if drawing.section is not None:
+        z = float(drawing.section.value)
+        doors = [b for b in blocks if plan and b.opening.classification.ifc_class == DOOR
+                 and b.sill < z < b.head]
+        _regions(drawing, takeoff, symbols, plan, doors)
+    symbols.storeys = [level for _, level in takeoff.storeys()]
     _openings(drawing, blocks, symbols, takeoff)
     if not plan:
         return
@@ -169,17 +173,25 @@ def classify(drawing, takeoff, warn=None) -> None:
             symbols.level_at = (at[0], at[1])
 
 
-def _regions(drawing, takeoff, symbols: Symbols, plan: bool) -> None:
-    """Each layer's cut regions, element by element, with their patterns."""
+def _regions(drawing, takeoff, symbols: Symbols, plan: bool, doors=()) -> None:
+    """Each layer's cut regions, element by element, with their patterns. An
+    unclassed solid's cut wholly inside the block of a door the plan cuts
+    (``doors``) is that door's leaf, closed: the plan draws the door's symbol
+    (its leaf open and its swing) instead."""
     depth = drawing.view.plane_depth(drawing.section)
     by_object: dict[int, list] = {}
+    dropped: dict[int, list] = {}  # object -> the closed leaves' loops left out
     for p in takeoff.placed():
         if plan and p.element.ifc_class == STAIR:
             continue  # a plan draws the stair's symbol, not its cut
         loops = cut_loops(takeoff.solid(p.element), drawing.view, depth)
+        pattern, words = pattern_of(p.element)
+        if doors and pattern == SOLID:
+            leaves = [loop for loop in loops if any(_within(loop, b) for b in doors)]
+            dropped.setdefault(p.element.object, []).extend(leaves)
+            loops = [loop for loop in loops if not any(loop is leaf for leaf in leaves)]
         if not loops:
             continue
-        pattern, words = pattern_of(p.element)
         if p.element.ifc_class in WALLS:
             symbols.walls.extend(loops)
         by_object.setdefault(p.element.object, []).append(
@@ -188,6 +200,39 @@ def _regions(drawing, takeoff, symbols: Symbols, plan: bool) -> None:
             symbols.legend.append((pattern, words))
     for layer in drawing.layers:
         layer.regions = by_object.get(layer.source, [])
+        if dropped.get(layer.source) and len(layer.lines):
+            # and the leaf's seen edges below the cut, along its outline
+            keep = ~_along(layer.lines, dropped[layer.source])
+            layer.lines, layer.profile = layer.lines[keep], layer.profile[keep]
+
+
+def _within(loop, block, tolerance: float = 1e-6) -> bool:
+    """Whether a plan loop lies wholly inside the opening block's footprint (a
+    rectangle of its width along its direction and its thickness across)."""
+    (x0, y0, _), (x1, y1, _) = block.figures.bbox
+    along = np.array(block.direction, float)
+    along /= np.linalg.norm(along)
+    across = np.array([-along[1], along[0]])
+    offsets = np.asarray(loop, float) - np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+    return bool(np.all(np.abs(offsets @ along) <= block.width / 2 + tolerance)
+                and np.all(np.abs(offsets @ across) <= block.thickness / 2 + tolerance))
+
+
+def _along(segments: np.ndarray, loops: list, tolerance: float = 1e-6) -> np.ndarray:
+    """Which segments (L, 2, 2) lie along the loops' outlines (their ends and
+    points between each on an edge of a loop, which may run on in pieces)."""
+    a, b = segments[:, 0], segments[:, 1]
+    samples = [a + (b - a) * t for t in np.linspace(0.0, 1.0, 9)]
+    near = [np.full(len(segments), np.inf) for _ in samples]
+    for loop in loops:
+        p = np.asarray(loop, float)
+        for start, end in zip(p, np.roll(p, -1, axis=0)):
+            e = end - start
+            square = float(e @ e)
+            for k, q in enumerate(samples):
+                t = np.clip((q - start) @ e / square, 0, 1) if square > 1e-24 else np.zeros(len(q))
+                near[k] = np.minimum(near[k], np.linalg.norm(q - start - t[:, None] * e, axis=1))
+    return np.all([d < tolerance for d in near], axis=0)
 
 
 def _openings(drawing, blocks, symbols: Symbols, takeoff=None) -> None:

@@ -54,11 +54,12 @@ def _symbols(drawing, origin, mm: float) -> Group | None:
         points = paper_of(stroke.points)
         if stroke.closed:
             points = np.concatenate([points, points[:1]])
-        by_pen.setdefault((stroke.pen, stroke.dashed), []).extend(
+        by_pen.setdefault((stroke.pen, stroke.dashed, stroke.chain), []).extend(
             np.stack([points[:-1], points[1:]], axis=1).tolist())
-    for (pen, dashed), segments in sorted(by_pen.items()):
-        group.items.append(Lines(np.array(segments, float).reshape(-1, 2, 2), pen,
-                                 "overhead" if dashed else "symbol", dashed))
+    for (pen, dashed, chain), segments in sorted(by_pen.items()):
+        kind = "overhead" if dashed else "cutline" if chain else "symbol"
+        group.items.append(Lines(np.array(segments, float).reshape(-1, 2, 2), pen, kind, dashed,
+                                 chain))
     for arc in symbols.arcs:
         (x, y), = paper_of([arc.centre]).tolist()
         group.items.append(Arc(x, y, arc.radius * mm, arc.start, arc.end, arc.pen))

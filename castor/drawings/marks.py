@@ -1,6 +1,7 @@
 """The marks a plan of a drawing set carries (CLI.md, the drawing register):
 each section's cut line, short and heavy beyond the drawing at both ends,
-with arrows for the direction looked in and the section's sheet number; each
+joined across the plan by a thin long-dashed dotted line (ISO 128), with
+arrows for the direction looked in and the section's sheet number; each
 elevation's mark, a triangle on the side it is seen from pointing at the
 building, with its sheet number. In page metres, sized in paper mm.
 
@@ -16,6 +17,7 @@ import numpy as np
 from castor.drawings.classes import Label, Stroke, Symbols
 
 GAP, LENGTH, ARROW = 3.0, 7.0, 2.5  # mm: past the chains, the cut line's ends, arrows
+CHAIN_PEN = 0.18  # mm: the cut line between its heavy ends
 LABEL = 2.5  # mm: the sheet numbers' height
 # an elevation is seen from: the side of the plan it stands on, and the way it looks
 ELEVATIONS = {"front": ("bottom", (0.0, 1.0)), "back": ("top", (0.0, -1.0)),
@@ -67,6 +69,9 @@ def _section_mark(symbols, entry, box, k: float, depth: dict) -> None:
         look = np.array([0.0, 1.0])
     from castor.drawings.sheet import text_width
 
+    # ISO 128's cutting plane: a thin long-dashed dotted line across the plan
+    # joining the two heavy ends (as ArchiCAD's and Revit's section marks do)
+    symbols.strokes.append(Stroke(np.array([ends[0][0], ends[1][0]]), pen=CHAIN_PEN, chain=True))
     for inner, outer in ends:
         outer = np.array(outer)
         symbols.strokes.append(Stroke(np.array([inner, outer]), pen=0.5))

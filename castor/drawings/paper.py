@@ -52,9 +52,11 @@ class Lines(NamedTuple):
     pen: float
     kind: str  # "profile", "seen", "annotation", "sheet", "symbol", "overhead"
     dashed: bool = False  # ISO 128's dashed line: DASH mm dashes, GAP mm gaps
+    chain: bool = False  # ISO 128's long-dashed dotted line: CHAIN's dash, gap, dot, gap
 
 
 DASH, GAP = 3.0, 1.5  # mm
+CHAIN = (12.0, 1.5, 0.5, 1.5)  # mm: a section's cut line across a plan
 
 
 class Arc(NamedTuple):

@@ -50,13 +50,27 @@ class Register(NamedTuple):
     project: dict  # title, number, drawn, checked, revision (texts given)
     sheets: tuple  # SheetEntry ...
 
-    def fields(self, entry: SheetEntry) -> tuple[tuple[str, str], ...]:
-        """The title block's fields of one sheet (castor.settings.DrawingSettings.fields)."""
+    def project_fields(self) -> tuple[tuple[str, str], ...]:
+        """The [project]'s title block fields given, named as the command line's
+        (castor.settings.DrawingSettings.fields: ``title`` is ``project``)."""
         fields = {"project": self.project.get("title", ""),
                   "number": self.project.get("number", ""),
                   "drawn": self.project.get("drawn", ""),
                   "checked": self.project.get("checked", ""),
-                  "revision": entry.revision,
+                  "revision": self.project.get("revision", "")}
+        return tuple((k, v) for k, v in fields.items() if v)
+
+    def overridden(self, fields) -> list[str]:
+        """Of the command line's title block fields (name, text) (--project ...),
+        the names of those the register gives another value of, for every
+        sheet or some: where it gives one, the register's is printed."""
+        given = dict(self.project_fields())
+        return [name for name, text in fields if given.get(name, text) != text
+                or (name == "revision" and any(e.revision not in ("", text) for e in self.sheets))]
+
+    def fields(self, entry: SheetEntry) -> tuple[tuple[str, str], ...]:
+        """The title block's fields of one sheet (castor.settings.DrawingSettings.fields)."""
+        fields = {**dict(self.project_fields()), "revision": entry.revision,
                   "sheet_number": entry.number, "sheet_title": entry.title}
         return tuple((k, v) for k, v in fields.items() if v)
 
@@ -208,7 +222,22 @@ def _read(path: str) -> tuple[str, dict]:
     except UnicodeDecodeError:
         raise ValueError(f"--sheets: {path} is not UTF-8 text") from None
     except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"--sheets: {path}: {exc}") from None
+        raise ValueError(_syntax(path, text, str(exc))) from None
+
+
+def _syntax(path: str, text: str, said: str) -> str:
+    """tomllib's message (``Illegal character '\\n' (at line 2, column 16)``) in
+    the register's other errors' form: ``PATH:LINE:COL: what``."""
+    match = re.fullmatch(r"(.*?)\s*\(at line (\d+), column (\d+)\)", said, re.DOTALL)
+    if match:
+        what, line, column = match[1], int(match[2]), int(match[3])
+    else:  # "(at end of document)"
+        what = re.sub(r"\s*\(at end of document\)$", "", said)
+        lines = text.splitlines() or [""]
+        line, column = len(lines), len(lines[-1]) + 1
+    what = what[:1].lower() + what[1:]
+    hint = " (is a string's closing quote missing?)" if what == "illegal character '\\n'" else ""
+    return f"{path}:{line}:{column}: not valid TOML: {what}{hint}"
 
 
 def parse_register(path: str) -> Register:

@@ -367,7 +367,9 @@ def _refusal(drawing, paper, room: _Room) -> DoesNotFit:
 def layout(drawing, paper=None, title: str = "", where: str = "", warn=None) -> Sheet:
     """The drawing on its sheet (``paper``: castor.settings.Paper, or None for a
     sheet as large as the drawing needs). Raises DoesNotFit when the drawing
-    is larger than the paper at its scale."""
+    is larger than the paper at its scale. A register's sheet title (the field
+    ``sheet_title``) replaces ``title``: the title block's, the SVG's and PDF's."""
+    title = drawing.fields.get("sheet_title") or title
     mm = 1000.0 / drawing.scale
     stacked = False
     if paper is None:
@@ -470,9 +472,6 @@ def _sheet_band(drawing, paper, width: float, height: float, stacked: bool, mm: 
     if drawing.fields:
         _project_rows(group.items, tx, ty, drawing.fields)
         ty += PROJECT_ROWS
-    fields = drawing.fields
-    if fields.get("sheet_title"):
-        title = fields["sheet_title"]
     _title_block(group.items, tx, ty, title, drawing.description(),
                  f"1:{drawing.scale:g}", sheet_date(), where)
     bar_m, bar_step = scale_bar_length(drawing.scale)

@@ -5,9 +5,10 @@ Cut regions are solid HATCH entities outlined by closed LWPOLYLINEs of the
 cut lineweight (0.50 mm); seen edges are LINEs, profile 0.35 mm, the others
 0.18 mm. Coordinates are the page's in scene units (metres), so the drawing
 has its true size in CAD. The dimensions are real DIMENSION entities of a
-dimension style ``CASTOR`` (metres, two decimals, oblique ticks, text
-2.5 mm high at the drawing's scale), measured between points on the cut
-regions' edges, so a CAD program keeps them live. Levels, the scale bar,
+dimension style ``CASTOR`` (metres, two decimals, oblique ticks, text as
+high as the sheet's other text at the drawing's scale: capitals 1.8 mm),
+measured between points on the cut regions' edges, so a CAD program keeps
+them live. Levels, the scale bar,
 north arrow and title block are drawn in model space where the sheet puts
 them, at the sheet's scale: plotted at 1:N the model is the sheet.
 """
@@ -37,6 +38,11 @@ def _layer_names(names: list[str], taken: set[str]) -> list[str]:
     return out
 
 
+# a DXF text's height is its capitals' height; the sheet's sizes (SVG's
+# font-size, PDF's) are the em's, Helvetica's capitals 0.72 of it
+CAP_HEIGHT = 0.72
+
+
 def _weight(pen: float) -> int:
     """A pen (mm) as a DXF lineweight (hundredths of a millimetre)."""
     return int(round(pen * 100))
@@ -48,9 +54,12 @@ def _dimension_style(doc, mm: float, style: str = "CASTOR") -> str:
     them, draw every dimension with the header's)."""
     if style in doc.dimstyles:
         return style
+    from castor.drawings.paper import TEXT
+
     k = 1 / mm  # metres per paper millimetre
     values = {
-        "dimtxt": 2.5 * k, "dimtsz": 1.25 * k, "dimasz": 1.25 * k, "dimexe": 1.5 * k,
+        "dimtxt": TEXT * CAP_HEIGHT * k,  # as the other text: DXF's heights are capitals'
+        "dimtsz": 1.25 * k, "dimasz": 1.25 * k, "dimexe": 1.5 * k,
         "dimexo": 2 * k, "dimdle": 1.5 * k, "dimgap": 0.6 * k, "dimdec": 2, "dimlunit": 2,
         "dimdsep": ord("."), "dimtad": 1, "dimtih": 0, "dimtoh": 0, "dimzin": 0, "dimtmove": 2,
         "dimlwd": 13, "dimlwe": 13, "dimscale": 1.0,
@@ -69,6 +78,7 @@ class _To:
     def __init__(self, sheet, shift: float = 0.0, paper: bool = False, dashed: str = "CASTOR_DASHED",
                  style: str = "CASTOR"):
         self.sheet, self.shift, self.paper, self.dashed = sheet, shift, paper, dashed
+        self.chain = CHAINED + dashed.removeprefix(DASHED)  # CASTOR_CHAIN_50 beside CASTOR_DASHED_50
         self.paper_style = style  # the dimension style of its scale
         self.unit = 1.0 if paper else 1.0 / sheet.mm  # drawing units per paper mm
 
@@ -103,6 +113,8 @@ def _sheet_items(msp, to: _To, items, layer):
             attributes = {"layer": layer, "lineweight": _weight(item.pen)}
             if item.dashed:
                 attributes["linetype"] = to.dashed
+            elif item.chain:
+                attributes["linetype"] = to.chain
             for (a, b) in to.points(item.segments).tolist():
                 msp.add_line(a, b, dxfattribs=attributes)
         elif isinstance(item, Arc):
@@ -122,14 +134,14 @@ def _sheet_items(msp, to: _To, items, layer):
                                    dxfattribs={"layer": layer, "lineweight": _weight(item.pen)})
         else:
             (x, y), = to.points(np.array([[item.x, item.y]])).tolist()
-            text = msp.add_text(item.text, height=item.size * 0.72 * to.unit,
+            text = msp.add_text(item.text, height=item.size * CAP_HEIGHT * to.unit,
                                 rotation=item.angle, dxfattribs={"layer": layer})
             align = {"start": TextEntityAlignment.LEFT, "middle": TextEntityAlignment.CENTER,
                      "end": TextEntityAlignment.RIGHT}[item.anchor]
             text.set_placement((x, y), align=align)
 
 
-DASHED = "CASTOR_DASHED"
+DASHED, CHAINED = "CASTOR_DASHED", "CASTOR_CHAIN"
 
 
 def _linetypes(doc, mm: float, name: str = DASHED) -> str:
@@ -140,6 +152,18 @@ def _linetypes(doc, mm: float, name: str = DASHED) -> str:
     if name not in doc.linetypes:
         doc.linetypes.add(name, pattern=[(DASH + GAP) * k, DASH * k, -GAP * k],
                           description="Dashed __ __ __")
+    return name
+
+
+def _chain_linetype(doc, mm: float, name: str) -> str:
+    """ISO 128's long-dashed dotted line at the printed size (a section's cut line)."""
+    from castor.drawings.paper import CHAIN
+
+    k = 1 / mm
+    if name not in doc.linetypes:
+        dash, gap, dot, gap2 = CHAIN
+        doc.linetypes.add(name, pattern=[sum(CHAIN) * k, dash * k, -gap * k, dot * k, -gap2 * k],
+                          description="Chain __ . __ . __")
     return name
 
 
@@ -184,6 +208,9 @@ def _model(doc, msp, to: _To, paper_items: bool) -> None:
     names = _layer_names([l.name for l in drawing.layers], annotation | {"ground"})
     if drawing.symbols is not None:
         to.dashed = _linetypes(doc, sheet.mm, to.dashed)
+        if any(item.chain for group in sheet.groups for item in group.items
+               if isinstance(item, Lines)):
+            to.chain = _chain_linetype(doc, sheet.mm, to.chain)
 
     def outline(loop, name):
         points = [tuple(p) for p in to.model(loop).tolist()]

@@ -5,9 +5,10 @@ it comes as a wheel from PyPI and needs no system library, so ``pip install``
 on a fresh machine is enough (cairosvg would need Debian's libcairo). The
 page is vector: lines with the pens' widths at the printed size, poché as
 filled paths, and text as text in Helvetica (one of PDF's standard fonts,
-so a reader can search and copy the dimensions). ``invariant`` mode leaves
-out the creation time and a random document id, so the same sheet gives the
-same bytes.
+so a reader can search and copy the dimensions), or, for a text with
+characters its encoding lacks (ĉ), in an embedded TrueType font that has
+them (castor.formats.pdf_fonts). ``invariant`` mode leaves out the creation
+time and a random document id, so the same sheet gives the same bytes.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from typing import Iterator
 import numpy as np
 
 from castor.formats import WriteInfo
+from castor.formats.pdf_fonts import font_for
 
 
 MM = 72 / 25.4  # PDF points per millimetre
@@ -100,13 +102,13 @@ def export_set(drawing_set) -> bytes:
     from reportlab.pdfgen import canvas as pdfcanvas
 
     out = io.BytesIO()
-    first = drawing_set.sheets[0]
-    page = pdfcanvas.Canvas(out, pagesize=(first.width * MM, first.height * MM), invariant=1,
+    width, height = index_paper(drawing_set.sheets)
+    page = pdfcanvas.Canvas(out, pagesize=(width * MM, height * MM), invariant=1,
                             pageCompression=1)
-    project = drawing_set.register.project.get("title", "") or first.title
+    project = drawing_set.project.get("project", "") or drawing_set.title
     page.setTitle(f"{project}: drawing set")
     page.setCreator("castor")
-    _index(page, drawing_set, first.width, first.height)
+    _index(page, drawing_set, width, height)
     for sheet in drawing_set.sheets:
         page.setPageSize((sheet.width * MM, sheet.height * MM))
         _page(page, sheet)
@@ -116,52 +118,82 @@ def export_set(drawing_set) -> bytes:
 
 INDEX_COLUMNS = (("Sheet", 0), ("Title", 30), ("Drawing", 120), ("Scale", 175),
                  ("Paper", 195), ("Rev", 225))
+INDEX_MARGIN, INDEX_TOP, INDEX_ROW = 20.0, 45.0, 7.0  # mm: the table's margins, first row, rows
+INDEX_WIDTH = INDEX_COLUMNS[-1][1] + 15.0  # mm: the table, its last column 15 mm wide
+INDEX_A4 = (297.0, 210.0)  # A4 landscape
+
+
+def index_paper(sheets) -> tuple[float, float]:
+    """The index page's paper (mm): the largest sheet's (the set's cover, as
+    large as its largest drawing) when the table's width fits on it and it is
+    at least as tall as A4; else A4 landscape. Rows that do not fit go on
+    to another index page of the same size."""
+    largest = max(sheets, key=lambda s: s.width * s.height)
+    if largest.width >= INDEX_WIDTH + 2 * INDEX_MARGIN and largest.height >= INDEX_A4[1]:
+        return float(largest.width), float(largest.height)
+    return INDEX_A4
 
 
 def _index(page, drawing_set, width: float, height: float) -> None:
-    """The set's first page: the project and every sheet's number, title,
-    drawing, scale, paper and revision."""
-    from castor.drawings.sheet import _fitted
-
-    register = drawing_set.register
-    page.saveState()
-    page.translate(0, height * MM)
-    page.scale(MM, -MM)
-    x, y = 20.0, 25.0
-    _text(page, x, y, register.project.get("title", "") or drawing_set.sheets[0].title, 7.0)
-    extra = "   ".join(f"{name} {register.project[key]}" for key, name in (
+    """The set's first page(s): the project and every sheet's number, title,
+    drawing, scale, paper and revision, as their title blocks give them."""
+    project = drawing_set.project
+    x, right = INDEX_MARGIN, width - INDEX_MARGIN
+    title = project.get("project", "") or drawing_set.title
+    extra = "   ".join(f"{name} {project[key]}" for key, name in (
         ("number", "No."), ("drawn", "Drawn"), ("checked", "Checked"),
-        ("revision", "Rev")) if register.project.get(key))
-    _text(page, x, y + 8, ("Drawing register   " + extra).strip(), 3.5)
-    y += 20
-    for name, at in INDEX_COLUMNS:
-        _text(page, x + at, y, name, 3.0)
-    page.setLineWidth(0.35)
-    page.line(x, y + 2, width - 20, y + 2)
+        ("revision", "Rev")) if project.get(key))
+    rows = []
     for entry, sheet in zip(drawing_set.entries, drawing_set.sheets):
-        y += 7
         paper = entry.paper.name if entry.paper is not None else "-"
-        cells = (entry.number, entry.title or sheet.title, sheet.description,
-                 f"1:{entry.scale:g}", paper, entry.revision)
-        for (name, at), text in zip(INDEX_COLUMNS, cells):
-            room = ([a for _, a in INDEX_COLUMNS if a > at] or [width - 40])[0] - at - 3
-            _text(page, x + at, y, _fitted(text, 3.0, room)[0], 3.0)
-        page.setLineWidth(0.13)
-        page.line(x, y + 2, width - 20, y + 2)
-    page.showPage()
+        rows.append((entry.number, entry.title or sheet.title, sheet.description,
+                     f"1:{entry.scale:g}", paper, sheet.drawing.fields.get("revision", "") or "-"))
+    per_page = max(1, int((height - INDEX_TOP - INDEX_MARGIN) // INDEX_ROW))
+    for first in range(0, len(rows), per_page):
+        page.setPageSize((width * MM, height * MM))
+        page.saveState()
+        page.translate(0, height * MM)
+        page.scale(MM, -MM)
+        _fitted_text(page, x, 25.0, title, 7.0, right - x)
+        heading = ("Drawing register   " + extra).strip()
+        if first:
+            heading += f"   (continued, {first + 1}–{min(first + per_page, len(rows))})"
+        _fitted_text(page, x, 33.0, heading, 3.5, right - x)
+        y = INDEX_TOP
+        for name, at in INDEX_COLUMNS:
+            _text(page, x + at, y, name, 3.0)
+        page.setLineWidth(0.35)
+        page.line(x, y + 2, right, y + 2)
+        for cells in rows[first:first + per_page]:
+            y += INDEX_ROW
+            for (name, at), text in zip(INDEX_COLUMNS, cells):
+                room = ([a for _, a in INDEX_COLUMNS if a > at] or [INDEX_WIDTH])[0] - at - 3
+                _fitted_text(page, x + at, y, text, 3.0, room)
+            page.setLineWidth(0.13)
+            page.line(x, y + 2, right, y + 2)
+        page.restoreState()
+        page.showPage()
+
+
+def _fitted_text(page, x, y, text, size, room):
+    """Text made smaller, or cut short, to fit ``room`` mm."""
+    from castor.drawings.paper import _fitted
+
+    _text(page, x, y, *_fitted(text, size, room))
 
 
 def _text(page, x, y, text, size):
     page.saveState()
     page.translate(x, y)
     page.scale(1, -1)
-    page.setFont("Helvetica", size)
+    page.setFont(font_for(text), size)
     page.drawString(0, 0, text)
     page.restoreState()
 
 
 def _page(page, sheet) -> None:
     """One sheet on the canvas's page, then the page ended."""
+    from castor.drawings.paper import CHAIN
     from castor.drawings.sheet import DASH, GAP, Arc, Lines, Shape
 
     # millimetres, y down, as the sheet is laid out
@@ -177,11 +209,11 @@ def _page(page, sheet) -> None:
                     path.moveTo(x0, y0)
                     path.lineTo(x1, y1)
                 page.setLineWidth(item.pen)
-                if item.dashed:
-                    page.setDash(DASH, GAP)
+                if item.dashed or item.chain:
+                    page.setDash(list(CHAIN) if item.chain else [DASH, GAP])
                     page.setLineCap(0)
                 page.drawPath(path, stroke=1, fill=0)
-                if item.dashed:
+                if item.dashed or item.chain:
                     page.setDash()
                     page.setLineCap(1)
             elif isinstance(item, Arc):
@@ -212,7 +244,7 @@ def _page(page, sheet) -> None:
                 page.translate(item.x, item.y)
                 page.scale(1, -1)  # text upright again
                 page.rotate(item.angle)
-                page.setFont("Helvetica", item.size)
+                page.setFont(font_for(item.text), item.size)
                 if item.anchor == "middle":
                     page.drawCentredString(0, 0, item.text)
                 elif item.anchor == "end":

@@ -47,6 +47,7 @@ def _item(item) -> str:
     # imported here: xml.sax.saxutils brings urllib, too slow for every start-up
     from xml.sax.saxutils import escape
 
+    from castor.drawings.paper import CHAIN
     from castor.drawings.sheet import DASH, GAP, Arc, Lines, Shape
 
     if isinstance(item, Lines):
@@ -54,7 +55,9 @@ def _item(item) -> str:
         path = " ".join(f"M{_number(p[0])} {_number(p[1])}L{_number(q[0])} {_number(q[1])}"
                         for p, q in zip(a, b))
         dashes = f' stroke-dasharray="{DASH:g} {GAP:g}"' if item.dashed else ""
-        cap = "butt" if item.dashed else "round"
+        if item.chain:
+            dashes = f' stroke-dasharray="{" ".join(f"{v:g}" for v in CHAIN)}"'
+        cap = "butt" if item.dashed or item.chain else "round"
         return (f'<path class="{item.kind}" d="{path}" fill="none" stroke="black" '
                 f'stroke-width="{item.pen}" stroke-linecap="{cap}"{dashes}/>')
     if isinstance(item, Arc):

@@ -8,22 +8,9 @@ from __future__ import annotations
 
 import pytest
 
-from tests.support.symbols import HOUSE, castor
+from tests.support.symbols import HOUSE, castor, register
 
-REGISTER = """\
-[project]
-sheet = "A3"
-scale = "1:50"
-
-[[sheet]]
-number = "A-101"
-drawing = "plan z=1.2"
-
-[[sheet]]
-number = "A-201"
-drawing = "section x=3"
-scale = "1:100"
-"""
+REGISTER = register(("A-101", "plan z=1.2"), ("A-201", "section x=3", "1:100"))
 
 
 def _rendered(doc, name: str) -> dict:

@@ -10,34 +10,10 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 from castor.drawings.paper import text_width
-from tests.support.symbols import HOUSE, SVG, castor
+from tests.support.symbols import HOUSE, SVG, castor, register
 
-REGISTER = """\
-[project]
-title = "Maison"
-sheet = "A3"
-scale = "1:50"
-
-[[sheet]]
-number = "A-101"
-drawing = "plan z=1.2"
-
-[[sheet]]
-number = "A-201"
-drawing = "section x=3"
-
-[[sheet]]
-number = "A-202"
-drawing = "section y=2"
-
-[[sheet]]
-number = "A-301"
-drawing = "elevation front"
-
-[[sheet]]
-number = "A-302"
-drawing = "elevation right"
-"""
+REGISTER = register(("A-101", "plan z=1.2"), ("A-201", "section x=3"), ("A-202", "section y=2"),
+                    ("A-301", "elevation front"), ("A-302", "elevation right"), title="Maison")
 NUMBERS = ("A-201", "A-202", "A-301", "A-302")
 
 

@@ -34,6 +34,18 @@ maison = $U(murs, escalier, toit, sol, piece);
 """
 
 
+def register(*sheets, **project) -> str:
+    """A drawing register's TOML (CLI.md ``--sheets``): ``[project]`` with A3
+    paper at 1:50 and any other field given, then a ``[[sheet]]`` per
+    ``(number, drawing)`` or ``(number, drawing, scale)``."""
+    fields = {**project, "sheet": "A3", "scale": "1:50"}
+    lines = ["[project]"] + [f'{key} = "{value}"' for key, value in fields.items()]
+    for number, drawing, *scale in sheets:
+        lines += ["", "[[sheet]]", f'number = "{number}"', f'drawing = "{drawing}"']
+        lines += [f'scale = "{value}"' for value in scale]
+    return "\n".join(lines) + "\n"
+
+
 def castor(tmp_path: Path, scene: str, *options, status: int = 0) -> str:
     (tmp_path / "s.cas").write_text(scene)
     env = dict(os.environ, PYTHONPATH=str(ROOT), SOURCE_DATE_EPOCH="1700000000")
