@@ -40,7 +40,7 @@ def page_view(box, azimuth: float, elevation: float, closer: float = 1.0) -> dic
 
 def main() -> int:
     from castor.serve.evaluation import Facets, Watched, evaluate, refaceted
-    from castor.serve.server import page_camera
+    from castor.serve.camera import page_camera
     from castor.settings import Source
 
     scene = sys.argv[1] if len(sys.argv) > 1 else os.path.join(HERE, "..", "examples",

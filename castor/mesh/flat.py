@@ -117,22 +117,22 @@ def _coincident(triangles: np.ndarray) -> np.ndarray | None:
     if len(triangles) < 2:
         return None
     t = triangles
+    n = int(t.max()) + 1
+    if n ** 3 >= 2 ** 62:
+        return None
+    # a triangle and its twin have the same corners: look for a repeated set
+    # first (one sort), the usual case being that there is none
+    low, high = t.min(axis=1), t.max(axis=1)
+    middle = t.sum(axis=1) - low - high
+    same = np.sort((low * n + middle) * n + high)
+    if not (same[1:] == same[:-1]).any():
+        return None
     first = np.argmin(t, axis=1)[:, None]
     rows = np.arange(len(t))[:, None]
     forward = t[rows, (first + np.arange(3)) % 3]  # each turn from its smallest vertex
     backward = forward[:, [0, 2, 1]]
-    n = int(t.max()) + 1
-    if n ** 3 < 2 ** 62:
-        key_f = (forward[:, 0] * n + forward[:, 1]) * n + forward[:, 2]
-        key_b = (backward[:, 0] * n + backward[:, 1]) * n + backward[:, 2]
-    else:
-        return None
-    # a triangle and its twin have the same corners: look for a repeated set
-    # first (one sort), the usual case being that there is none
-    corners = np.sort(t, axis=1)
-    same = np.sort((corners[:, 0] * n + corners[:, 1]) * n + corners[:, 2])
-    if not (same[1:] == same[:-1]).any():
-        return None
+    key_f = (forward[:, 0] * n + forward[:, 1]) * n + forward[:, 2]
+    key_b = (backward[:, 0] * n + backward[:, 1]) * n + backward[:, 2]
     hit = np.isin(key_f, key_b)
     if not hit.any():
         return None

@@ -12,6 +12,18 @@ import math
 import numpy as np
 
 
+def keys_in(values: np.ndarray, table: np.ndarray) -> np.ndarray:
+    """np.isin(values, table) for integer keys, by one sort of ``table`` and a
+    search: the same answer, several times faster on the half-edge keys of a
+    frame (np.isin would allocate a table over the keys' whole range)."""
+    if not len(table):
+        return np.zeros(values.shape, bool)
+    ordered = np.sort(table.ravel())
+    at = np.searchsorted(ordered, values)
+    at[at == len(ordered)] = 0
+    return ordered[at] == values
+
+
 def welded_seams(vertices: np.ndarray, triangles: np.ndarray, eps: float) -> np.ndarray:
     """Two shells that met through a sheet now meet edge to edge, where each
     kept its own vertices (a rounding apart): the vertices of edges left
@@ -20,7 +32,7 @@ def welded_seams(vertices: np.ndarray, triangles: np.ndarray, eps: float) -> np.
     b = np.roll(triangles, -1, axis=1).ravel()
     n = len(vertices) + 1
     forward, backward = a * n + b, b * n + a
-    lonely = ~np.isin(forward, backward)
+    lonely = ~keys_in(forward, backward)
     if not lonely.any():
         return triangles
     ends = np.unique(np.concatenate([a[lonely], b[lonely]]))
@@ -44,7 +56,7 @@ def without_t_junctions(vertices, triangles, origin_ids, face_ids, eps):
     a = triangles.ravel()
     b = np.roll(triangles, -1, axis=1).ravel()
     n = len(vertices) + 1
-    lonely = np.flatnonzero(~np.isin(a * n + b, b * n + a))
+    lonely = np.flatnonzero(~keys_in(a * n + b, b * n + a))
     if not len(lonely):
         return vertices, triangles, origin_ids, face_ids
     ends = np.unique(np.concatenate([a[lonely], b[lonely]]))

@@ -13,7 +13,7 @@ import numpy as np
 
 from castor.mesh.arrays import cross, digest, largest_of_each, norm, plane_sign
 from castor.mesh.caches import PROCESS
-from castor.mesh.seams import welded_seams, without_t_junctions
+from castor.mesh.seams import keys_in, welded_seams, without_t_junctions
 
 
 def without_sheets(vertices: np.ndarray, triangles: np.ndarray, origin_ids: np.ndarray,
@@ -147,7 +147,7 @@ class _Resolver:
             b = np.maximum(t, np.roll(t, -1, axis=1))
             n = len(self.vertices) + len(self.new_points) + 1
             keys = np.array([i * n + j for i, j in self.on_edge], dtype=np.int64)
-            hit = np.isin(a * n + b, keys).any(axis=1)
+            hit = keys_in(a * n + b, keys).any(axis=1)
             touched |= set(np.flatnonzero(hit).tolist())
         rows, origin, face = [], [], []
         for i in sorted(touched):

@@ -188,11 +188,16 @@ def drawn(frame) -> DrawnFrame:
     from castor.mesh.arrays import fan_triangles
 
     corners, numbers, origins = [], [], []
+    colours: dict = {}  # a colour as floats, once per colour (most origins share a few)
     for obj in frame.objects:
         tris, polygon = fan_triangles(obj.offsets, obj.indices)
         corners.append(np.asarray(obj.vertices, dtype="<f4")[tris].reshape(-1, 9))
         numbers.append((np.asarray(obj.origin_of)[polygon] + len(origins)).astype("<u4"))
-        origins.extend((o.path, tuple(float(c) for c in o.colour)) for o in obj.origins)
+        for o in obj.origins:
+            colour = colours.get(o.colour)
+            if colour is None:
+                colour = colours[o.colour] = tuple(float(c) for c in o.colour)
+            origins.append((o.path, colour))
     positions = np.concatenate(corners) if corners else np.zeros((0, 9), "<f4")
     box = None
     if len(positions):

@@ -23,6 +23,9 @@ from castor.csg.paths import join
 
 UNCLASSED = None  # the class of an element no annotation classes
 
+# corner k of a box: bit ``axis`` of k chooses its high (1) or low (0) coordinate
+_CORNER_BITS = tuple(tuple(bool((k >> axis) & 1) for axis in range(3)) for k in range(8))
+
 
 class _Walker:
     """Walks a frame's tree once for the element of each primitive's faces."""
@@ -33,6 +36,9 @@ class _Walker:
         self.declared = declared
         self.holds: dict[object, bool] = {}
         self.boxes = Boxes()
+        # (node, matrix) -> its box in the scene: the primitives cut out of one
+        # solid share its elements' boxes (held alive in ``self.rules``)
+        self.placed: dict[tuple, object] = {}
         # path -> candidates: (label, node, matrix) in order; one: all its faces
         self.rules: dict[str, list] = {}
 
@@ -118,15 +124,25 @@ class _Walker:
         return [(label, n, m) for _, label, n, m in found] + [(owner, node, matrix)]
 
     def box(self, node, matrix):
-        """The box, in the scene, that holds the node's solid (None: none)."""
+        """The box, in the scene, that holds the node's solid, with the slack
+        of its test (None: none)."""
+        key = (id(node), id(matrix))
+        if key not in self.placed:
+            import numpy as np
+
+            box = self._box(node, matrix)
+            self.placed[key] = None if box is None else (
+                box, 1e-6 * max(1.0, float(np.abs(np.concatenate(box)).max())))
+        return self.placed[key]
+
+    def _box(self, node, matrix):
         import numpy as np
 
         box = self.boxes.of(node)  # where the node stands: its own matrix applied
         if box is None:
             return None
         low, high = np.asarray(box[0], float), np.asarray(box[1], float)
-        corners = np.array([[(low, high)[(k >> axis) & 1][axis] for axis in range(3)]
-                            for k in range(8)])
+        corners = np.where(_CORNER_BITS, high, low)  # the 8 corners, bit k of x, y, z
         m = np.asarray(matrix, float).reshape(3, 4)
         placed = corners @ m[:, :3].T + m[:, 3]
         return placed.min(axis=0), placed.max(axis=0)
@@ -196,11 +212,11 @@ def _shared_out(walker: _Walker, rule: list, corners):
     for place, (label, node, matrix) in enumerate(rule):
         if not left.any():
             return
-        box = walker.box(node, matrix) if place < len(rule) - 1 else None
-        if box is None:
+        held = walker.box(node, matrix) if place < len(rule) - 1 else None
+        if held is None:
             inside = left.copy()
         else:
-            slack = 1e-6 * max(1.0, float(np.abs(np.concatenate(box)).max()))
+            box, slack = held
             inside = left & np.all((middles >= box[0] - slack)
                                    & (middles <= box[1] + slack), axis=1)
         if inside.any():

@@ -77,10 +77,10 @@ class Snapshot:
     files: tuple[str, ...] = ()
     refaceted: float | None = None  # seconds of the refacet for the page's camera, if the last
 
-    def as_json(self, server: str, evaluating: bool) -> bytes:
+    def as_json(self, server: str, evaluating: bool, faceting: bool = False) -> bytes:
         return json.dumps({
             "server": server, "version": self.version, "evaluating": evaluating,
-            "evaluated": self.evaluated,
+            "faceting": faceting, "evaluated": self.evaluated,
             "stale": self.stale, "seconds": round(self.seconds, 4),
             "refaceted": None if self.refaceted is None else round(self.refaceted, 4),
             "finished": time.strftime("%H:%M:%S", time.localtime(self.finished))
@@ -101,7 +101,7 @@ class Preview:
         # outlived a server knows by this name that the versions are new ones
         self.name = secrets.token_hex(6)
         self.snapshot = Snapshot(files=job.files)
-        self.evaluating = True
+        self.evaluating, self.faceting = True, False  # faceting: a refacet, nothing evaluated
         self.state = threading.Condition()
         self.stop = threading.Event()
         self._wanted = 1  # evaluations asked for (the first, then one per save)
@@ -156,8 +156,8 @@ class Preview:
         """Stop the evaluation under way if a newer one is wanted."""
         self._stopper.stop(lambda generation: generation != self._wanted or self.stop.is_set())
 
-    def state_key(self) -> tuple[int, bool]:
-        return self.snapshot.version, self.evaluating
+    def state_key(self) -> tuple[int, bool, bool]:
+        return self.snapshot.version, self.evaluating, self.faceting
 
     def watch_files(self) -> None:
         """Poll the files until stopped; a change asks for a new evaluation."""
@@ -193,8 +193,8 @@ class Preview:
                     self._looked_done = looked  # nothing shown to facet again yet
                     self.state.notify_all()
                     continue
-                if not self.evaluating:
-                    self.evaluating = True
+                if (self.evaluating, self.faceting) != (True, generation == done):
+                    self.evaluating, self.faceting = True, generation == done
                     self.state.notify_all()
             started_ns = time.time_ns()
             stale = lambda: self._wanted != generation or self.stop.is_set()  # noqa: E731
@@ -239,7 +239,7 @@ class Preview:
                                         refaceted=result.seconds)
             self._good = result
             self._looked_done = looked
-            self.evaluating = False
+            self.evaluating = self.faceting = False
             self.state.notify_all()
 
     def _publish(self, result: Evaluation, overtaken: bool, looked: int = 0) -> None:
@@ -256,7 +256,7 @@ class Preview:
             shown = tuple(dict.fromkeys(self.job.files + result.included))
             self.snapshot = Snapshot(old.version + 1, frames_id, frames, result.diagnostics,
                                      stale, True, result.seconds, time.time(), shown)
-            self.evaluating = overtaken
+            self.evaluating, self.faceting = overtaken, False
             self._looked_done = max(self._looked_done, looked)
             self.state.notify_all()
 
@@ -293,8 +293,8 @@ class _Handler(BaseHTTPRequestHandler):
             self._send(200, self.server.pages[name], kind, head)
         elif path == "/scene.json":
             with preview.state:
-                snapshot, evaluating = preview.snapshot, preview.evaluating
-            self._send(200, snapshot.as_json(preview.name, evaluating), "application/json", head)
+                snapshot, busy = preview.snapshot, preview.state_key()[1:]
+            self._send(200, snapshot.as_json(preview.name, *busy), "application/json", head)
         elif path == "/parameters.json":
             self._send(200, json.dumps(preview.panel.as_json()).encode(), "application/json",
                        head)
@@ -427,7 +427,7 @@ class _Handler(BaseHTTPRequestHandler):
                 key = preview.state_key()
             if key != sent:
                 data = json.dumps({"server": preview.name, "version": key[0],
-                                   "evaluating": key[1]})
+                                   "evaluating": key[1], "faceting": key[2]})
                 self.wfile.write(f"event: scene\ndata: {data}\n\n".encode())
                 sent = key
             else:

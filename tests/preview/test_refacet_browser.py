@@ -6,6 +6,8 @@ zoomed towards a ball the page draws more triangles, zoomed out fewer."""
 
 from __future__ import annotations
 
+import time
+
 import pytest
 
 from castor.serve.evaluation import Watched, evaluate
@@ -96,3 +98,27 @@ def test_an_orbit_then_a_zoom_keeps_the_camera_where_it_was_turned(page):
     shown = page.evaluate("window.castorViewer.camera()")
     assert (shown["azimuth"], shown["elevation"]) == (turned["azimuth"], turned["elevation"])
     assert shown["distance"] < turned["distance"] / 5
+
+
+def test_while_faceting_for_the_view_the_status_says_so(page, monkeypatch):
+    # a refacet evaluates nothing: the status line says "faceting for this
+    # view…", never "evaluating…" (the refacet is slowed so that the page sees it)
+    from castor.serve import server as served_module
+
+    slow = served_module.refaceted
+
+    def slowed(*args, **kwargs):
+        time.sleep(1.0)
+        return slow(*args, **kwargs)
+
+    monkeypatch.setattr(served_module, "refaceted", slowed)
+    page.evaluate("""() => { window.statuses = [];
+        new MutationObserver(() => window.statuses.push(document.getElementById('status').textContent))
+          .observe(document.getElementById('status'), {childList: true, characterData: true, subtree: true}); }""")
+    version = _shown(page)[0]
+    _zoom(page, 6)
+    next_version(page, version)
+    statuses = page.evaluate("window.statuses")
+    assert any(text.endswith(" · faceting for this view…") for text in statuses), statuses
+    assert not any("evaluating" in text for text in statuses), statuses
+    assert "faceting for this view…" not in page.inner_text("#status")

@@ -117,7 +117,8 @@ def test_a_save_sends_an_event_and_new_frames(preview, scene):
     port = port_of(preview)
     connection, stream = open_events(port)
     first = read_event(stream)
-    assert first == {"server": first["server"], "version": 1, "evaluating": False}
+    assert first == {"server": first["server"], "version": 1, "evaluating": False,
+                     "faceting": False}
     assert first["server"] == get(port, "/scene.json")[2]["server"]
     saved = time.monotonic()
     save(scene, BOX.format(x=5))

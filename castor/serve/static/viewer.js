@@ -618,7 +618,8 @@
     $("layers-toggle").classList.toggle("active", !$("layers").hidden);
   });
 
-  function showStatus(scene, evaluating) {
+  // ``faceting``: what is under way is a refacet for this view, nothing evaluated
+  function showStatus(scene, evaluating, faceting) {
     const status = $("status");
     if (!scene) {
       status.textContent = "evaluating…";
@@ -634,7 +635,7 @@
       `${scene.seconds.toFixed(2)} s at ${scene.finished}`;
     if (count && scene.refaceted !== null && scene.refaceted !== undefined)
       text += ` · faceted for this view in ${scene.refaceted.toFixed(2)} s`;
-    if (evaluating && scene.evaluated) text += " · evaluating…";
+    if (evaluating && scene.evaluated) text += faceting ? " · faceting for this view…" : " · evaluating…";
     status.textContent = text;
     status.classList.toggle("stale", !!scene.stale);
   }
@@ -695,7 +696,7 @@
     $("animation").classList.toggle("single", frames.length <= 1);
     showDiagnostics(scene);
     showLayers(scene);
-    showStatus(scene, scene.evaluating);
+    showStatus(scene, scene.evaluating, scene.faceting);
     updateSection();
     if (!state.fitted && state.box) {
       state.fitted = true;
@@ -732,7 +733,7 @@
       cameraSent = ""; // a new server has not heard the camera
     }
     if (news.version !== state.version) load();
-    else showStatus(state.scene, news.evaluating);
+    else showStatus(state.scene, news.evaluating, news.faceting);
   });
   events.addEventListener("error", () => {
     $("status").textContent = "no answer from castor --serve: is it still running?";
