@@ -14,7 +14,8 @@ import sys
 import threading
 
 from castor import __version__
-from castor.diagnostics import USAGE_ERROR, CastorError, Reporter, UsageError
+from castor.diagnostics import (USAGE_ERROR, CastorError, ClosedStdout, Reporter, UsageError,
+                                stdout_failed)
 from castor.options import (OUTPUT_OPTIONS, TITLE_FIELDS, negative_values, not_utf8, option_value,
                             parse_count)
 from castor.settings import DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE
@@ -437,7 +438,7 @@ def _status(outcome) -> int:
     if isinstance(outcome, Unwritable):
         sys.stderr.write(f"castor: error: {outcome}\n")
         return USAGE_ERROR
-    if isinstance(outcome, OSError) and outcome.errno is not None:
+    if stdout_failed(outcome):
         # standard output itself failed (a full disk behind a redirection)
         sys.stderr.write(f"castor: error: cannot write to standard output: "
                          f"{(outcome.strerror or str(outcome)).lower()}\n")
@@ -548,6 +549,8 @@ def entry() -> None:
     as much as a quarter of a --check run; the operating system frees it all
     at once. Output is flushed first.
     """
+    if sys.stdout is None:  # started with standard output closed ('>&-')
+        sys.stdout = ClosedStdout()
     status = main()
     from castor.run import release_processes
 

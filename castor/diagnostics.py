@@ -17,6 +17,16 @@ MAX_ERRORS = 50
 USAGE_ERROR = 2
 
 
+def shown_name(name: str) -> str:
+    """A file name as castor shows and writes it: a byte that is not UTF-8
+    (which Python keeps as a surrogate, '\\udce9') shown as '<0xe9>', as the
+    command line's bad bytes are, so that messages and outputs are text."""
+    if name.isascii():
+        return name
+    return "".join(f"<0x{ord(c) - 0xdc00:02x}>" if "\udc80" <= c <= "\udcff" else c
+                   for c in name)
+
+
 class Location(NamedTuple):
     """A place in an original source file (after mapping cpp line markers)."""
 
@@ -255,3 +265,46 @@ class CollectingReporter(Reporter):
     def printed(self) -> str:
         """The diagnostics as castor prints them on standard error."""
         return self.stream.getvalue()
+
+
+# --- standard output failing
+
+class ClosedStdout:
+    """Standard output when castor was started without one: writing to it fails
+    as writing to a closed descriptor does (EBADF), and is said so; a run that
+    writes nothing there (--check, -o FILE) is not hindered."""
+
+    def write(self, data) -> int:
+        import errno
+
+        raise OSError(errno.EBADF, "standard output is closed")
+
+    def flush(self) -> None:
+        pass
+
+    def fileno(self) -> int:
+        import io
+
+        raise io.UnsupportedOperation("standard output is closed")
+
+    def isatty(self) -> bool:
+        return False
+
+    @property
+    def buffer(self):
+        return self
+
+
+# what writing a stream can fail with (a full disk or quota, a file too large, a
+# device's error, a descriptor closed or non-blocking); a broken pipe is said apart
+_WRITE_ERRORS = ("ENOSPC", "EDQUOT", "EFBIG", "EIO", "EBADF", "EAGAIN", "EPIPE")
+
+
+def stdout_failed(outcome) -> bool:
+    """Whether ``outcome`` is standard output failing: an OSError of writing a
+    stream, naming no file (an OSError that names one, or of another kind, such
+    as a file of castor's own missing, is not: an internal error)."""
+    import errno
+
+    return (isinstance(outcome, OSError) and outcome.filename is None
+            and outcome.errno in {getattr(errno, name, None) for name in _WRITE_ERRORS} - {None})

@@ -293,10 +293,13 @@ class Interpreter:
     def _warn_if_empty(self, tree) -> None:
         """The warning a run gives a frame without polygons, where the tree shows
         it without facetizing (castor.csg.emptiness)."""
-        from castor.csg.emptiness import certainly_empty, empty_message
+        from castor.csg.elements import cuts_nothing
+        from castor.csg.emptiness import certainly_empty, empty_message, idle_openings
 
         if certainly_empty(tree):
             self.reporter.warning(empty_message(tree.number), tree.location)
+        for opening in idle_openings(tree):  # as the take-off says it
+            self.reporter.warning(cuts_nothing(opening), tree.location)
 
     def warn_if_no_frame(self) -> None:
         """After a run that wrote nothing, evaluating only (--check, an editor): a

@@ -16,12 +16,13 @@ work, in this process or another; ``frames`` does it here for a whole source.
 from __future__ import annotations
 
 import io
+import os
 import sys
 import time
 from typing import Callable, Iterator
 
 from castor.diagnostics import (CollectingReporter, Diagnostic, Reporter, TooManyErrors,
-                                UsageError)
+                                UsageError, shown_name)
 from castor.records import Record
 from castor.settings import (EvaluationSettings, FrameSettings, MeshSettings, OutputSettings,
                              ReadSettings, Source)
@@ -87,8 +88,12 @@ def statements(source: Source, reading: ReadSettings, reporter: Reporter,
     from castor.language.preprocess import preprocess
 
     sources = list(_texts(source, unreadable, reporter))
+    # a file whose name is not UTF-8 is named as shown (castor.diagnostics.shown_name):
+    # its own folder is searched for its #include "..." after the -I folders
+    beside = [os.path.dirname(os.path.abspath(name)) for name in source.files or ()
+              if name != "-" and shown_name(name) != name]
     text = preprocess(sources, list(reading.defines), list(reading.undefines),
-                      list(reading.include_dirs), reporter, included)
+                      list(reading.include_dirs) + beside, reporter, included)
     return Reader(reporter, directives_allowed=True).chunks(text.splitlines())
 
 
@@ -135,7 +140,7 @@ def _inputs(source: Source, unreadable) -> Iterator[tuple[str, object]]:
             continue
         handle = _open(name, unreadable)
         if handle is not None:
-            yield name, handle
+            yield shown_name(name), handle
 
 
 class _Borrowed:
@@ -165,8 +170,8 @@ def _open(name: str, unreadable):
         return open(name, "rb")
     except OSError as exc:
         if unreadable is None:
-            raise UsageError(f"error: cannot read '{name}': {exc.strerror}") from None
-        unreadable(name, exc.strerror)
+            raise UsageError(f"error: cannot read '{shown_name(name)}': {exc.strerror}") from None
+        unreadable(shown_name(name), exc.strerror)
         return None
 
 

@@ -9,7 +9,7 @@ and areas are those of the written polygons, in scene units.
 from __future__ import annotations
 
 import json
-from typing import NamedTuple
+from typing import Callable, NamedTuple
 
 import numpy as np
 
@@ -127,10 +127,12 @@ def _number(x: float) -> float | int:
     return int(x) if x.is_integer() and abs(x) < 1e15 else x
 
 
-def summary_record(frame: Frame, frame_tree=None, facetizer=None) -> dict:
+def summary_record(frame: Frame, frame_tree=None, facetizer=None,
+                   warn: Callable[[str], None] = lambda message: None) -> dict:
     """One frame of the --summary document (OUTPUT.md, "Quantities"); with the
     frame's tree and the facetizer that made it, and classes in the scene, the
-    totals per class and storey, the openings and the spaces too."""
+    totals per class and storey, the openings and the spaces too (``warn``
+    hears of a door or window that cuts nothing)."""
     objects = []
     for f in frame_figures(frame):
         objects.append({
@@ -145,7 +147,7 @@ def summary_record(frame: Frame, frame_tree=None, facetizer=None) -> dict:
         })
     record = {"number": frame.number, "where": frame.where, "objects": objects}
     if frame_tree is not None and facetizer is not None and frame_tree.classes is not None:
-        record.update(Takeoff(frame_tree, facetizer).record())
+        record.update(Takeoff(frame_tree, facetizer).record(warn))
     return record
 
 
@@ -428,6 +430,14 @@ class Takeoff:
                                  direction))
         return out
 
+    def idle(self, blocks: list[Block] | None = None) -> list:
+        """The openings that cut nothing from the element they are subtracted
+        from (no block: a door moved off its wall), each said by
+        castor.csg.elements.cuts_nothing where an output leaves it out;
+        ``blocks``: those measured already (each call of ``blocks`` measures again)."""
+        cut = {id(b.opening) for b in (self.blocks() if blocks is None else blocks)}
+        return [o for o in self.openings if id(o) not in cut]
+
     def _pieces(self, key, name: str) -> list:
         """The separate blocks of an opening's solid, each with its figures and
         footprint: a rigid copy's are its unit's moved (the footprint measured
@@ -461,9 +471,11 @@ class Takeoff:
                             f.volume, solid))
         return out
 
-    def record(self) -> dict:
+    def record(self, warn: Callable[[str], None] = lambda message: None) -> dict:
         """What --summary adds to a frame: storeys, totals per class and storey,
-        openings, spaces."""
+        openings, spaces; ``warn`` hears of each opening that cuts nothing."""
+        from castor.csg.elements import cuts_nothing
+
         totals: dict[tuple[str, str], list] = {}
         for p in self.placed():
             total = totals.setdefault((p.element.ifc_class, p.storey), [0, 0.0, 0.0])
@@ -475,13 +487,16 @@ class Takeoff:
                    for (c, s), (n, v, a) in sorted(totals.items(),
                                                    key=lambda i: (order[i[0][1]], i[0][0]))]
         openings = []
-        for b in self.blocks():
+        blocks = self.blocks()
+        for b in blocks:
             openings.append({
                 "class": b.opening.classification.ifc_class, "name": b.opening.name,
                 "host": b.host.name if b.host is not None else None, "storey": b.storey,
                 "width": _number(b.width), "height": _number(b.height), "sill": _number(b.sill),
                 "head": _number(b.head), "volume": _number(b.figures.volume),
                 **dict(b.opening.classification.settings)})
+        for opening in self.idle(blocks):
+            warn(cuts_nothing(opening))
         spaces = [{"name": r.name, "object": r.space.name, "storey": r.storey,
                    "floor_area": _number(r.floor_area), "volume": _number(r.volume)}
                   for r in self.rooms()]

@@ -23,7 +23,8 @@ from collections import deque
 # same bytes). Set before numpy is first imported; a user's own setting wins.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from castor.diagnostics import CastorError, LimitError, Reporter, TooManyErrors, UsageError
+from castor.diagnostics import (CastorError, LimitError, Reporter, TooManyErrors, UsageError,
+                                shown_name)
 from castor.jobs import FrameThread, Job, Result, make
 from castor.pipeline import evaluate, evaluated_frames  # noqa: F401 - tests and tools use it here
 from castor.settings import EvaluationSettings, FrameSettings, ReadSettings, RunSettings, Source
@@ -460,7 +461,7 @@ def _check_readable(source: Source) -> None:
         if name != "-" and (not os.access(name, os.R_OK) or os.path.isdir(name)):
             reason = "no such file" if not os.path.exists(name) else \
                 "it is a directory" if os.path.isdir(name) else "permission denied"
-            raise UsageError(f"error: cannot read '{name}': {reason}")
+            raise UsageError(f"error: cannot read '{shown_name(name)}': {reason}")
 
 
 def _carried(settings: FrameSettings, executor, how: RunSettings) -> FrameSettings:

@@ -186,13 +186,24 @@ class _Maker:
         """The openings: each block a door or window cut, voiding the element it
         was cut from, filled by a door or window of its size; then each element's
         quantities, its openings' volume added to its gross volume."""
+        from castor.csg.elements import cuts_nothing
+
         voids: list[Void] = []
         taken = [0.0] * len(parts)  # volume cut out of each element by its openings
         index = {id(p.element): k for k, p in enumerate(placed)}
         of_object: dict[int, list] = {}
         for p in placed:
             of_object.setdefault(p.element.object, []).append(p)
-        for block in self.takeoff.blocks():
+        blocks = self.takeoff.blocks()
+        for opening in self.takeoff.idle(blocks):
+            self.warn(cuts_nothing(opening))
+        for opening in {o.name: o for o in self.takeoff.openings}.values():
+            chosen, own = self.classes.get(opening.name), opening.classification.ifc_class
+            if chosen not in (None, own):
+                self.warn(f"--ifc-class {opening.name}={chosen}: '{opening.name}' is a "
+                          f"{opening.classification.short} filling an opening (LANGUAGE.md "
+                          f"§11), so it stays an {own}; the option is ignored")
+        for block in blocks:
             opening, classification = block.opening, block.opening.classification
             hosts = self.hosts(block, of_object.get(opening.object, []))
             size = (block.width, block.height)
@@ -263,6 +274,7 @@ class _Maker:
         from castor.quantities import LEVEL_SLACK
 
         found = []
+        said: set[str] = set()  # the spaces an --ifc-class was said of
         lowest = self.levels[0]
         for room in self.takeoff.rooms():
             space = room.space
@@ -271,6 +283,12 @@ class _Maker:
                 self.warn(f"space '{space.name}' is below every storey (its floor at "
                           f"{bottom:g}, the lowest storey at {lowest.level:g}): it is on "
                           f"'{lowest.name}'")
+            chosen = self.classes.get(space.name)
+            if chosen not in (None, "IfcSpace") and space.name not in said:
+                said.add(space.name)
+                self.warn(f"--ifc-class {space.name}={chosen}: '{space.name}' is a space (a "
+                          f"room, left out of the solids: LANGUAGE.md §11), so it stays an "
+                          f"IfcSpace; the option is ignored")
             c = space.classification
             found.append(Part(self.key("space", space.name), "IfcSpace", c.predefined,
                               space.name, c.long_name, _description(c, space.where),

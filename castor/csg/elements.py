@@ -26,6 +26,10 @@ from castor.csg import tree
 from castor.records import Record
 
 
+# what the take-off, the IFC and --check say of a door or window that cuts nothing
+IDLE = "it is left out of the take-off and the IFC (no opening, no element)"
+
+
 class Element(Record):
     """One element of a frame: a use of a classed object, or the rest of a '>'
     object (``classification`` None: unclassed, a proxy)."""
@@ -182,6 +186,14 @@ def find(frame_tree: tree.FrameTree) -> tuple[list[Element], list[Opening]]:
     elements = [e.replace(number=k) for k, e in enumerate(elements, 1)]
     openings = [o.replace(number=k) for k, o in enumerate(openings, 1)]
     return elements, openings
+
+
+def cuts_nothing(opening: Opening, consequence: str = IDLE) -> str:
+    """The warning for a door or window that cuts nothing from the element it is
+    subtracted from (its block is empty), as every output words it; ``consequence``
+    says what the output does without it (the drawings: "no symbol is drawn")."""
+    return (f"{opening.classification.short} '{opening.name}' ({opening.where}) cuts "
+            f"nothing from the element it is subtracted from: {consequence}")
 
 
 # --- the CSG tree of an element's own solid

@@ -14,6 +14,9 @@ same warning where the tree shows the frame empty without building a solid:
   is empty too: two solids that only touch have an empty intersection);
 - a union, difference or smoothing of empty operands.
 
+The same rules tell a door or window that certainly cuts nothing from its
+wall (``idle_openings``): the block it takes out is an intersection.
+
 It says "empty" only when that is certain, never a frame a run would write
 with polygons; a frame emptied in a way these rules do not see (a sphere
 subtracted from a smaller sphere) is said by a run only. A bounding box is
@@ -53,6 +56,25 @@ def certainly_empty(frame: tree.FrameTree) -> bool:
                    for obj in frame.objects)
     except RecursionError:  # deeper than this walk goes: not known, so not said
         return False
+
+
+def idle_openings(frame: tree.FrameTree) -> list:
+    """The doors and windows (castor.csg.elements.Opening) that certainly cut
+    nothing from the element they are subtracted from: their box does not
+    overlap that element's (a door moved off its wall). What a run's take-off
+    says of them (castor.csg.elements.cuts_nothing), told without a solid."""
+    if frame.classes is None:
+        return []
+    from castor.csg.elements import find, opening_tree
+
+    _, openings = find(frame)
+    # the trees held while judged: the judge keys its booleans by id
+    blocks = [opening_tree(frame, o) for o in openings]
+    judge = _Judge()
+    try:
+        return [o for o, block in zip(openings, blocks) if judge.empty(block, tree.IDENTITY)]
+    except RecursionError:  # deeper than this walk goes: not known, so not said
+        return []
 
 
 class _Judge:

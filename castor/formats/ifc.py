@@ -123,6 +123,13 @@ _QUANTITY = {"length": "IfcQuantityLength", "area": "IfcQuantityArea",
              "volume": "IfcQuantityVolume"}
 
 
+def measure(value: float) -> float:
+    """A quantity or a size as written: to 12 significant digits, what the
+    solids' arithmetic holds exactly (a door's width 0.9, not
+    0.8999999999999999); coordinates are written whole, to read back the same."""
+    return float(f"{float(value):.12g}") + 0.0  # + 0.0: no -0.0
+
+
 def export(tree, frame, title: str | None = None, classes: dict[str, str] | None = None,
            facetizer=None, warn=lambda message: None) -> bytes:
     """The frame as an IFC4 file (STEP physical file text): ``frame_tree`` is its
@@ -305,7 +312,7 @@ class _Writer:
         if cls == "IfcSpace":
             values["CompositionType"] = "ELEMENT"
         if part.size is not None and self.has(cls, "OverallWidth"):
-            values["OverallWidth"], values["OverallHeight"] = map(float, part.size)
+            values["OverallWidth"], values["OverallHeight"] = map(measure, part.size)
         for p in part.properties:  # an IfcStairFlight's NumberOfRisers …
             attribute = "NumberOfRisers" if p.name == "NumberOfRiser" else p.name
             if self.has(cls, attribute):
@@ -320,7 +327,7 @@ class _Writer:
         listed = []
         for q in qto.quantities:
             kind = _QUANTITY[q.kind]
-            listed.append(create(kind, q.name, None, None, float(q.value), None))
+            listed.append(create(kind, q.name, None, None, measure(q.value), None))
         method = None if qto.name.startswith("Castor") else "BaseQuantities"
         quantities = create("IfcElementQuantity", self.guid(qto.name, key), None, qto.name,
                             "exact, from castor's solids", method, listed)
@@ -331,7 +338,8 @@ class _Writer:
         """A property set: ``values`` {name: (IFC type, value)}."""
         create = self.create
         pset = create("IfcPropertySet", self.guid(name, key), None, name, None, [
-            create("IfcPropertySingleValue", k, None, create(kind, v), None)
+            create("IfcPropertySingleValue", k, None,
+                   create(kind, measure(v) if isinstance(v, float) else v), None)
             for k, (kind, v) in values.items()])
         create("IfcRelDefinesByProperties", self.guid("defines", name, key), None, None, None,
                [entity], pset)

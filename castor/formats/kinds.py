@@ -99,6 +99,15 @@ def _polygons(tree, settings, made, merge: bool = True):
     return frame, facetizer
 
 
+def _warner(made, tree) -> Callable[[str], None]:
+    """``warn(message)`` for the frame's take-off and model: each warning once
+    (the IFC and its --summary both judge the openings)."""
+    def warn(message: str) -> None:
+        if (message, tree.location) not in made.warnings:
+            made.warnings.append((message, tree.location))
+    return warn
+
+
 def _figures(settings, made, frame, facetizer, tree=None) -> None:
     """The mesh frame kept where asked, its --stats line and --summary record
     (with the frame's tree, its take-off by class too: LANGUAGE.md §11)."""
@@ -112,7 +121,7 @@ def _figures(settings, made, frame, facetizer, tree=None) -> None:
         if output.stats:
             made.stats = stats_line(frame, stats.primitives, stats.booleans, stats.seconds)
         if output.summary:
-            made.summary = summary_record(frame, tree, facetizer)
+            made.summary = summary_record(frame, tree, facetizer, _warner(made, tree))
 
 
 class Polygons(Kind):
@@ -171,7 +180,8 @@ class Pictures(Kind):
             from castor.quantities import summary_record
 
             facetizer = facetizer_for(settings.mesh, True)
-            made.summary = summary_record(facetizer.frame(tree), tree, facetizer)
+            made.summary = summary_record(facetizer.frame(tree), tree, facetizer,
+                                          _warner(made, tree))
         return product
 
     def gather(self, parts: list, settings, each: Callable) -> list:
@@ -225,8 +235,7 @@ class BuildingModels(Kind):
 
         frame, facetizer = _polygons(tree, settings, made)
         building = build(tree, frame, facetizer, settings.output.title,
-                         dict(settings.bim.classes),
-                         lambda message: made.warnings.append((message, tree.location)))
+                         dict(settings.bim.classes), _warner(made, tree))
         _figures(settings, made, frame, facetizer, tree)
         return BuildingModel(building)
 
