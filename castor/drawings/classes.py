@@ -22,6 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from castor.csg.elements import cuts_nothing
 from castor.drawings.cut import cut_loops
 
 # pattern name (as DXF names it) -> (line families (angle in degrees, offset as
@@ -155,10 +156,8 @@ def classify(drawing, takeoff, warn=None) -> None:
             _door(block, centre, loops, symbols)
         elif cls == WINDOW:
             _window(block, loops, symbols)
-    for opening in takeoff.openings:
-        if not any(b.opening is opening for b in blocks):
-            warn(f"{opening.classification.short} '{opening.name}' ({opening.where}) cuts "
-                 "nothing from the element it is subtracted from: no symbol is drawn")
+    for opening in takeoff.idle(blocks):
+        warn(cuts_nothing(opening, "no symbol is drawn"))
     for p in takeoff.placed():
         box = p.figures.bbox
         if p.element.ifc_class == STAIR and box[0][2] < z < box[1][2] + 1e-9:
