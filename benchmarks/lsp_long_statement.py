@@ -22,8 +22,8 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent / "tests" / "preview"))
-from test_lsp import Client  # noqa: E402
+sys.path.insert(0, str(HERE.parent))
+from tests.support.lsp import Client  # noqa: E402
 
 from long_statement import scene  # noqa: E402
 
