@@ -185,14 +185,31 @@ class _Judge:
             child = node.shared.child
             return child is not None and self.covers(child, box, tree.compose(
                 outer, node.matrix), probe)
-        if kind is tree.Smooth:
+        if kind is tree.Smooth:  # a box's right-angled edges are kept below 90 degrees
             return node.angle < _CUBE_KEPT_BELOW and type(node.operand) is tree.Primitive and \
+                _right_angled(tree.compose(node.matrix, node.operand.matrix)) and \
                 self.covers(node.operand, box, tree.compose(outer, node.matrix), probe)
         if kind is not tree.Boolean or node.op == "D":
             return False
         if node.op == "U":
             return any(self.covers(o, box, outer, probe) for o in node.operands)
         return all(self.covers(o, box, outer, probe) for o in node.operands)
+
+
+def _right_angled(m: tree.Matrix) -> bool:
+    """Whether the matrix keeps right angles (its columns orthogonal): a cube it
+    places keeps its right-angled edges, which a smoothing below 90 degrees
+    keeps (LANGUAGE.md §4.2); a shear or a scale across a turn makes obtuse
+    edges, which it rounds off."""
+    columns = [(m[j], m[4 + j], m[8 + j]) for j in range(3)]
+    for a in range(3):
+        for b in range(a + 1, 3):
+            u, v = columns[a], columns[b]
+            dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+            size = (sum(x * x for x in u) * sum(x * x for x in v)) ** 0.5
+            if abs(dot) > 1e-9 * size:
+                return False
+    return True
 
 
 def _corners(box: Box):
