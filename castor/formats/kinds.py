@@ -216,7 +216,7 @@ class Drawings(Kind):
             sheet = sheet_of(tree, frame, settings.drawing, settings.output.title, warn,
                              facetizer)
         if settings.output.format == "pdf":  # its fonts may lack some of the texts' characters
-            from castor.formats.pdf_fonts import missing_glyphs_warning
+            from castor.formats._pdf_fonts import missing_glyphs_warning
 
             missing_glyphs_warning(sheet, warn)
         _figures(settings, made, frame, facetizer, tree)

@@ -7,7 +7,7 @@ page is vector: lines with the pens' widths at the printed size, poché as
 filled paths, and text as text in Helvetica (one of PDF's standard fonts,
 so a reader can search and copy the dimensions), or, for a text with
 characters its encoding lacks (ĉ), in an embedded TrueType font that has
-them (castor.formats.pdf_fonts). ``invariant`` mode leaves out the creation
+them (castor.formats._pdf_fonts). ``invariant`` mode leaves out the creation
 time and a random document id, so the same sheet gives the same bytes.
 """
 
@@ -19,7 +19,7 @@ from typing import Iterator
 import numpy as np
 
 from castor.formats import WriteInfo
-from castor.formats.pdf_fonts import font_for
+from castor.formats._pdf_fonts import font_for
 
 
 MM = 72 / 25.4  # PDF points per millimetre

@@ -34,7 +34,7 @@ def fonts_of(pdf) -> list[str]:
 
 
 def has_dejavu() -> bool:
-    from castor.formats.pdf_fonts import SYSTEM_FONTS
+    from castor.formats._pdf_fonts import SYSTEM_FONTS
 
     return any(os.path.isfile(path) for path in SYSTEM_FONTS)
 
@@ -68,7 +68,7 @@ def test_text_within_helveticas_encoding_stays_helvetica(tmp_path):
 def without_system_fonts(tmp_path, *options) -> subprocess.CompletedProcess:
     """castor with no system font to embed: reportlab's Vera alone."""
     (tmp_path / "s.cas").write_text(ROOM)
-    code = ("import sys, castor.formats.pdf_fonts as fonts\nfonts.SYSTEM_FONTS = ()\n"
+    code = ("import sys, castor.formats._pdf_fonts as fonts\nfonts.SYSTEM_FONTS = ()\n"
             "from castor.cli import main\nsys.argv = ['castor', *sys.argv[1:]]\nmain()\n")
     env = dict(os.environ, PYTHONPATH=str(ROOT), SOURCE_DATE_EPOCH="1700000000")
     return subprocess.run([sys.executable, "-c", code, "s.cas", *options], cwd=tmp_path, env=env,
