@@ -254,9 +254,11 @@ class _Writer:
             self.storeys.append((create(
                 "IfcBuildingStorey", guid("storey", storey.name), None, storey.name, None, None,
                 place, None, storey.name, "ELEMENT", float(storey.level)), place, storey.level))
-        for parent, parts in ((project, [site]), (site, [whole]),
-                              (whole, [s for s, _, _ in self.storeys])):
-            create("IfcRelAggregates", guid("aggregates", parent.Name or ""), None, None, None,
+        # keyed by the parent's role, not its name: the project's name is the title
+        # (which must not change ids) and may be "Site" or "Building" (unique ids)
+        for role, parent, parts in (("project", project, [site]), ("site", site, [whole]),
+                                    ("building", whole, [s for s, _, _ in self.storeys])):
+            create("IfcRelAggregates", guid("aggregates", role), None, None, None,
                    parent, parts)
         return project
 

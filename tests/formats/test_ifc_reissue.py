@@ -289,3 +289,15 @@ def test_the_quick_global_id_is_ifcopenshells_uuid5():
         name = "".join(chosen.choice("ab\0é€Z ") for _ in range(chosen.randint(0, 40)))
         assert guid(name) == ifcopenshell.guid.compress(uuid.uuid5(_GUID_SPACE, name).hex)
         assert len(guid(name)) == 22 and ifcopenshell.guid.expand(guid(name))
+
+
+@pytest.mark.parametrize("title", ["Site", "Building"])
+def test_every_global_id_is_unique_and_kept_under_a_new_title(tmp_path, title):
+    # the aggregation relations (no Name) were keyed by their parent's name, the
+    # project's being the title: a title "Site" or "Building" gave two relations
+    # one GlobalId, and a new title changed the project's relation's id
+    first, _ = _castor(tmp_path, "X = 1;\n" + DOOR, "--title", title, name="a.ifc")
+    second, _ = _castor(tmp_path, "X = 1;\n" + DOOR, "--title", "Maison (B)", name="b.ifc")
+    ids = [e.GlobalId for e in first.by_type("IfcRoot")]
+    assert len(ids) == len(set(ids))
+    assert ids == [e.GlobalId for e in second.by_type("IfcRoot")]
