@@ -485,6 +485,9 @@ def _warn_without_effect(args, reporter) -> None:
                                             if getattr(args, n)]):
             reporter.warning(f"--{name} has no effect where the register gives its own "
                              f"({args.sheets.path}); the register's is printed there")
+        if "--title" in args.given and any(entry.title for entry in args.sheets.sheets):
+            reporter.warning(f"--title has no effect on the sheets the register gives a title "
+                             f"({args.sheets.path}); the register's is printed there")
 
 
 def _stop_on_signals() -> list[int]:

@@ -170,3 +170,17 @@ def test_a_field_the_register_gives_alike_is_no_warning(tmp_path):
     said = castor(tmp_path, HOUSE, "--sheets", "r.toml", "--revision", "C", "-o", "s-%d.svg")
     assert said.splitlines() == ["castor: warning: --revision has no effect where the register "
                                  "gives its own (r.toml); the register's is printed there"]
+
+
+def test_a_title_the_register_gives_a_sheet_is_warned_of(tmp_path):
+    # --title stands on the sheets without a title of their own, the
+    # register's on the others: said, as for the other fields
+    (tmp_path / "r.toml").write_text(BARE)
+    said = castor(tmp_path, HOUSE, "--sheets", "r.toml", "--title", "X", "-o", "s-%d.svg")
+    assert said.splitlines() == ["castor: warning: --title has no effect on the sheets the "
+                                 "register gives a title (r.toml); the register's is printed there"]
+    titles = [ET.parse(tmp_path / f"s-{n}.svg").getroot().find("{http://www.w3.org/2000/svg}title")
+              .text for n in (1, 2)]
+    assert titles[0].startswith("Plan du rez") and titles[1].startswith("X")
+    (tmp_path / "r.toml").write_text(BARE.replace('title = "Plan du rez"\n', ""))
+    assert castor(tmp_path, HOUSE, "--sheets", "r.toml", "--title", "X", "-o", "s-%d.svg") == ""
