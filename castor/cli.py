@@ -354,6 +354,13 @@ def settings_of(args, overrides: dict[str, float]):
 
 
 def main(argv=None) -> int:
+    # numpy's OpenBLAS starts a thread per core when numpy is imported, and they
+    # spin-wait: a run of 64 houses spent a sixth of its CPU time there. castor's
+    # products of matrices are (N, 3) by (3, 3), too small to gain from threads,
+    # and a thread per product computes each element as one thread does (the
+    # same bytes). Set by the command, before numpy is first imported (a program
+    # that imports castor's modules keeps its environment); a user's setting wins.
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     parser, args = _arguments(sys.argv[1:] if argv is None else argv)
     reporter = Reporter(quiet=args.quiet)
     from castor.pipeline import RECURSION_LIMIT, STACK_BYTES

@@ -16,13 +16,6 @@ import sys
 import threading
 from collections import deque
 
-# numpy's OpenBLAS starts a thread per core when numpy is imported, and they
-# spin-wait: a run of 64 houses spent a sixth of its CPU time there. castor's
-# products of matrices are (N, 3) by (3, 3), too small to gain from threads,
-# and a thread per product computes each element as one thread does (the
-# same bytes). Set before numpy is first imported; a user's own setting wins.
-os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-
 from castor.diagnostics import (CastorError, LimitError, Reporter, TooManyErrors, UsageError,
                                 shown_name)
 from castor.jobs import FrameThread, Job, Result, make
