@@ -209,7 +209,10 @@ def parse_section(text: str):
 
 
 def _read(path: str) -> tuple[str, dict]:
-    import tomllib
+    try:
+        import tomllib
+    except ImportError:  # Python 3.10: the same module, as tomli (pyproject.toml)
+        import tomli as tomllib
 
     try:
         with open(path, "rb") as handle:
@@ -218,6 +221,8 @@ def _read(path: str) -> tuple[str, dict]:
         raise ValueError(f"--sheets: cannot read {path}: {exc.strerror or exc}") from None
     try:
         text = raw.decode("utf-8")
+        if text.startswith("\ufeff"):  # a byte-order mark (Notepad's): skipped, as in scenes
+            text = text[1:]
         return text, tomllib.loads(text)
     except UnicodeDecodeError:
         raise ValueError(f"--sheets: {path} is not UTF-8 text") from None

@@ -184,3 +184,11 @@ def test_a_title_the_register_gives_a_sheet_is_warned_of(tmp_path):
     assert titles[0].startswith("Plan du rez") and titles[1].startswith("X")
     (tmp_path / "r.toml").write_text(BARE.replace('title = "Plan du rez"\n', ""))
     assert castor(tmp_path, HOUSE, "--sheets", "r.toml", "--title", "X", "-o", "s-%d.svg") == ""
+
+
+def test_a_register_saved_with_a_byte_order_mark_is_read(tmp_path):
+    # Notepad's UTF-8 starts with a BOM: skipped, as in scene files (tomllib
+    # called it "invalid statement" at 1:1)
+    (tmp_path / "r.toml").write_bytes(b"\xef\xbb\xbf" + BARE.encode())
+    assert castor(tmp_path, HOUSE, "--sheets", "r.toml", "-o", "s-%d.svg") == ""
+    assert (tmp_path / "s-1.svg").exists() and (tmp_path / "s-2.svg").exists()
