@@ -91,6 +91,12 @@ def _undecoded(name: str, line: int, before: str, exc: UnicodeError) -> NotText:
         done = exc.object[:exc.start]
         code = ord(exc.object[exc.start])
         what = f"byte 0x{code - 0xdc00:02x}" if 0xdc80 <= code <= 0xdcff else f"U+{code:04X}"
+    start = exc.object[:2]
+    if not before and line == 1 and not done and start in (
+            b"\xff\xfe", b"\xfe\xff", "\udcff\udcfe", "\udcfe\udcff"):
+        return _not_text(name, line, before, f"{what} is not UTF-8",
+                         "; castor reads UTF-8 text: this one starts as UTF-16 does, and "
+                         "converts with iconv -f utf-16 -t utf-8")
     return _not_text(name, line, before + done, f"{what} is not UTF-8",
                      "; castor reads UTF-8 text: a scene written in Latin-1 converts with "
                      "iconv -f latin1 -t utf-8")

@@ -79,6 +79,20 @@ def test_the_message_points_at_the_first_byte_that_is_not_utf8(tmp_path):
     assert out.endswith(b"endframe 1 6\n")
 
 
+@pytest.mark.parametrize("encoding", ["utf-16", "utf-16-be"])
+def test_a_utf16_scene_is_told_how_to_convert(tmp_path, encoding):
+    # its byte-order mark is not Latin-1: iconv -f latin1 would make garbage of it
+    text = "> !cu(1, 1, 1);\n".encode(encoding)
+    (tmp_path / "u16.cas").write_bytes(text if text[:2] in (b"\xff\xfe", b"\xfe\xff")
+                                       else b"\xfe\xff" + text)
+    for args in ([], ["--no-cpp"]):
+        status, out, err = castor(tmp_path, *args, "u16.cas")
+        assert status == 1 and out == b""
+        assert err.endswith("castor reads UTF-8 text: this one starts as UTF-16 does, and "
+                            "converts with iconv -f utf-16 -t utf-8\n"), err
+        assert err.startswith("u16.cas:1:1: error: the input is not text (byte 0xf")
+
+
 def test_a_file_that_is_not_text_is_skipped_and_the_others_read(tmp_path):
     (tmp_path / "a.cas").write_text("a = !cu(1, 1, 1);\n")
     (tmp_path / "b.bin").write_bytes(b"\xff\xfe\x00\x01" * 100)
