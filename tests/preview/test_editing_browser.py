@@ -8,32 +8,17 @@ refused with nothing lost."""
 
 from __future__ import annotations
 
-import os
 
 import pytest
 
 from castor.serve.evaluation import Watched
 from castor.serve.server import PreviewServer
 from castor.settings import Source
-from tests.support.browser import CHROMIUM, FLAGS, HEIGHT, WIDTH
+from tests.support.preview_page import browser, opened_page, skip_without_chromium  # noqa: F401
 
-
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"Debian's chromium is not installed ({CHROMIUM} is absent; "
-                "apt-get install chromium): the page is not tried in a browser",
-                allow_module_level=True)
-playwright = pytest.importorskip("playwright.sync_api",
-                                 reason="the playwright package is not installed")
+playwright = skip_without_chromium()
 
 SCENE = "/* a block */\nbloc = @h(2, 2, 1) !cu(0.7, 0.7, 0.7);\n> bloc;\n"
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with playwright.sync_playwright() as driver:
-        launched = driver.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
-        yield launched
-        launched.close()
 
 
 @pytest.fixture
@@ -48,16 +33,10 @@ def scene(tmp_path, monkeypatch):
 
 @pytest.fixture
 def page(browser, scene):
-    opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
-    problems = []
-    opened.on("pageerror", lambda error: problems.append(str(error)))
-    opened.goto(scene[1])
-    opened.wait_for_selector("body[data-version]", timeout=15000)
-    opened.wait_for_selector("body[data-editing=ready]", timeout=15000)
-    opened.get_by_role("button", name="top").click()  # a plan: x right, y up
-    yield opened
-    opened.close()
-    assert problems == []
+    with opened_page(browser, scene[1]) as opened:
+        opened.wait_for_selector("body[data-editing=ready]", timeout=15000)
+        opened.get_by_role("button", name="top").click()  # a plan: x right, y up
+        yield opened
 
 
 def at(page, point) -> tuple[float, float]:

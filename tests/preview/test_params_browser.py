@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import subprocess
 import sys
 import time
@@ -19,14 +18,12 @@ from castor.serve.evaluation import Watched
 from castor.settings import Source
 from castor.serve.server import PreviewServer
 
-from tests.support.browser import CHROMIUM, FLAGS, HEIGHT, ROOF, WIDTH, near, painted, picture
+from tests.support.browser import ROOF, near, painted, picture
+from tests.support.preview_page import browser, opened_page, skip_without_chromium  # noqa: F401
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-playwright = pytest.importorskip("playwright.sync_api",
-                                 reason="the playwright package is not installed")
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"{CHROMIUM} is absent", allow_module_level=True)
+playwright = skip_without_chromium()
 
 ANNOTATED = "H = 2.9;      // [2.5:0.1:4] height of the walls"
 
@@ -42,25 +39,10 @@ def house(tmp_path, monkeypatch):
     server.close()
 
 
-@pytest.fixture(scope="module")
-def browser():
-    """One chromium for the module's pages (each test opens a page of its own)."""
-    with playwright.sync_playwright() as driver:
-        launched = driver.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
-        yield launched
-        launched.close()
-
-
 @pytest.fixture
 def page(browser, house):
-    opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
-    problems = []
-    opened.on("pageerror", lambda error: problems.append(str(error)))
-    opened.goto(house[1].url)
-    opened.wait_for_selector("body[data-version]", timeout=15000)
-    yield opened
-    opened.close()
-    assert problems == []
+    with opened_page(browser, house[1].url) as opened:
+        yield opened
 
 
 def roof_top(image: np.ndarray) -> int:

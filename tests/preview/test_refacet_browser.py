@@ -14,7 +14,7 @@ from castor.serve.evaluation import Watched, evaluate
 from castor.serve.server import PreviewServer
 from castor.settings import Source
 from tests.support.browser import HEIGHT, WIDTH, drawn, next_version, painted, picture
-from tests.support.preview_page import browser, skip_without_chromium  # noqa: F401
+from tests.support.preview_page import browser, opened_page, skip_without_chromium  # noqa: F401
 
 playwright = skip_without_chromium()
 
@@ -37,14 +37,8 @@ def served(tmp_path, monkeypatch):
 
 @pytest.fixture
 def page(browser, served):
-    opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
-    problems = []
-    opened.on("pageerror", lambda error: problems.append(str(error)))
-    opened.goto(served.url)
-    opened.wait_for_selector("body[data-version]", timeout=15000)
-    yield opened
-    opened.close()
-    assert problems == []
+    with opened_page(browser, served.url) as opened:
+        yield opened
 
 
 def _shown(page) -> tuple[str, int]:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import shutil
+from contextlib import contextmanager
 
 import pytest
 
@@ -49,13 +50,21 @@ def house(tmp_path, monkeypatch):
     server.close()
 
 
-@pytest.fixture
-def page(browser, house):
+@contextmanager
+def opened_page(browser, url: str):
+    """A page of the browser on ``url``, drawn once (its ``data-version`` set);
+    closed after, with no error raised in it."""
     opened = browser.new_page(viewport={"width": WIDTH, "height": HEIGHT})
     problems = []
     opened.on("pageerror", lambda error: problems.append(str(error)))
-    opened.goto(house[1])
+    opened.goto(url)
     opened.wait_for_selector("body[data-version]", timeout=15000)
     yield opened
     opened.close()
     assert problems == []
+
+
+@pytest.fixture
+def page(browser, house):
+    with opened_page(browser, house[1]) as opened:
+        yield opened
