@@ -49,49 +49,11 @@ CASES = [
      ["--section", "z=1.2", "--sheet", "A3", "--scale", "1:50"]),
 ]
 
-# the pavilion's set: five sheets
-REGISTER = """
-[project]
-title = "Pavillon"
-number = "2026-014"
-drawn = "MB"
-checked = "PM"
-revision = "B"
-sheet = "A3"
-scale = "1:50"
-
-[[sheet]]
-number = "A-101"
-title = "Plan du rez-de-chaussée"
-drawing = "plan z=1.2"
-
-[[sheet]]
-number = "A-102"
-title = "Plan de l'étage"
-drawing = "plan z=4.2"
-
-[[sheet]]
-number = "A-201"
-title = "Coupe AA"
-drawing = "section x=3"
-
-[[sheet]]
-number = "A-301"
-title = "Façade sud"
-drawing = "elevation front"
-
-[[sheet]]
-number = "A-302"
-title = "Façade est"
-drawing = "elevation right"
-"""
-
 
 def sets(tmp: str) -> list:
-    """The pavilion's five sheets as one PDF and as one DXF."""
-    register = os.path.join(tmp, "register.toml")
-    with open(register, "w") as handle:
-        handle.write(REGISTER)
+    """The pavilion's five sheets (its register, examples/pavilion-sheets.toml) as
+    one PDF and as one DXF."""
+    register = os.path.join(EXAMPLES, "pavilion-sheets.toml")
     row = ["pavilion set of five sheets"]
     for suffix in (".pdf", ".dxf"):
         out = os.path.join(tmp, "set" + suffix)

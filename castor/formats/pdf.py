@@ -34,14 +34,16 @@ def _colour(canvas, name: str | None, fill: bool) -> None:
     (canvas.setFillColor if fill else canvas.setStrokeColor)(colour)
 
 
-def _outline(page, item):
+def _outline(page, item, closed: bool = True):
+    """The item's loops as a path, each loop closed unless ``closed`` is false."""
     path = page.beginPath()
     for loop in item.loops:
         points = np.asarray(loop).tolist()
         path.moveTo(*points[0])
         for point in points[1:]:
             path.lineTo(*point)
-        path.close()
+        if closed:
+            path.close()
     return path
 
 
@@ -227,14 +229,7 @@ def _page(page, sheet) -> None:
             elif isinstance(item, Shape) and item.pattern is not None:
                 _hatched(page, item)
             elif isinstance(item, Shape):
-                path = page.beginPath()
-                for loop in item.loops:
-                    points = np.asarray(loop).tolist()
-                    path.moveTo(*points[0])
-                    for point in points[1:]:
-                        path.lineTo(*point)
-                    if item.closed:
-                        path.close()
+                path = _outline(page, item, item.closed)
                 page.setLineWidth(item.pen)
                 _colour(page, item.fill, True)
                 page.drawPath(path, stroke=1, fill=1 if item.fill else 0, fillMode=0)
