@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 
 import numpy as np
-from tests.support.browser import BAR, REVEAL, ROOF, near, picture
+from tests.support.browser import BAR, REVEAL, ROOF, near, picture, well_inside
 from tests.support.preview_page import browser, house, page, skip_without_chromium  # noqa: F401
 
 skip_without_chromium()
@@ -23,13 +23,7 @@ def _shown(page, hidden: str) -> None:
 
 def _inside(mask: np.ndarray) -> tuple[int, int]:
     """A page point well inside the pixels of ``mask`` (a picture below the bar)."""
-    inner = mask.copy()
-    for dy in (-3, 0, 3):
-        for dx in (-3, 0, 3):
-            inner &= np.roll(np.roll(mask, dy, axis=0), dx, axis=1)
-    ys, xs = np.nonzero(inner)
-    assert len(ys) > 50
-    return int(xs[len(xs) // 2]), int(ys[len(ys) // 2]) + BAR
+    return well_inside(mask, 3, 50)
 
 
 def _without_panel(page, image: np.ndarray) -> np.ndarray:

@@ -57,17 +57,22 @@ def next_version(page, version: str, seconds: float = 10) -> str:
 ROOF, REVEAL, GREEN = (0.70, 0.28, 0.18), (0.25, 0.45, 0.85), (0.15, 0.65, 0.25)
 
 
+def well_inside(mask: np.ndarray, margin: int, least: int) -> tuple[int, int]:
+    """A page point of the pixels of ``mask`` (a picture of the view, below the
+    bar) at least ``margin`` pixels from their edges; ``least`` such pixels expected."""
+    inner = mask.copy()
+    for dy in (-margin, 0, margin):
+        for dx in (-margin, 0, margin):
+            inner &= np.roll(np.roll(mask, dy, axis=0), dx, axis=1)
+    ys, xs = np.nonzero(inner)
+    assert len(ys) > least
+    return int(xs[len(xs) // 2]), int(ys[len(ys) // 2]) + BAR
+
+
 def inside_reveal(image: np.ndarray) -> tuple[int, int]:
     """A point of the page well inside the blue window reveals of a picture of the
     view (away from their edges), in page pixels."""
-    blue = near(image, REVEAL)
-    inner = blue.copy()
-    for dy in (-2, 0, 2):
-        for dx in (-2, 0, 2):
-            inner &= np.roll(np.roll(blue, dy, axis=0), dx, axis=1)
-    ys, xs = np.nonzero(inner)
-    assert len(ys) > 20
-    return int(xs[len(xs) // 2]), int(ys[len(ys) // 2]) + BAR
+    return well_inside(near(image, REVEAL), 2, 20)
 
 
 def painted(page) -> None:
