@@ -81,10 +81,12 @@ class _Judge:
     """One frame's walk: each shared subtree judged and boxed once, in its own space."""
 
     def __init__(self):
-        self.empties: dict[str, bool] = {}
-        self.boxes: dict[str, Box | None] = {}
-        # booleans judged and boxed so far (by id: the tree holds them while the
-        # walk runs), so that nested booleans are walked once, not once per level
+        # shared subtrees and booleans judged and boxed so far (by id: the tree
+        # holds them while the walk runs; a shared subtree's key is a digest
+        # that an analysis never otherwise works out), so that nested booleans
+        # are walked once, not once per level
+        self.empties: dict[int, bool] = {}
+        self.boxes: dict[int, Box | None] = {}
         self.judged: dict[int, bool] = {}
         self.boxed: dict[tuple, Box | None] = {}
 
@@ -121,9 +123,9 @@ class _Judge:
         return box is not None and any(self.covers(o, box, outer) for o in operands[1:])
 
     def _shared_empty(self, shared: tree.Shared) -> bool:
-        found = self.empties.get(shared.key)
+        found = self.empties.get(id(shared))
         if found is None:
-            found = self.empties[shared.key] = shared.child is None or self.empty(
+            found = self.empties[id(shared)] = shared.child is None or self.empty(
                 shared.child, tree.IDENTITY)
         return found
 
@@ -168,10 +170,10 @@ class _Judge:
                 tuple(min(b[1][i] for b in known) for i in range(3)))
 
     def _shared_box(self, shared: tree.Shared) -> Box | None:
-        if shared.key not in self.boxes:
-            self.boxes[shared.key] = None if shared.child is None else self.box(
+        if id(shared) not in self.boxes:
+            self.boxes[id(shared)] = None if shared.child is None else self.box(
                 shared.child, tree.IDENTITY)
-        return self.boxes[shared.key]
+        return self.boxes[id(shared)]
 
     # --- what a subtracted operand certainly holds
     def covers(self, node, box: Box | None, outer: tree.Matrix, probe: bool = False) -> bool:

@@ -187,8 +187,7 @@ class Evaluator:
                 shared = None
                 child = None
             else:
-                shared = tree.Shared(node.name, child, tree.content_key(node.name, child),
-                                     node.location)
+                shared = tree.Shared(node.name, child, None, node.location)  # (its key when asked)
             if len(self.errors) == before:
                 self.memo[key] = (node, shared)
         if shared is None or shared.child is None:

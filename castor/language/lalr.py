@@ -177,8 +177,10 @@ class Parser:
         # per rule: (its symbol, _KEEP/_ONE/_PICK/_CALL, how many children it pops,
         # the picked child's index or the callback)
         self._rules = []
+        named = {}  # (the rule's name, its size) -> (how it is reduced, its callback)
         for origin, size, name, expand_single, include, append_none in tables["rules"]:
             how, pick = _action(expand_single, size, include, append_none)
+            named[name, size] = (how, pick)
             if how in (_KEEP, _PICK):
                 self._rules.append((origin, how, size, pick))
                 continue
@@ -189,9 +191,94 @@ class Parser:
                 method = _inlined
             elif method is None:
                 method = _tree(name)
-            self._rules.append((origin, how, size, _callback(method, expand_single, include,
-                                                             append_none)))
+            callback = _callback(method, expand_single, include, append_none)
+            named[name, size] = (how, callback)
+            self._rules.append((origin, how, size, callback))
         self._chains: dict = {}  # per start: (below, state, kind) -> where _chain ends
+        self._plain_arguments(named)
+
+    def _plain_arguments(self, named: dict) -> None:
+        """Where a call's arguments are read at once (``_arguments``): after the
+        name of a call, a transformation or a primitive, each state from which
+        "(" leads to one with a goto on ``args`` that shifts a number, a parameter
+        and a sign, and from there to one that shifts ")" (the states the parser
+        goes through, by state after the name); the expressions that read the
+        "(" and each argument (castor.language.lexing.arguments); and the
+        callbacks the parser would call on them. None of it where the grammar is
+        not as this expects (the parser then reads every argument token by token)."""
+        self._before_open: dict = {}
+        wanted = {("number", 1): _ONE, ("parameter", 1): _ONE, ("unary", 2): _CALL,
+                  ("args", 1): _ONE}
+        if any(named.get(key, (None,))[0] != how for key, how in wanted.items()):
+            return
+        patterns, ignored, _, _ = self._root
+        from castor.language.lexing import arguments
+
+        found = arguments("|".join(pattern for pattern, _ in patterns), patterns[0][1],
+                          frozenset(ignored), "LPAR", ("COMMA", "RPAR"), "ADDOP",
+                          ("NUMBER", "PARAM"))
+        if found is None:
+            return
+        opening, argument = (re.compile(text, patterns[0][1]) for text in found)
+        self._opening, self._argument = opening.match, argument.match
+        self._groups = tuple(argument.groupindex[name]
+                             for name in ("ADDOP", "NUMBER", "PARAM", "RPAR"))
+        self._number, self._parameter, self._signed, self._args = (
+            named[key][1] for key in wanted)
+        states = self._states
+        for state, row in enumerate(states):
+            open_state = row.get("LPAR", -1)
+            if open_state < 0:
+                continue
+            after = states[open_state]
+            list_state = after.get("args", -1)
+            if list_state < 0 or not all(after.get(kind, -1) >= 0
+                                         for kind in ("NUMBER", "PARAM", "ADDOP")):
+                continue
+            close_state = states[list_state].get("RPAR", -1)
+            if close_state >= 0:
+                self._before_open[state] = (open_state, list_state, close_state)
+
+    def _arguments(self, text: str, pos: int):
+        """A call's "(" and arguments from ``pos`` (just after its name) where each
+        is a number or a parameter, signed or not, with blanks around: the value
+        the parser would make of them (the same callbacks on the same tokens, in
+        the same order) and where the text after the closing ")" begins; None
+        where they are not all such (nothing called then: the parser reads them
+        token by token)."""
+        opened = self._opening(text, pos)
+        if opened is None:
+            return None
+        pos = opened.end()
+        argument, found = self._argument, []
+        sign, number, parameter, closing = self._groups
+        while True:
+            match = argument(text, pos)
+            if match is None:
+                return None
+            found.append(match.regs)
+            pos = match.end()
+            if match.regs[closing][0] >= 0:
+                break
+        values = []
+        for regs in found:
+            start, end = regs[number]
+            if start >= 0:
+                token = Token(text[start:end])
+                token.type, token.start_pos = "NUMBER", start
+                value = self._number([token])
+            else:
+                start, end = regs[parameter]
+                token = Token(text[start:end])
+                token.type, token.start_pos = "PARAM", start
+                value = self._parameter([token])
+            start, end = regs[sign]
+            if start >= 0:
+                token = Token(text[start:end])
+                token.type, token.start_pos = "ADDOP", start
+                value = self._signed([token, value])
+            values.append(value)
+        return self._args(values), pos
 
     @staticmethod
     def _compile(lexer) -> tuple:
@@ -284,6 +371,7 @@ class Parser:
         made (``Token``). Its time is linear in the text's length."""
         scan, ignored, _ = self._root_lexer()
         states, rules, kept = self._states, self._rules, self._kept
+        before_open = self._before_open
         chains = self._chains.setdefault(start, {})
         state, end_state = self._starts[start], self._ends[start]
         state_stack, value_stack = [state], []
@@ -346,3 +434,15 @@ class Parser:
             push_state(action)
             push_value(token)
             state = action
+            if action in before_open:  # a call's name: its "(", plain arguments and ")" at once
+                read = self._arguments(text, found.end())
+                if read is not None:
+                    value, after = read
+                    open_state, list_state, state = before_open[action]
+                    push_state(open_state)
+                    push_value(None)
+                    push_state(list_state)
+                    push_value(value)
+                    push_state(state)
+                    push_value(None)
+                    next_found = scan(text, after).__next__

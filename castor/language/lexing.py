@@ -235,3 +235,39 @@ def order(pattern: str, flags: int, ignored) -> tuple[str, str]:
             skipped.append(inner)
     prefix = f"(?:{'|'.join(skipped)})?" if skipped else ""
     return "|".join(texts[name] for name in names), prefix
+
+
+
+def arguments(pattern: str, flags: int, ignored, opening: str, punctuation: tuple[str, str],
+              signs: str, values: tuple[str, ...]) -> tuple[str, str] | None:
+    """Two expressions that read a call's plain arguments as the root lexer reads
+    their tokens: the first, blanks then the ``opening`` parenthesis; the
+    second, one argument: blanks, an optional sign (``signs``, then blanks), one
+    of ``values`` (a number, a parameter), blanks, then what follows it, one of
+    ``punctuation`` (the comma, the closing parenthesis). castor.language.lalr
+    reads a call's arguments with them where they are all plain (the parser's
+    loop then turns once for the parenthesized list instead of twice per
+    argument and once per parenthesis).
+
+    Each of these terminals is proven never to match from a position where
+    another may (``_disjoint``: so that the root lexer, in any order, reads it
+    there, as far as its own expression reaches), and the blanks to be the
+    ignored terminal ``order`` reads before a token; else None (the parser then
+    reads arguments token by token)."""
+    pieces = alternatives(pattern, flags)
+    if pieces is None or flags & re.IGNORECASE:
+        return None
+    texts = dict(pieces)
+    wanted = (opening, *punctuation, signs, *values)
+    if any(name not in texts for name in wanted):
+        return None
+    parsed = {name: sre.parse(text, flags).data for name, text in pieces}
+    if not all(_disjoint(parsed[name], parsed[other])
+               for name in wanted for other in parsed if other != name):
+        return None
+    _, blanks = order(pattern, flags, ignored)
+    if not blanks:
+        return None
+    return (f"{blanks}{texts[opening]}",
+            f"{blanks}(?:{texts[signs]}{blanks})?(?:{'|'.join(texts[v] for v in values)})"
+            f"{blanks}(?:{'|'.join(texts[p] for p in punctuation)})")

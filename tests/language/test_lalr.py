@@ -107,6 +107,22 @@ def test_comments_and_newlines_place_tokens_as_lark_does(parsers):
         _same(parsers, text, "statement")
 
 
+ARGUMENTS = ["1, 2, 3", " 1 ,2 ,3 ", "\n-1,\t+ 2,-X", "H", "-H, 0", "1.5e3, .5, 3., 1e-3, 1E+3",
+             "", "1,", ",1", "1 2", "--1", "- - 1", "1e", "1.5.3", "X1, x1", "٣, 4", "1 /* c */, 2",
+             "1, // c\n 2", "2 * H, 1", "f(1), 2", "(1), 2", "1 ^ 2, 3", "X(1)", "-(1)", "1, X Y"]
+
+
+def test_a_call_s_plain_arguments_read_at_once_are_read_as_lark_reads_them(parsers):
+    _, driver = parsers
+    assert driver._before_open  # the calls of a transformation, a primitive, a function
+    for arguments in ARGUMENTS:
+        for statement in (f"x = @t({arguments}) !cu({arguments});",
+                          f"X = sin({arguments}) + 1;",
+                          f"x = $U(@t ({arguments})\n!cu( {arguments} ), @r({arguments}) y);"):
+            _same(parsers, statement, "statement")
+            _same(parsers, statement, "program")
+
+
 def test_tables_exported_from_lark_s_saved_tables_are_those_of_the_grammar(tmp_path):
     """A checkout's first run exports the tables from lark's parser as loaded from
     lark's cache or the shipped tables: they read as those of a parser built anew

@@ -78,3 +78,28 @@ def test_the_new_order_reads_the_same_tokens():
     new = [t for t in _tokens(f"{blanks}(?:{alternatives})", text) if t[0] not in ignored]
     assert new == old
     assert ("MULOP", text.index("/ 4"), "/") in new
+
+
+def test_a_call_s_plain_arguments_are_proven_readable_at_once():
+    pattern, flags, ignored = _root()
+    found = lexing.arguments(pattern, flags, ignored, "LPAR", ("COMMA", "RPAR"), "ADDOP",
+                             ("NUMBER", "PARAM"))
+    assert found is not None  # else a long statement is read token by token again
+    opening, argument = (re.compile(text, flags) for text in found)
+    assert opening.match(" \n(").end() == 3
+    read = argument.match(" - \t1.5e3 ,")
+    assert (read.group("ADDOP"), read.group("NUMBER"), read.group("COMMA")) == ("-", "1.5e3", ",")
+    assert argument.match("H)").group("PARAM") == "H"
+    for refused in ("/* c */ 1,", "1 /* c */,", "2 * H,", "1.5.3)", "x)", "--1,", "f(1),"):
+        assert argument.match(refused) is None, refused
+
+
+def test_plain_arguments_are_not_read_at_once_where_another_terminal_may_start_alike():
+    # a terminal '-1' (that a number with its sign might be) and the sign's '-'
+    pattern = (r"(?P<NEG>\-1)|(?P<NUMBER>\d+)|(?P<ADDOP>\-)|(?P<LPAR>\()|(?P<RPAR>\))"
+               r"|(?P<COMMA>,)|(?P<WS>[ ]+)")
+    assert lexing.arguments(pattern, re.UNICODE, frozenset({"WS"}), "LPAR", ("COMMA", "RPAR"),
+                            "ADDOP", ("NUMBER",)) is None
+    without = pattern.replace(r"(?P<NEG>\-1)|", "")
+    assert lexing.arguments(without, re.UNICODE, frozenset({"WS"}), "LPAR", ("COMMA", "RPAR"),
+                            "ADDOP", ("NUMBER",)) is not None
