@@ -195,9 +195,15 @@ class Parser:
             named[name, size] = (how, callback)
             self._rules.append((origin, how, size, callback))
         self._chains: dict = {}  # per start: (below, state, kind) -> where _chain ends
-        self._plain_arguments(named)
+        self._named = named
+        self._before_open: dict | None = None  # (_plain_arguments, for a long text)
 
-    def _plain_arguments(self, named: dict) -> None:
+    # a text this long reads its calls' plain arguments at once (_arguments): making
+    # ready to (proving it, compiling the expression) costs a short scene's run
+    # about 20 ms, more than it spares below some thousand arguments
+    LONG = 20_000
+
+    def _plain_arguments(self) -> None:
         """Where a call's arguments are read at once (``_arguments``): after the
         name of a call, a transformation or a primitive, each state from which
         "(" leads to one with a goto on ``args`` that shifts a number, a parameter
@@ -206,7 +212,8 @@ class Parser:
         "(" and each argument (castor.language.lexing.arguments); and the
         callbacks the parser would call on them. None of it where the grammar is
         not as this expects (the parser then reads every argument token by token)."""
-        self._before_open: dict = {}
+        self._before_open = {}
+        named = self._named
         wanted = {("number", 1): _ONE, ("parameter", 1): _ONE, ("unary", 2): _CALL,
                   ("args", 1): _ONE}
         if any(named.get(key, (None,))[0] != how for key, how in wanted.items()):
@@ -219,10 +226,9 @@ class Parser:
                           ("NUMBER", "PARAM"))
         if found is None:
             return
-        opening, argument = (re.compile(text, patterns[0][1]) for text in found)
-        self._opening, self._argument = opening.match, argument.match
-        self._groups = tuple(argument.groupindex[name]
-                             for name in ("ADDOP", "NUMBER", "PARAM", "RPAR"))
+        self._whole_list = re.compile(found.whole, patterns[0][1]).match
+        self._list_marks = (found.opening, found.separator, found.blanks, found.signs,
+                            found.names)
         self._number, self._parameter, self._signed, self._args = (
             named[key][1] for key in wanted)
         states = self._states
@@ -245,40 +251,41 @@ class Parser:
         the parser would make of them (the same callbacks on the same tokens, in
         the same order) and where the text after the closing ")" begins; None
         where they are not all such (nothing called then: the parser reads them
-        token by token)."""
-        opened = self._opening(text, pos)
-        if opened is None:
+        token by token). One match tells such a list (castor.language.lexing.
+        arguments); string operations take it apart at its commas (none inside
+        an argument) and blanks."""
+        whole = self._whole_list(text, pos)
+        if whole is None:
             return None
-        pos = opened.end()
-        argument, found = self._argument, []
-        sign, number, parameter, closing = self._groups
-        while True:
-            match = argument(text, pos)
-            if match is None:
-                return None
-            found.append(match.regs)
-            pos = match.end()
-            if match.regs[closing][0] >= 0:
-                break
+        end = whole.end()
+        opening, separator, blanks, signs, names = self._list_marks
+        number, parameter, signed = self._number, self._parameter, self._signed
+        at = text.index(opening, pos) + 1  # (only blanks before it)
         values = []
-        for regs in found:
-            start, end = regs[number]
-            if start >= 0:
-                token = Token(text[start:end])
-                token.type, token.start_pos = "NUMBER", start
-                value = self._number([token])
+        for piece in text[at:end - 1].split(separator):
+            word = piece.lstrip(blanks)
+            start = at + len(piece) - len(word)
+            at += len(piece) + 1
+            word = word.rstrip(blanks)
+            sign = None
+            if word[0] in signs:
+                sign = Token(word[0])
+                sign.type, sign.start_pos = "ADDOP", start
+                rest = word[1:].lstrip(blanks)
+                start += len(word) - len(rest)
+                word = rest
+            token = Token(word)
+            token.start_pos = start
+            if word[0] in names:
+                token.type = "PARAM"
+                value = parameter([token])
             else:
-                start, end = regs[parameter]
-                token = Token(text[start:end])
-                token.type, token.start_pos = "PARAM", start
-                value = self._parameter([token])
-            start, end = regs[sign]
-            if start >= 0:
-                token = Token(text[start:end])
-                token.type, token.start_pos = "ADDOP", start
-                value = self._signed([token, value])
+                token.type = "NUMBER"
+                value = number([token])
+            if sign is not None:
+                value = signed([sign, value])
             values.append(value)
-        return self._args(values), pos
+        return self._args(values), end
 
     @staticmethod
     def _compile(lexer) -> tuple:
@@ -371,7 +378,9 @@ class Parser:
         made (``Token``). Its time is linear in the text's length."""
         scan, ignored, _ = self._root_lexer()
         states, rules, kept = self._states, self._rules, self._kept
-        before_open = self._before_open
+        if self._before_open is None and len(text) >= self.LONG:
+            self._plain_arguments()
+        before_open = self._before_open or {}
         chains = self._chains.setdefault(start, {})
         state, end_state = self._starts[start], self._ends[start]
         state_stack, value_stack = [state], []

@@ -238,22 +238,43 @@ def order(pattern: str, flags: int, ignored) -> tuple[str, str]:
 
 
 
-def arguments(pattern: str, flags: int, ignored, opening: str, punctuation: tuple[str, str],
-              signs: str, values: tuple[str, ...]) -> tuple[str, str] | None:
-    """Two expressions that read a call's plain arguments as the root lexer reads
-    their tokens: the first, blanks then the ``opening`` parenthesis; the
-    second, one argument: blanks, an optional sign (``signs``, then blanks), one
-    of ``values`` (a number, a parameter), blanks, then what follows it, one of
-    ``punctuation`` (the comma, the closing parenthesis). castor.language.lalr
-    reads a call's arguments with them where they are all plain (the parser's
-    loop then turns once for the parenthesized list instead of twice per
-    argument and once per parenthesis).
 
-    Each of these terminals is proven never to match from a position where
-    another may (``_disjoint``: so that the root lexer, in any order, reads it
-    there, as far as its own expression reaches), and the blanks to be the
-    ignored terminal ``order`` reads before a token; else None (the parser then
-    reads arguments token by token)."""
+class Arguments:
+    """What castor.language.lalr needs to read a call's plain arguments at once:
+    ``whole``, an expression that matches blanks, the "(", the arguments and the
+    ")" of such a list, or nothing; then, to take the list apart with string
+    operations, the ``opening`` parenthesis and the ``separator`` (the comma:
+    one character each), the ``blanks`` (the characters of the blanks, any run of
+    which is one blank token), the ``signs`` (each a sign token of its own) and
+    the characters that start the second kind of value (``names``: a parameter;
+    any other starts the first kind, a number)."""
+
+    __slots__ = ("whole", "opening", "separator", "blanks", "signs", "names")
+
+    def __init__(self, whole: str, opening: str, separator: str, blanks: str,
+                 signs: frozenset, names: frozenset):
+        self.whole, self.opening, self.separator = whole, opening, separator
+        self.blanks, self.signs, self.names = blanks, signs, names
+
+
+def arguments(pattern: str, flags: int, ignored, opening: str, punctuation: tuple[str, str],
+              signs: str, values: tuple[str, str]) -> Arguments | None:
+    """How to read a call's plain arguments as the root lexer reads their tokens
+    (``Arguments``): in parentheses (``opening``, then ``punctuation[1]``),
+    separated by ``punctuation[0]`` (the comma), each an optional sign (``signs``)
+    and one of ``values`` (a number, a parameter), blanks anywhere between
+    tokens. castor.language.lalr reads such a list at once (its loop then turns
+    once for the parenthesized list instead of twice per argument and once per
+    parenthesis).
+
+    Proven, else None (the parser then reads arguments token by token): each of
+    these terminals never matches from a position where another may
+    (``_disjoint``: so that the root lexer, in any order, reads it there, as far
+    as its own expression reaches: a shorter match of a number or a name is
+    followed by a character of it, never by a blank or the punctuation); the
+    blanks are the ignored terminal ``order`` reads before a token, one or more
+    of a known set of characters; the signs and punctuation are one character
+    each, none of them a blank; the parameter's first characters are known."""
     pieces = alternatives(pattern, flags)
     if pieces is None or flags & re.IGNORECASE:
         return None
@@ -265,9 +286,47 @@ def arguments(pattern: str, flags: int, ignored, opening: str, punctuation: tupl
     if not all(_disjoint(parsed[name], parsed[other])
                for name in wanted for other in parsed if other != name):
         return None
-    _, blanks = order(pattern, flags, ignored)
-    if not blanks:
+    _, prefix = order(pattern, flags, ignored)
+    folded = [name for name in ignored
+              if name in texts and prefix == f"(?:{_inner(texts[name])})?"]
+    blanks = _repeated_character(parsed[folded[0]]) if len(folded) == 1 else None
+    marks = [_single_character(parsed[name]) for name in (opening, *punctuation, signs)]
+    names = first_set(parsed[values[1]])
+    if blanks is None or names is None or any(m is None or m & blanks for m in marks):
         return None
-    return (f"{blanks}{texts[opening]}",
-            f"{blanks}(?:{texts[signs]}{blanks})?(?:{'|'.join(texts[v] for v in values)})"
-            f"{blanks}(?:{'|'.join(texts[p] for p in punctuation)})")
+    blank = "[" + "".join(re.escape(ch) for ch in sorted(blanks)) + "]*"
+
+    def bare(name: str) -> str:  # without its group's name (the values come twice)
+        return "(?:" + _inner(texts[name]) + ")"
+
+    value = f"(?:{bare(signs)}{blank})?(?:{'|'.join(bare(v) for v in values)})"
+    whole = (f"{blank}{bare(opening)}(?:{blank}{value}{blank}{bare(punctuation[0])})*"
+             f"{blank}{value}{blank}{bare(punctuation[1])}")
+    (opening_mark,), (separator,) = marks[0], marks[1]
+    return Arguments(whole, opening_mark, separator, "".join(sorted(blanks)), marks[-1], names)
+
+
+def _inner(text: str) -> str:
+    """An alternative's expression without its named group: ``(?P<A>x)`` -> ``x``."""
+    return text[text.index(">") + 1:-1]
+
+
+def _single_character(seq) -> frozenset | None:
+    """The characters of an expression that matches exactly one of a known set."""
+    if sre.SubPattern(sre.State(), seq).getwidth() != (1, 1):
+        return None
+    return first_set(seq)
+
+
+def _repeated_character(seq) -> frozenset | None:
+    """The characters of an expression that matches any run (one or more) of a
+    known set of characters, ``(?:[ \\t])+`` (inside groups without flags)."""
+    while len(seq) == 1 and seq[0][0] is c.SUBPATTERN and not seq[0][1][1] and \
+            not seq[0][1][2]:
+        seq = seq[0][1][-1]
+    if len(seq) != 1 or seq[0][0] not in (c.MAX_REPEAT, c.MIN_REPEAT):
+        return None
+    low, high, body = seq[0][1]
+    if low != 1 or high != c.MAXREPEAT:
+        return None
+    return _single_character(body)

@@ -31,6 +31,7 @@ from castor.transformations import TRANSFORMS
 # how many arguments each primitive takes (without coordinate pairs)
 _COUNTS = {name: declared.count for name, declared in PRIMITIVES.items()}
 _new_tuple = tuple.__new__  # a Location made without the Python call of its __new__
+_INFINITY = math.inf
 
 # Deeper nesting than this (parentheses, booleans) is refused with an error.
 MAX_DEPTH = 100_000
@@ -279,14 +280,14 @@ class Builder:
     # --- expressions
     def number(self, children):
         token = children[0]
-        value = float(token)
         pos = token.start_pos
         if pos < self._first_end:  # _at, inline: the most made node
             file, line, before = self._first
             location = _new_tuple(Location, (file, line, pos + before))
         else:
             location = self._located(pos)
-        if value == math.inf:
+        value = float(token)
+        if value == _INFINITY:
             self.faults.append(EvaluationError(f"number '{token}' is too large", location))
             value = 0.0
         return Number(value, location)

@@ -24,14 +24,17 @@ EMPTY: frozenset[str] = frozenset()
 
 
 class Number(Identified):
-    __slots__ = ("value", "location", "params", "depth")
+    """A number as written (or an expression without parameters, folded): it reads
+    no parameter and nests one deep, for every number (a long statement makes
+    hundreds of thousands: two fields, not four)."""
 
-    def __init__(self, value: float, location: Location, params: frozenset[str] = EMPTY,
-                 depth: int = 1):
+    __slots__ = ("value", "location")
+    params: frozenset[str] = EMPTY
+    depth = 1
+
+    def __init__(self, value: float, location: Location):
         self.value = value
         self.location = location
-        self.params = params
-        self.depth = depth
 
 
 class Param(Identified):

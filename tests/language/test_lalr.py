@@ -40,10 +40,17 @@ def _plain(child):
     return child
 
 
-@pytest.fixture(scope="module")
-def parsers():
+@pytest.fixture(scope="module", params=["token by token", "plain arguments at once"])
+def parsers(request):
+    """lark and the driver; the driver reading every text either token by token
+    (as it reads a short statement) or with each call's plain arguments read at
+    once (as it reads a long one: Parser.LONG)."""
     lark = Lark(grammar_text(), transformer=Recorder(), **tables.OPTIONS)
     driver = Parser(tables.export(Lark(grammar_text(), **tables.OPTIONS)), Recorder())
+    if request.param == "plain arguments at once":
+        driver.LONG = 0
+    else:
+        driver.LONG = 10**12
     return lark, driver
 
 
@@ -114,7 +121,9 @@ ARGUMENTS = ["1, 2, 3", " 1 ,2 ,3 ", "\n-1,\t+ 2,-X", "H", "-H, 0", "1.5e3, .5, 
 
 def test_a_call_s_plain_arguments_read_at_once_are_read_as_lark_reads_them(parsers):
     _, driver = parsers
-    assert driver._before_open  # the calls of a transformation, a primitive, a function
+    _same(parsers, "x = !cu(1, 1, 1);", "statement")
+    if driver.LONG == 0:
+        assert driver._before_open  # the calls of a transformation, a primitive, a function
     for arguments in ARGUMENTS:
         for statement in (f"x = @t({arguments}) !cu({arguments});",
                           f"X = sin({arguments}) + 1;",

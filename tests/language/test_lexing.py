@@ -85,21 +85,29 @@ def test_a_call_s_plain_arguments_are_proven_readable_at_once():
     found = lexing.arguments(pattern, flags, ignored, "LPAR", ("COMMA", "RPAR"), "ADDOP",
                              ("NUMBER", "PARAM"))
     assert found is not None  # else a long statement is read token by token again
-    opening, argument = (re.compile(text, flags) for text in found)
-    assert opening.match(" \n(").end() == 3
-    read = argument.match(" - \t1.5e3 ,")
-    assert (read.group("ADDOP"), read.group("NUMBER"), read.group("COMMA")) == ("-", "1.5e3", ",")
-    assert argument.match("H)").group("PARAM") == "H"
-    for refused in ("/* c */ 1,", "1 /* c */,", "2 * H,", "1.5.3)", "x)", "--1,", "f(1),"):
-        assert argument.match(refused) is None, refused
+    assert (found.opening, found.separator, set(found.blanks), found.signs) == \
+        ("(", ",", set(" \t\n\r\f"), {"+", "-"})
+    assert set("AHZ") <= found.names and not found.names & set("0.ahz_")
+    whole = re.compile(found.whole, flags)
+    assert whole.match(" \n( - \t1.5e3 ,H,.5 )x").end() == 20
+    for refused in ("(/* c */ 1)", "(1 /* c */)", "(2 * H)", "(1.5.3)", "(x)", "(--1)", "(f(1))",
+                    "()", "(1,)", "(1 2)", "1)", "(1e)", "(H(1))"):
+        assert whole.match(refused) is None, refused
 
 
 def test_plain_arguments_are_not_read_at_once_where_another_terminal_may_start_alike():
     # a terminal '-1' (that a number with its sign might be) and the sign's '-'
-    pattern = (r"(?P<NEG>\-1)|(?P<NUMBER>\d+)|(?P<ADDOP>\-)|(?P<LPAR>\()|(?P<RPAR>\))"
-               r"|(?P<COMMA>,)|(?P<WS>[ ]+)")
-    assert lexing.arguments(pattern, re.UNICODE, frozenset({"WS"}), "LPAR", ("COMMA", "RPAR"),
-                            "ADDOP", ("NUMBER",)) is None
-    without = pattern.replace(r"(?P<NEG>\-1)|", "")
-    assert lexing.arguments(without, re.UNICODE, frozenset({"WS"}), "LPAR", ("COMMA", "RPAR"),
-                            "ADDOP", ("NUMBER",)) is not None
+    pattern = (r"(?P<NEG>\-1)|(?P<NUMBER>\d+)|(?P<NAME>[A-Z]+)|(?P<ADDOP>\-)|(?P<LPAR>\()"
+               r"|(?P<RPAR>\))|(?P<COMMA>,)|(?P<WS>[ ]+)")
+
+    def proven(pattern):
+        return lexing.arguments(pattern, re.UNICODE, frozenset({"WS"}), "LPAR", ("COMMA", "RPAR"),
+                                "ADDOP", ("NUMBER", "NAME")) is not None
+
+    assert not proven(pattern)
+    assert proven(pattern.replace(r"(?P<NEG>\-1)|", ""))
+    # signs of two characters, blanks that are not a run of known characters
+    assert not proven(pattern.replace(r"(?P<NEG>\-1)|", "").replace(r"(?P<ADDOP>\-)",
+                                                                    r"(?P<ADDOP>\-\-)"))
+    assert not proven(pattern.replace(r"(?P<NEG>\-1)|", "").replace(r"(?P<WS>[ ]+)",
+                                                                    r"(?P<WS>[ ]+x)"))
