@@ -130,3 +130,31 @@ def test_a_diagnostic_s_range_splits_the_text_once_not_once_per_diagnostic():
                  if key[2] == "<method 'split' of 'str' objects>")
     assert ends[:2] == [3, 3] and ends[10] == 4  # X0, X1 ... X10: the name's end
     assert splits <= 1
+
+
+def test_a_long_statement_s_plain_argument_lists_are_read_at_once_and_no_key_is_made(
+        monkeypatch):
+    """The driver reads a long statement's plain argument lists (numbers and
+    parameters, signed or not) with one match each, not token by token; and the
+    analysis never works out a shared subtree's content key (a digest of its
+    40,000 primitives, which only the facetizer asks)."""
+    from castor.csg import tree
+    from castor.language import lalr
+
+    read = []
+    original = lalr.Parser._arguments
+
+    def counted(self, text, pos):
+        found = original(self, text, pos)
+        read.append(found is not None)
+        return found
+
+    monkeypatch.setattr(lalr.Parser, "_arguments", counted)
+    keys = []
+    monkeypatch.setattr(tree, "content_key", lambda *args: keys.append(args) or "key")
+    forget()
+    analysis = _on_a_large_stack(lambda: analyse(Source(text=_cubes(1_500), name="long.cas")))
+    assert analysis.diagnostics == []
+    # each cube's '@t(k, k * H, 0)' read token by token, its '!cu(0.k, 0, 0)' at once
+    assert (read.count(True), read.count(False)) == (1_500, 1_500)
+    assert keys == []
