@@ -111,3 +111,13 @@ def test_plain_arguments_are_not_read_at_once_where_another_terminal_may_start_a
                                                                     r"(?P<ADDOP>\-\-)"))
     assert not proven(pattern.replace(r"(?P<NEG>\-1)|", "").replace(r"(?P<WS>[ ]+)",
                                                                     r"(?P<WS>[ ]+x)"))
+
+
+def test_groups_are_made_non_capturing_only_where_the_expression_reads_the_same():
+    assert lexing._uncaptured(r"(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?") == \
+        r"(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
+    # parentheses escaped or in a class are characters, '[]' and '[^]' open a class
+    assert lexing._uncaptured(r"\((a)\)[(][^]()]+[]](c)") == r"\((?:a)\)[(][^]()]+[]](?:c)"
+    assert lexing._uncaptured(r"(?=(b))(?i:x)") == r"(?=(?:b))(?i:x)"
+    for kept in (r"(a)\1", r"(?P<n>a)(?P=n)", r"(a)?(?(1)b|c)"):  # references to groups
+        assert lexing._uncaptured(kept) == kept
