@@ -47,7 +47,8 @@ class Sequencer:
         self.failure: Exception | None = None
         self.summaries: list[dict] = []
         self.gathered: list = []  # (number, location, part) of a file made from every frame
-        self.held: FrameFailure | None = None  # frames that failed alike: said once, when done
+        # frames that failed alike: said once, when done
+        self.held: FrameFailure | SameError | None = None
         self.frames: list = []  # mesh frames, when the output settings keep them
         reporter.stream = self  # the interpreter's messages queue behind pending frames
 
@@ -147,11 +148,15 @@ class Sequencer:
 
     def _hold(self, result: Result) -> bool:
         """A frame that failed as the frames before it did is said with them, once
-        (CLI.md): True when ``result`` is such a failure, now held."""
-        if len(result.errors) != 1 or not isinstance(result.errors[0], FrameFailure) \
-                or result.warnings or result.data is not None:
+        (CLI.md: its process failed alike, or it met the same error, as over
+        --max-polygons): True when ``result`` is such a failure, now held."""
+        if len(result.errors) != 1 or result.warnings or result.data is not None or \
+                result.gathered is not None or result.mesh is not None or \
+                result.summary is not None or result.stats is not None:
             return False
         failure = result.errors[0]
+        if not isinstance(failure, FrameFailure):
+            failure = SameError(failure, (result.number,))
         if self.held is not None and not self.held.alike(failure):
             self._release()
         self.held = failure if self.held is None else self.held.joined(failure)
@@ -164,7 +169,7 @@ class Sequencer:
             return
         handling, self.handling = self.handling, True
         try:
-            self.reporter.error(held)
+            self.reporter.error(held.said())
         except TooManyErrors:
             self.stopped = True
         finally:
@@ -258,11 +263,42 @@ class FrameFailure(LimitError):
         self.numbers, self.reason = numbers, reason
         super().__init__(f"{_frames(numbers)} could not be made: {reason}", location)
 
-    def alike(self, other: "FrameFailure") -> bool:
-        return (self.reason, self.location) == (other.reason, other.location)
+    def alike(self, other) -> bool:
+        return isinstance(other, FrameFailure) and \
+            (self.reason, self.location) == (other.reason, other.location)
 
     def joined(self, other: "FrameFailure") -> "FrameFailure":
         return FrameFailure(self.numbers + other.numbers, self.reason, self.location)
+
+    def said(self) -> CastorError:
+        return self
+
+
+class SameError:
+    """One error that frames one after another met alike (the same words at the
+    same place): said once, with the frames it concerns, as the interpreter says
+    an error found in several frames of one '>' command."""
+
+    def __init__(self, error: CastorError, numbers: tuple[int, ...]):
+        self.error, self.numbers = error, numbers
+
+    def alike(self, other) -> bool:
+        return isinstance(other, SameError) and type(other.error) is type(self.error) and \
+            (other.error.message, other.error.location) == (self.error.message, self.error.location)
+
+    def joined(self, other: "SameError") -> "SameError":
+        return SameError(self.error, self.numbers + other.numbers)
+
+    def said(self) -> CastorError:
+        if len(self.numbers) == 1:
+            return self.error
+        import copy
+
+        from castor.csg.evaluate import counted
+
+        error = copy.copy(self.error)
+        error.message = f"{error.message} (in {counted('frame', list(self.numbers))})"
+        return error
 
 
 def _frames(numbers: tuple[int, ...]) -> str:
