@@ -87,6 +87,7 @@ def _arguments(argv):
     p = _parser()
     args = _parse(p, argv)
     _check_texts(p, args)
+    _standard_output(p, args)
     _check_values(p, args)
     _check_macros(p, args)
     _choose_format(p, args)
@@ -121,7 +122,8 @@ def _general_options(p: _Parser) -> None:
     p.add_argument("files", nargs="*", metavar="FILE", help="scene files, read in order as one "
                    "input (none or - for standard input)")
     p.add_argument("-o", "--output", metavar="PATH", help="write to PATH (format from its "
-                   "extension; a %%d pattern gives one file per frame)")
+                   "extension; a %%d pattern gives one file per frame; '-': standard output, "
+                   "as without -o)")
     p.add_argument("-f", "--format", choices=list(FORMATS), help="output format (default cps, "
                    "or from the extension of -o)")
     p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME[=VALUE]",
@@ -144,7 +146,8 @@ def _general_options(p: _Parser) -> None:
                    help=f"facet tolerance in scene units (default {DEFAULT_TOLERANCE})")
     p.add_argument("--check", action="store_true", help="read and evaluate everything, write nothing")
     p.add_argument("--stats", action="store_true", help="one line of figures per frame on stderr")
-    p.add_argument("--summary", metavar="PATH", help="write a quantity take-off (JSON) to PATH")
+    p.add_argument("--summary", metavar="PATH", help="write a quantity take-off (JSON) to PATH "
+                   "('-': standard output)")
     p.add_argument("--max-polygons", type=int, default=DEFAULT_MAX_POLYGONS, metavar="N",
                    help=f"refuse a frame of more than N polygons (default {DEFAULT_MAX_POLYGONS})")
     p.add_argument("-j", "--jobs", default="1", metavar="N",
@@ -260,10 +263,24 @@ def _choose_format(p: _Parser, args) -> None:
                 "write one .pdf or .dxf")
 
 
+def _standard_output(p: _Parser, args) -> None:
+    """'-' names standard output, as it does for cat, cpp and curl: '-o -' is as
+    no -o (the frames go there); '--summary -' puts the take-off there, where the
+    frames do not go (written once, after the run)."""
+    if args.output == "-":
+        args.output = None
+    if args.summary == "-" and args.output is None and not (args.serve or args.lsp):
+        p.error("--summary -: standard output carries the frames; write them to a file "
+                "(castor --summary - -o house.glb house.cas) or the figures to one "
+                "(--summary figures.json)")
+
+
 def _check_destinations(p: _Parser, args) -> None:
     from castor.formats.output import destination_problem
 
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
+        if path == "-":  # standard output (_standard_output)
+            continue
         problem = destination_problem(path, option) if path is not None else None
         if problem is not None:
             p.error(problem)

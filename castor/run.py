@@ -590,4 +590,8 @@ def _write_summary(how: RunSettings, sequencer: Sequencer) -> None:
 
         summary = Summary()
         summary.frames.extend(sequencer.summaries)
+        if how.summary == "-":  # standard output, which the frames went elsewhere than
+            sys.stdout.buffer.write(summary.text().encode("utf-8"))
+            sys.stdout.buffer.flush()
+            return
         write_atomically(how.summary, summary.text().encode("utf-8"))

@@ -3,6 +3,7 @@ then read standard input and wrote its figures over the scene file. A scene
 file (an existing .cas) as --summary's target is a usage error, and the file
 is left as it was."""
 
+import json
 import subprocess
 import sys
 
@@ -26,3 +27,25 @@ def test_a_new_summary_file_is_still_written(tmp_path):
                             timeout=60)
     assert result.returncode == 0, result.stderr
     assert '"volume": 1' in (tmp_path / "figures.json").read_text()
+
+
+def test_a_dash_is_standard_output_for_the_summary_and_for_the_frames(tmp_path):
+    """'--summary -' and '-o -' wrote files named '-' (as the help did not say)."""
+    scene = tmp_path / "house.cas"
+    scene.write_text("> !cu(1, 0, 0);\n")
+
+    def castor(*args):
+        return subprocess.run([sys.executable, "-m", "castor", *args, str(scene)],
+                              capture_output=True, cwd=tmp_path, timeout=60)
+
+    figures = castor("--summary", "-", "-o", "house.stl")
+    assert figures.returncode == 0, figures.stderr
+    assert json.loads(figures.stdout)["frames"][0]["objects"][0]["volume"] == 1
+    assert (tmp_path / "house.stl").stat().st_size == 84 + 12 * 50
+    frames = castor("-o", "-")
+    assert frames.returncode == 0 and frames.stdout == castor().stdout
+    assert frames.stdout.startswith(b"castor-polygons 1\nframe 1 ")
+    both = castor("--summary", "-")
+    assert both.returncode == 2 and both.stdout == b""
+    assert b"--summary -: standard output carries the frames; write them to a file" in both.stderr
+    assert not (tmp_path / "-").exists()
