@@ -276,7 +276,7 @@ def _standard_output(p: _Parser, args) -> None:
 
 
 def _check_destinations(p: _Parser, args) -> None:
-    from castor.formats.output import destination_problem
+    from castor.formats.output import destination_problem, same_file
 
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
         if path == "-":  # standard output (_standard_output)
@@ -284,24 +284,13 @@ def _check_destinations(p: _Parser, args) -> None:
         problem = destination_problem(path, option) if path is not None else None
         if problem is not None:
             p.error(problem)
-        if path is not None and any(_same_file(path, scene) for scene in args.files):
+        if path is not None and any(same_file(path, scene) for scene in args.files):
             p.error(f"{option} {path}: is a scene castor reads; give the output another name")
         if option == "--summary" and path is not None and path.lower().endswith(".cas") \
                 and os.path.isfile(path):
             # 'castor --summary house.cas' read standard input and wrote the figures over the scene
             p.error(f"--summary {path}: is a scene file; --summary takes the file the figures go "
                     f"to (castor --summary figures.json {path})")
-
-
-def _same_file(output: str, scene: str) -> bool:
-    """Whether writing ``output`` would write over the scene file ``scene`` (as
-    cpp and compilers refuse to; a '-o' of a device such as /dev/null never does)."""
-    from castor.formats.output import is_device
-
-    try:
-        return os.path.samefile(output, scene) and not is_device(output)
-    except (OSError, ValueError):  # either absent, unreadable, or a name with a NUL
-        return False
 
 
 def _overrides(parser, sets: list[str]) -> dict[str, float]:

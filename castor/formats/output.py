@@ -86,6 +86,15 @@ def destination_problem(path: str, option: str = "-o") -> str | None:
     return None
 
 
+def same_file(output: str, scene: str) -> bool:
+    """Whether writing ``output`` would write over the scene file ``scene`` (as
+    cpp and compilers refuse to; a '-o' of a device such as /dev/null never does)."""
+    try:
+        return os.path.samefile(output, scene) and not is_device(output)
+    except (OSError, ValueError):  # either absent, unreadable, or a name with a NUL
+        return False
+
+
 def is_device(path: str) -> bool:
     """An existing path that is no regular file or directory (/dev/null, a pipe)."""
     import stat
