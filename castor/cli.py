@@ -17,7 +17,7 @@ from castor import __version__
 from castor.diagnostics import (USAGE_ERROR, CastorError, ClosedStdout, Reporter, UsageError,
                                 stdout_failed)
 from castor.options import (OUTPUT_OPTIONS, TITLE_FIELDS, negative_values, not_utf8, option_value,
-                            parse_count)
+                            parse_count, warn_without_effect)
 from castor.settings import DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE
 
 
@@ -247,6 +247,7 @@ def _choose_format(p: _Parser, args) -> None:
     from castor.formats import FORMATS, format_for_suffix
     from castor.formats.output import is_device, suffix_message
 
+    args.format_named = args.format is not None or args.output is not None  # (--check's warnings)
     if args.format is None:
         args.format = format_for_suffix(args.output) if args.output else DEFAULT_FORMAT
         if args.format is None and is_device(args.output):
@@ -399,7 +400,7 @@ def main(argv=None) -> int:
 
         return params_command(source, reading, evaluation, quiet=args.quiet)
     if not args.serve:
-        _warn_without_effect(args, reporter)
+        warn_without_effect(args, reporter)
 
     def work():
         return run(source, reporter, reading=reading, evaluation=evaluation, settings=frame,
@@ -480,27 +481,6 @@ def _status(outcome) -> int:
         _quiet_stdout()
         return USAGE_ERROR
     return outcome
-
-
-def _warn_without_effect(args, reporter) -> None:
-    """Each option given that has no effect on the chosen output, once (CLI.md)."""
-    from castor.formats import FORMATS, acts_on, without_effect
-
-    brings = {option.flag: option.brings for option in OUTPUT_OPTIONS}
-    for message in without_effect(args.given, FORMATS[args.format], brings):
-        reporter.warning(message)
-    if "--sheets" in args.given and acts_on("--sheets", FORMATS[args.format]):
-        for option in ("--section", "--view", "--scale", "--sheet"):  # the register says them
-            if option in args.given:
-                reporter.warning(f"{option} has no effect with --sheets (each sheet's drawing, "
-                                 "scale and paper are the register's); it is ignored")
-        for name in args.sheets.overridden([(n, getattr(args, n)) for n in TITLE_FIELDS
-                                            if getattr(args, n)]):
-            reporter.warning(f"--{name} has no effect where the register gives its own "
-                             f"({args.sheets.path}); the register's is printed there")
-        if "--title" in args.given and any(entry.title for entry in args.sheets.sheets):
-            reporter.warning(f"--title has no effect on the sheets the register gives a title "
-                             f"({args.sheets.path}); the register's is printed there")
 
 
 def _stop_on_signals() -> list[int]:

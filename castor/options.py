@@ -265,3 +265,31 @@ def option_value(option: OutputOption, value):
         module, _, name = parse.partition(":")
         parse = getattr(importlib.import_module(module), name)
     return parse(value)
+
+
+def warn_without_effect(args, reporter) -> None:
+    """Each option given that has no effect on the chosen output, once (CLI.md):
+    ``args``, castor's parsed command line (castor.cli)."""
+    from castor.formats import FORMATS, acts_on, without_effect
+
+    if args.check and not args.format_named:  # no output at all (it said "no effect on cps
+        # output"); with -o or -f, --check checks the options as that output takes them
+        for option in args.given:
+            reporter.warning(f"{option} has no effect with --check (it writes nothing); "
+                             "it is ignored")
+        return
+    brings = {option.flag: option.brings for option in OUTPUT_OPTIONS}
+    for message in without_effect(args.given, FORMATS[args.format], brings):
+        reporter.warning(message)
+    if "--sheets" in args.given and acts_on("--sheets", FORMATS[args.format]):
+        for option in ("--section", "--view", "--scale", "--sheet"):  # the register says them
+            if option in args.given:
+                reporter.warning(f"{option} has no effect with --sheets (each sheet's drawing, "
+                                 "scale and paper are the register's); it is ignored")
+        for name in args.sheets.overridden([(n, getattr(args, n)) for n in TITLE_FIELDS
+                                            if getattr(args, n)]):
+            reporter.warning(f"--{name} has no effect where the register gives its own "
+                             f"({args.sheets.path}); the register's is printed there")
+        if "--title" in args.given and any(entry.title for entry in args.sheets.sheets):
+            reporter.warning(f"--title has no effect on the sheets the register gives a title "
+                             f"({args.sheets.path}); the register's is printed there")

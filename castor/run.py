@@ -50,6 +50,7 @@ class Sequencer:
         # frames that failed alike: said once, when done
         self.held: FrameFailure | SameError | None = None
         self.frames: list = []  # mesh frames, when the output settings keep them
+        self.warned: set = set()  # (message, location) of the frames' warnings said so far
         reporter.stream = self  # the interpreter's messages queue behind pending frames
 
     # --- the reporter writes here
@@ -181,8 +182,10 @@ class Sequencer:
         self._release()
         self.handling = True
         try:
-            for message, location in result.warnings:
-                self.reporter.warning(message, location)
+            for message, location in result.warnings:  # a warning of every frame, once
+                if (message, location) not in self.warned:
+                    self.warned.add((message, location))
+                    self.reporter.warning(message, location)
             for error in result.errors:
                 self.reporter.error(error)
             if result.data is not None and self.output is not None:

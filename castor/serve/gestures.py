@@ -39,6 +39,10 @@ class FileEditor:
         write_workspace_edit(edit, self.cache, self.uri)
 
 
+# how long a gesture waits for the editor to open a scene (castor --lsp --serve)
+FIRST_SCENE_WAIT = 10.0
+
+
 class Gestures:
     """The gestures made on the page on one scene, and their Undo."""
 
@@ -47,6 +51,7 @@ class Gestures:
         ``buffers()``, an editor's unsaved texts by path (read by #include);
         ``settings()``, the castor.settings.EvaluationSettings of the frames the
         page shows (the panel's ``--set`` values): gestures snap on those frames."""
+        self.followed = threading.Event()  # set once a scene is followed (uri)
         self.uri = uri
         self.cache = cache
         self.settings = settings
@@ -54,6 +59,17 @@ class Gestures:
         self.buffers = buffers
         self.lock = threading.Lock()  # one gesture at a time
         self.undoes: list[tuple[dict, dict[str, str]]] = []  # (undo edit, the texts it expects)
+
+    @property
+    def uri(self) -> str:
+        """The scene the gestures edit ('' until the editor opens one)."""
+        return self._uri
+
+    @uri.setter
+    def uri(self, uri: str) -> None:
+        self._uri = uri
+        if uri:
+            self.followed.set()
 
     def answer(self, request) -> dict:
         if not isinstance(request, dict):
@@ -67,7 +83,9 @@ class Gestures:
         arguments = request.get("arguments", {})
         if not isinstance(arguments, dict):
             raise CommandError("the arguments are one JSON object")
-        if not self.uri:
+        # a gesture sent as soon as the page is up may come before the editor's
+        # buffer: it waits for it, within reason (as a hover waits for the first analysis)
+        if not self.followed.wait(FIRST_SCENE_WAIT):
             raise CommandError("no scene yet: open one in the editor")
         arguments = dict(arguments, uri=self.uri)  # the page never names a file
         if command in EDITS and arguments.get("version") is None:

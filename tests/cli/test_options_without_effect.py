@@ -60,3 +60,14 @@ def test_scale_makes_a_3mf_model_at_that_scale(tmp_path):
     full, model = _vertices(tmp_path / "full.3mf"), _vertices(tmp_path / "model.3mf")
     assert np.allclose(full.max(axis=0) - full.min(axis=0), [9000, 4000, 3000])  # 1 unit = 1 m
     assert np.allclose(model.max(axis=0) - model.min(axis=0), [90, 40, 30])  # 1:100: 1 unit = 10 mm
+
+
+def test_output_options_with_check_are_said_to_do_nothing_there(tmp_path):
+    """--check writes nothing: it said '--size has no effect on cps output (it acts
+    on pictures)', as if a cps output were written."""
+    (tmp_path / "c.cas").write_text(CUBE)
+    status, out, err = run("--check", "--size", "40x30", "--scale", "1:50", "c.cas", cwd=tmp_path)
+    assert (status, out) == (0, "")
+    assert err.splitlines() == [
+        "castor: warning: --size has no effect with --check (it writes nothing); it is ignored",
+        "castor: warning: --scale has no effect with --check (it writes nothing); it is ignored"]

@@ -47,3 +47,15 @@ mur = $D(@h(4, 0.3, 2.5) !cu(0.9, 0.9, 0.8), porte);  // [wall]
     model = ifcopenshell.open(str(out))
     assert [d.Name for d in model.by_type("IfcDoor")] == ["porte"]
     assert not model.by_type("IfcWindow")
+
+
+def test_the_option_is_said_once_for_all_the_frames_of_an_animation(tmp_path):
+    # one IFC file per frame: it was said once per frame (the same words, the same place)
+    scene = write(tmp_path, "anim.cas", SCENE.replace("> maison;", ">[T = 0, 2] @rz(T) maison;"))
+    status, _, err = run("-o", str(tmp_path / "anim%d.ifc"), "--ifc-class", "sejour=IfcWall",
+                         str(scene))
+    assert status == 0, err
+    assert err.count("warning:") == 1, err
+    assert "'sejour' is a space (a room, left out of the solids" in err
+    assert sorted(p.name for p in tmp_path.glob("anim*.ifc")) == ["anim1.ifc", "anim2.ifc",
+                                                                   "anim3.ifc"]
