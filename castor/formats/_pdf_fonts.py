@@ -78,9 +78,9 @@ def font_for(text: str) -> str:
     return _chosen(text)[0]
 
 
-def unprintable(product) -> str:
+def unprintable(product) -> tuple[str, list[str]]:
     """The characters of a sheet's or a set's texts that their font lacks
-    (printed as a box), in order."""
+    (printed as a box), in order, and the texts that hold them, in order."""
     from castor.drawings.paper import Text
 
     sheets = product.sheets if hasattr(product, "sheets") else [product]
@@ -89,13 +89,18 @@ def unprintable(product) -> str:
     if hasattr(product, "sheets"):  # the index's
         texts |= {str(v) for v in product.project.values()}
         texts |= {entry.title for entry in product.entries}
-    return "".join(sorted(set().union(*(_chosen(text)[1] for text in texts))))
+    lacking = {text: _chosen(text)[1] for text in texts}
+    return ("".join(sorted(set().union(*lacking.values()))),
+            sorted(text for text, lacks in lacking.items() if lacks))
 
 
 def missing_glyphs_warning(product, warn) -> None:
-    """A warning naming the characters the PDF of a sheet or set prints as a box."""
-    missing = unprintable(product)
+    """A warning naming the characters the PDF of a sheet or set prints as a box,
+    and the texts they are in (a title from the command line, a room's name: the
+    warning's place is the frame's '>' whatever the text's origin)."""
+    missing, texts = unprintable(product)
     if missing:
-        warn(f"no font the PDF can have has {', '.join(repr(c) for c in missing)}: printed as "
-             "a box (castor embeds reportlab's Vera, or DejaVu Sans where the system has it: "
-             "Debian's fonts-dejavu-core)")
+        shown = ", ".join(repr(t) for t in texts[:3]) + (", …" if len(texts) > 3 else "")
+        warn(f"no font the PDF can have has {', '.join(repr(c) for c in missing)} (in "
+             f"{shown}): printed as a box (castor embeds reportlab's Vera, or DejaVu Sans where "
+             "the system has it: Debian's fonts-dejavu-core)")

@@ -79,7 +79,9 @@ def test_characters_no_font_has_are_named_in_a_warning(tmp_path):
     done = without_system_fonts(tmp_path, "--section", "z=1.2", "--title", TITLE, "-o", "d.pdf")
     assert done.returncode == 0, done.stderr
     warnings = [line for line in done.stderr.splitlines() if "warning" in line]
-    assert warnings == ["s.cas:12:1: warning: no font the PDF can have has 'ĉ': printed as a box "
+    # the texts named (the title from the command line, the room's name from its annotation)
+    assert warnings == ["s.cas:12:1: warning: no font the PDF can have has 'ĉ' (in 'Maison "
+                        "Œuvre — ĉ', 'Séjour – Œil ĉ'): printed as a box "
                         "(castor embeds reportlab's Vera, or DejaVu Sans where the system has "
                         "it: Debian's fonts-dejavu-core)"]
     text = text_of(tmp_path / "d.pdf")
