@@ -87,8 +87,8 @@ def _arguments(argv):
     p = _parser()
     args = _parse(p, argv)
     _check_texts(p, args)
-    _standard_output(p, args)
     _check_values(p, args)
+    _standard_output(p, args)
     _check_macros(p, args)
     _choose_format(p, args)
     _check_destinations(p, args)
@@ -270,10 +270,19 @@ def _standard_output(p: _Parser, args) -> None:
     frames do not go (written once, after the run)."""
     if args.output == "-":
         args.output = None
-    if args.summary == "-" and args.output is None and not (args.serve or args.lsp):
+    if args.summary == "-" and _on_standard_output(args.output) and not (
+            args.serve or args.lsp or args.params or args.check):
         p.error("--summary -: standard output carries the frames; write them to a file "
                 "(castor --summary - -o house.glb house.cas) or the figures to one "
                 "(--summary figures.json)")
+
+
+def _on_standard_output(output: str | None) -> bool:
+    """Whether the frames go to standard output (no -o, or -o /dev/stdout)."""
+    try:
+        return output is None or os.path.samestat(os.stat(output), os.fstat(1))
+    except (OSError, ValueError):
+        return False
 
 
 def _check_destinations(p: _Parser, args) -> None:

@@ -47,8 +47,7 @@ class Sequencer:
         self.failure: Exception | None = None
         self.summaries: list[dict] = []
         self.gathered: list = []  # (number, location, part) of a file made from every frame
-        # frames that failed alike: said once, when done
-        self.held: FrameFailure | SameError | None = None
+        self.held: FrameFailure | SameError | None = None  # frames that failed alike: said once
         self.frames: list = []  # mesh frames, when the output settings keep them
         self.warned: set = set()  # (message, location) of the frames' warnings said so far
         reporter.stream = self  # the interpreter's messages queue behind pending frames
@@ -151,7 +150,8 @@ class Sequencer:
         """A frame that failed as the frames before it did is said with them, once
         (CLI.md: its process failed alike, or it met the same error, as over
         --max-polygons): True when ``result`` is such a failure, now held."""
-        if len(result.errors) != 1 or result.warnings or result.data is not None or \
+        unsaid = [w for w in result.warnings if w not in self.warned]  # (said once: _handle)
+        if len(result.errors) != 1 or unsaid or result.data is not None or \
                 result.gathered is not None or result.mesh is not None or \
                 result.summary is not None or result.stats is not None:
             return False

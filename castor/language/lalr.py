@@ -198,9 +198,10 @@ class Parser:
         self._named = named
         self._before_open: dict | None = None  # (_plain_arguments, for a long text)
 
-    # a text this long reads its calls' plain arguments at once (_arguments): making
-    # ready to (proving it, compiling the expression) costs a short scene's run
-    # about 20 ms, more than it spares below some thousand arguments
+    # the first text this long makes the parser ready to read calls' plain arguments
+    # at once (_arguments), and it reads every text so from then on (the same
+    # calls as token by token): making ready (proving it, compiling the
+    # expression) costs about 20 ms, which a short scene's run would pay for nothing
     LONG = 20_000
 
     def _plain_arguments(self) -> None:
@@ -242,8 +243,34 @@ class Parser:
                                          for kind in ("NUMBER", "PARAM", "ADDOP")):
                 continue
             close_state = states[list_state].get("RPAR", -1)
-            if close_state >= 0:
+            if close_state >= 0 and self._reduced_as_read(open_state, list_state):
                 self._before_open[state] = (open_state, list_state, close_state)
+
+    def _reduced_as_read(self, open_state: int, list_state: int) -> bool:
+        """Whether the parser, after the "(" (``open_state``), reduces a lone number
+        or parameter before a ")" to the list (``list_state``) calling only its own
+        callback and ``args``'s, before a "," to where the comma shifts calling
+        only its own, and a signed number to the sign's rule then ``args``: what
+        ``_arguments`` calls (a rule of one child between them, ``power:
+        primary`` made a rule of its own, would be a callback more)."""
+        states, rules = self._states, self._rules
+        for kind, callback in (("NUMBER", self._number), ("PARAM", self._parameter)):
+            shifted = states[open_state][kind]
+            if self._chain(open_state, shifted, "RPAR", -1) != (list_state,
+                                                                 (callback, self._args)):
+                return False
+            state, callbacks = self._chain(open_state, shifted, "COMMA", -1)
+            if callbacks != (callback,) or states[state].get("COMMA", -1) < 0:
+                return False
+        sign = states[open_state]["ADDOP"]
+        state, callbacks = self._chain(sign, states[sign].get("NUMBER", 0), "RPAR", -1)
+        action = states[state].get("RPAR", 0)
+        if callbacks != (self._number,) or action >= 0:
+            return False
+        origin, how, size, callback = rules[~action]
+        return (how, size, callback) == (_CALL, 2, self._signed) and \
+            self._chain(open_state, states[open_state].get(origin, 0), "RPAR", -1) == \
+            (list_state, (self._args,))
 
     def _arguments(self, text: str, pos: int):
         """A call's "(" and arguments from ``pos`` (just after its name) where each

@@ -274,7 +274,10 @@ def arguments(pattern: str, flags: int, ignored, opening: str, punctuation: tupl
     followed by a character of it, never by a blank or the punctuation); the
     blanks are the ignored terminal ``order`` reads before a token, one or more
     of a known set of characters; the signs and punctuation are one character
-    each, none of them a blank; the parameter's first characters are known."""
+    each, none of them a blank; no sign or value may hold a blank, the comma or
+    the ")" (where the list is cut); the parameter's first characters are known.
+    castor.language.lalr checks, on its tables, that the rules between a value
+    and the list call only the callbacks it calls."""
     pieces = alternatives(pattern, flags)
     if pieces is None or flags & re.IGNORECASE:
         return None
@@ -293,6 +296,10 @@ def arguments(pattern: str, flags: int, ignored, opening: str, punctuation: tupl
     marks = [_single_character(parsed[name]) for name in (opening, *punctuation, signs)]
     names = first_set(parsed[values[1]])
     if blanks is None or names is None or any(m is None or m & blanks for m in marks):
+        return None
+    # nor may a value hold a blank or the punctuation: the list is cut there
+    cuts = blanks | marks[1] | marks[2]
+    if any(_may_hold(parsed[name], ch) for name in (signs, *values) for ch in cuts):
         return None
     blank = "[" + "".join(re.escape(ch) for ch in sorted(blanks)) + "]*"
 
@@ -364,6 +371,27 @@ def _groupless(seq):
             raise ValueError("a reference to a group")
         out.append((op, av))
     return tuple(out)
+
+
+def _may_hold(seq, char: str) -> bool:
+    """Whether a match of the parsed expression may hold ``char`` anywhere in it
+    (True where unsure)."""
+    for op, av in seq:
+        if op in (c.LITERAL, c.NOT_LITERAL, c.IN, c.ANY):
+            if _item_starts(op, av, char):
+                return True
+        elif op is c.SUBPATTERN:
+            if _may_hold(av[-1], char):
+                return True
+        elif op is c.BRANCH:
+            if any(_may_hold(branch, char) for branch in av[1]):
+                return True
+        elif op in _REPEATS:
+            if _may_hold(av[2], char):
+                return True
+        elif op not in (c.AT,):  # assertions and references: unsure
+            return True
+    return False
 
 
 def _single_character(seq) -> frozenset | None:

@@ -49,3 +49,19 @@ def test_a_dash_is_standard_output_for_the_summary_and_for_the_frames(tmp_path):
     assert both.returncode == 2 and both.stdout == b""
     assert b"--summary -: standard output carries the frames; write them to a file" in both.stderr
     assert not (tmp_path / "-").exists()
+
+
+def test_the_summary_on_standard_output_is_refused_where_it_cannot_go_there(tmp_path):
+    scene = tmp_path / "house.cas"
+    scene.write_text("> !cu(1, 0, 0);\n")
+
+    def castor(*args):
+        return subprocess.run([sys.executable, "-m", "castor", *args, str(scene)],
+                              capture_output=True, cwd=tmp_path, timeout=60)
+
+    checked = castor("--check", "--summary", "-")  # --check's own word, not the frames'
+    assert checked.returncode == 2
+    assert b"--summary needs the frames made; leave out --check" in checked.stderr
+    device = castor("--summary", "-", "-o", "/dev/stdout")  # the frames there too
+    assert device.returncode == 2 and device.stdout == b""
+    assert b"--summary -: standard output carries the frames" in device.stderr

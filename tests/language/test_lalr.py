@@ -197,3 +197,16 @@ def test_an_installed_castor_reads_a_scene_without_lark_from_its_first_run(tmp_p
     assert "endframe 1 6" in cube.stdout, cube.stderr
     assert f"LARK False {build}" in cube.stderr, cube.stderr
     assert list((tmp_path / "tmp").iterdir()) == []  # nothing kept: the package has them
+
+
+def test_plain_arguments_are_read_token_by_token_where_the_grammar_reduces_more():
+    # 'power: primary' a rule of its own (not '?power'): a callback more between a
+    # number and the list, which the arguments read at once would miss
+    grammar = grammar_text().replace("?power: primary\n", "power: primary\n")
+    assert grammar != grammar_text()
+    lark = Lark(grammar, transformer=Recorder(), **tables.OPTIONS)
+    driver = Parser(tables.export(Lark(grammar, **tables.OPTIONS)), Recorder())
+    driver.LONG = 0
+    text = "x = @t(1, -X, 2) !cu(1, 0, 0);"
+    assert driver.parse(text, start="statement") == lark.parse(text, start="statement")
+    assert driver._before_open == {}

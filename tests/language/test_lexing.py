@@ -121,3 +121,17 @@ def test_groups_are_made_non_capturing_only_where_the_expression_reads_the_same(
     assert lexing._uncaptured(r"(?=(b))(?i:x)") == r"(?=(?:b))(?i:x)"
     for kept in (r"(a)\1", r"(?P<n>a)(?P=n)", r"(a)?(?(1)b|c)"):  # references to groups
         assert lexing._uncaptured(kept) == kept
+
+
+def test_plain_arguments_are_not_read_at_once_where_a_value_may_hold_a_cut():
+    # a number that may hold the comma, the ')' or a blank: the list is cut there
+    pattern = (r"(?P<NUMBER>\d+)|(?P<NAME>[A-Z]+)|(?P<ADDOP>\-)|(?P<LPAR>\()"
+               r"|(?P<RPAR>\))|(?P<COMMA>,)|(?P<WS>[ ]+)")
+
+    def proven(pattern):
+        return lexing.arguments(pattern, re.UNICODE, frozenset({"WS"}), "LPAR", ("COMMA", "RPAR"),
+                                "ADDOP", ("NUMBER", "NAME")) is not None
+
+    assert proven(pattern)
+    for number in (r"\d+(?:,\d+)?", r"\d+(?:\)\d+)?", r"\d+(?: \d+)?", r"\d+.?"):
+        assert not proven(pattern.replace(r"\d+)", number + ")", 1)), number
