@@ -18,6 +18,7 @@ from collections import deque
 
 from castor.diagnostics import (CastorError, LimitError, Reporter, TooManyErrors, UsageError,
                                 shown_name)
+from castor.failures import FrameFailure, SameError, failure_reason
 from castor.jobs import FrameThread, Job, Result, make
 from castor.pipeline import evaluate, evaluated_frames  # noqa: F401 - tests and tools use it here
 from castor.settings import EvaluationSettings, FrameSettings, ReadSettings, RunSettings, Source
@@ -150,6 +151,8 @@ class Sequencer:
         """A frame that failed as the frames before it did is said with them, once
         (CLI.md: its process failed alike, or it met the same error, as over
         --max-polygons): True when ``result`` is such a failure, now held."""
+        if self.stopped and result.errors:  # frames in flight when the run stopped
+            return True
         unsaid = [w for w in result.warnings if w not in self.warned]  # (said once: _handle)
         if len(result.errors) != 1 or unsaid or result.data is not None or \
                 result.gathered is not None or result.mesh is not None or \
@@ -161,6 +164,11 @@ class Sequencer:
         if self.held is not None and not self.held.alike(failure):
             self._release()
         self.held = failure if self.held is None else self.held.joined(failure)
+        if len(self.held.numbers) >= self.reporter.max_errors:  # as many as stop a run
+            count = len(self.held.numbers)
+            self._release()
+            self.reporter.note(f"castor: the same error in {count} frames, stopping")
+            self.stopped = True
         return True
 
     def _release(self) -> None:
@@ -256,79 +264,6 @@ def _outcome(future) -> Result:
         result = Result(tree.number, tree.location)
         result.errors.append(FrameFailure((tree.number,), failure_reason(exc), tree.location))
         return result
-
-
-class FrameFailure(LimitError):
-    """Frames that could not be made (their process failed), alike: one message
-    names them all (CLI.md)."""
-
-    def __init__(self, numbers: tuple[int, ...], reason: str, location):
-        self.numbers, self.reason = numbers, reason
-        super().__init__(f"{_frames(numbers)} could not be made: {reason}", location)
-
-    def alike(self, other) -> bool:
-        return isinstance(other, FrameFailure) and \
-            (self.reason, self.location) == (other.reason, other.location)
-
-    def joined(self, other: "FrameFailure") -> "FrameFailure":
-        return FrameFailure(self.numbers + other.numbers, self.reason, self.location)
-
-    def said(self) -> CastorError:
-        return self
-
-
-class SameError:
-    """One error that frames one after another met alike (the same words at the
-    same place): said once, with the frames it concerns, as the interpreter says
-    an error found in several frames of one '>' command."""
-
-    def __init__(self, error: CastorError, numbers: tuple[int, ...]):
-        self.error, self.numbers = error, numbers
-
-    def alike(self, other) -> bool:
-        return isinstance(other, SameError) and type(other.error) is type(self.error) and \
-            (other.error.message, other.error.location) == (self.error.message, self.error.location)
-
-    def joined(self, other: "SameError") -> "SameError":
-        return SameError(self.error, self.numbers + other.numbers)
-
-    def said(self) -> CastorError:
-        if len(self.numbers) == 1:
-            return self.error
-        import copy
-
-        from castor.csg.evaluate import counted
-
-        error = copy.copy(self.error)
-        error.message = f"{error.message} (in {counted('frame', list(self.numbers))})"
-        return error
-
-
-def _frames(numbers: tuple[int, ...]) -> str:
-    """'frame 3', 'frames 1 and 2', 'frames 1 to 9', 'frames 1, 4 and 7', '12 frames from 1 to 30'."""
-    if len(numbers) == 1:
-        return f"frame {numbers[0]}"
-    if len(numbers) > 2 and list(numbers) == list(range(numbers[0], numbers[-1] + 1)):
-        return f"frames {numbers[0]} to {numbers[-1]}"
-    if len(numbers) > 6:
-        return f"{len(numbers)} frames from {numbers[0]} to {numbers[-1]}"
-    return "frames " + ", ".join(map(str, numbers[:-1])) + f" and {numbers[-1]}"
-
-
-def failure_reason(exc: BaseException) -> str:
-    """Why a frame's process failed, in the user's words: never Python's (its
-    name and text with CASTOR_DEBUG=1)."""
-    name = type(exc).__name__
-    if name == "BrokenProcessPool":
-        reason = "its process ended before it was done (stopped, or out of memory)"
-    elif isinstance(exc, (OSError, TimeoutError)) or name in ("CancelledError", "CommClosedError"):
-        reason = "the process or cluster that was making it stopped answering"
-    else:
-        reason = ("an internal error in the process that made it (please report it with "
-                  "the scene; CASTOR_DEBUG=1 shows it)")
-    if os.environ.get("CASTOR_DEBUG"):
-        reason += f" [{name}: {exc}]"
-    return reason
 
 
 def executor_for(jobs: int, scheduler: str | None):

@@ -14,7 +14,8 @@ from pathlib import Path
 from PIL import Image
 
 from castor.diagnostics import Reporter
-from castor.run import FrameFailure, Sequencer, evaluated_frames, failure_reason
+from castor.failures import FrameFailure, failure_reason
+from castor.run import Sequencer, evaluated_frames
 from castor.settings import FrameSettings
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -16,7 +16,7 @@ STAGES = {
     "castor.mesh": 3, "castor.pictures": 3,
     "castor.formats": 4, "castor.drawings": 4, "castor.quantities": 4, "castor.bim": 4,
     "castor.jobs": 5, "castor.interpreter": 5,
-    "castor.pipeline": 6, "castor.run": 6, "castor.editing": 6,
+    "castor.pipeline": 6, "castor.run": 6, "castor.failures": 6, "castor.editing": 6,
     # the command lines: castor.options parses their text into castor.settings' records
     "castor.cli": 7, "castor.options": 7, "castor.serve": 7, "castor.view": 7,
     "castor.__main__": 7, "castor.lsp": 7,

@@ -34,3 +34,14 @@ def test_errors_of_frames_apart_are_said_apart(tmp_path):
     assert err.count("error:") == 2, err
     assert "(in frames" not in err
     assert [p.name for p in tmp_path.glob("apart*.stl")] == ["apart02.stl"]
+
+
+def test_as_many_frames_failing_alike_as_errors_stop_a_run_stop_it(tmp_path):
+    # once merged, the frames' errors no longer counted towards the 50 that stop a
+    # run: every frame of a long animation was made, each failing the same way
+    scene = write(tmp_path, "long.cas", SPHERE.replace("[T = 0, 3]", "[T = 0, 79]"))
+    status, _, err = run("--max-polygons", "10", "-o", str(tmp_path / "long%02d.stl"), str(scene))
+    assert status == 1
+    assert err.count("error:") == 1, err
+    assert f"long.cas:2:1: error: {MESSAGE} (in frames 1 to 50)\n" in err
+    assert err.endswith("castor: the same error in 50 frames, stopping\n"), err
