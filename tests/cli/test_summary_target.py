@@ -29,15 +29,17 @@ def test_a_new_summary_file_is_still_written(tmp_path):
     assert '"volume": 1' in (tmp_path / "figures.json").read_text()
 
 
-def test_a_dash_is_standard_output_for_the_summary_and_for_the_frames(tmp_path):
-    """'--summary -' and '-o -' wrote files named '-' (as the help did not say)."""
+def _castor_on_a_cube(tmp_path):
+    """castor run on a scene of one cube in ``tmp_path``, given options."""
     scene = tmp_path / "house.cas"
     scene.write_text("> !cu(1, 0, 0);\n")
+    return lambda *args: subprocess.run([sys.executable, "-m", "castor", *args, str(scene)],
+                                        capture_output=True, cwd=tmp_path, timeout=60)
 
-    def castor(*args):
-        return subprocess.run([sys.executable, "-m", "castor", *args, str(scene)],
-                              capture_output=True, cwd=tmp_path, timeout=60)
 
+def test_a_dash_is_standard_output_for_the_summary_and_for_the_frames(tmp_path):
+    """'--summary -' and '-o -' wrote files named '-' (as the help did not say)."""
+    castor = _castor_on_a_cube(tmp_path)
     figures = castor("--summary", "-", "-o", "house.stl")
     assert figures.returncode == 0, figures.stderr
     assert json.loads(figures.stdout)["frames"][0]["objects"][0]["volume"] == 1
@@ -52,13 +54,7 @@ def test_a_dash_is_standard_output_for_the_summary_and_for_the_frames(tmp_path):
 
 
 def test_the_summary_on_standard_output_is_refused_where_it_cannot_go_there(tmp_path):
-    scene = tmp_path / "house.cas"
-    scene.write_text("> !cu(1, 0, 0);\n")
-
-    def castor(*args):
-        return subprocess.run([sys.executable, "-m", "castor", *args, str(scene)],
-                              capture_output=True, cwd=tmp_path, timeout=60)
-
+    castor = _castor_on_a_cube(tmp_path)
     checked = castor("--check", "--summary", "-")  # --check's own word, not the frames'
     assert checked.returncode == 2
     assert b"--summary needs the frames made; leave out --check" in checked.stderr

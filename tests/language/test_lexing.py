@@ -95,21 +95,23 @@ def test_a_call_s_plain_arguments_are_proven_readable_at_once():
         assert whole.match(refused) is None, refused
 
 
+def _proven(pattern: str) -> bool:
+    """Whether a call's plain arguments are proven readable at once with these terminals."""
+    return lexing.arguments(pattern, re.UNICODE, frozenset({"WS"}), "LPAR", ("COMMA", "RPAR"),
+                            "ADDOP", ("NUMBER", "NAME")) is not None
+
+
 def test_plain_arguments_are_not_read_at_once_where_another_terminal_may_start_alike():
     # a terminal '-1' (that a number with its sign might be) and the sign's '-'
     pattern = (r"(?P<NEG>\-1)|(?P<NUMBER>\d+)|(?P<NAME>[A-Z]+)|(?P<ADDOP>\-)|(?P<LPAR>\()"
                r"|(?P<RPAR>\))|(?P<COMMA>,)|(?P<WS>[ ]+)")
 
-    def proven(pattern):
-        return lexing.arguments(pattern, re.UNICODE, frozenset({"WS"}), "LPAR", ("COMMA", "RPAR"),
-                                "ADDOP", ("NUMBER", "NAME")) is not None
-
-    assert not proven(pattern)
-    assert proven(pattern.replace(r"(?P<NEG>\-1)|", ""))
+    assert not _proven(pattern)
+    assert _proven(pattern.replace(r"(?P<NEG>\-1)|", ""))
     # signs of two characters, blanks that are not a run of known characters
-    assert not proven(pattern.replace(r"(?P<NEG>\-1)|", "").replace(r"(?P<ADDOP>\-)",
+    assert not _proven(pattern.replace(r"(?P<NEG>\-1)|", "").replace(r"(?P<ADDOP>\-)",
                                                                     r"(?P<ADDOP>\-\-)"))
-    assert not proven(pattern.replace(r"(?P<NEG>\-1)|", "").replace(r"(?P<WS>[ ]+)",
+    assert not _proven(pattern.replace(r"(?P<NEG>\-1)|", "").replace(r"(?P<WS>[ ]+)",
                                                                     r"(?P<WS>[ ]+x)"))
 
 
@@ -128,10 +130,6 @@ def test_plain_arguments_are_not_read_at_once_where_a_value_may_hold_a_cut():
     pattern = (r"(?P<NUMBER>\d+)|(?P<NAME>[A-Z]+)|(?P<ADDOP>\-)|(?P<LPAR>\()"
                r"|(?P<RPAR>\))|(?P<COMMA>,)|(?P<WS>[ ]+)")
 
-    def proven(pattern):
-        return lexing.arguments(pattern, re.UNICODE, frozenset({"WS"}), "LPAR", ("COMMA", "RPAR"),
-                                "ADDOP", ("NUMBER", "NAME")) is not None
-
-    assert proven(pattern)
+    assert _proven(pattern)
     for number in (r"\d+(?:,\d+)?", r"\d+(?:\)\d+)?", r"\d+(?: \d+)?", r"\d+.?"):
-        assert not proven(pattern.replace(r"\d+)", number + ")", 1)), number
+        assert not _proven(pattern.replace(r"\d+)", number + ")", 1)), number
