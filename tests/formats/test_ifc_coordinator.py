@@ -11,11 +11,12 @@ from __future__ import annotations
 import json
 import os
 import subprocess
-import sys
 from collections import Counter
 from pathlib import Path
 
 import pytest
+
+from tests.support.ifc import ifc_of
 
 ifcopenshell = pytest.importorskip("ifcopenshell")
 
@@ -41,20 +42,10 @@ maison = $U(mur, mur_haut, dalle, sejour);
 """
 
 
-def castor(tmp_path: Path, text: str, *options: str, name: str = "s.ifc"):
-    """castor run on ``text`` (s.cas): the IFC file read back, and the warnings."""
-    (tmp_path / "s.cas").write_text(text)
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    run = subprocess.run([sys.executable, "-m", "castor", "s.cas", "-o", name, *options],
-                         cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300)
-    assert run.returncode == 0 and "Traceback" not in run.stderr, run.stderr
-    return ifcopenshell.open(str(tmp_path / name)), run.stderr
-
-
 @pytest.fixture(scope="module")
 def two_storeys(tmp_path_factory):
     where = tmp_path_factory.mktemp("two")
-    return castor(where, TWO_STOREYS)
+    return ifc_of(where, TWO_STOREYS)
 
 
 def _named(model, cls="IfcProduct"):
@@ -263,7 +254,7 @@ def test_quantities_and_properties_are_those_the_templates_name(two_storeys, tmp
 
     template = ifcopenshell.util.pset.get_template("IFC4")
     pavilion = ROOT / "examples" / "pavilion.cas"
-    models = [two_storeys[0], castor(tmp_path, pavilion.read_text())[0]]
+    models = [two_storeys[0], ifc_of(tmp_path, pavilion.read_text())[0]]
     kinds = {"IfcQuantityLength": "Q_LENGTH", "IfcQuantityArea": "Q_AREA",
              "IfcQuantityVolume": "Q_VOLUME"}
     for model in models:
@@ -283,7 +274,7 @@ def test_quantities_and_properties_are_those_the_templates_name(two_storeys, tmp
 def test_valid_and_the_coordinators_ids_is_met(two_storeys, tmp_path):
     from ifctester import ids, reporter
 
-    pavilion = castor(tmp_path, (ROOT / "examples" / "pavilion.cas").read_text())[0]
+    pavilion = ifc_of(tmp_path, (ROOT / "examples" / "pavilion.cas").read_text())[0]
     for model in (two_storeys[0], pavilion):
         assert _issues(model) == []
         specification = ids.open(str(IDS))
@@ -294,14 +285,14 @@ def test_valid_and_the_coordinators_ids_is_met(two_storeys, tmp_path):
 
 
 def test_global_ids_stay_when_a_parameter_changes(tmp_path):
-    first, _ = castor(tmp_path, TWO_STOREYS, name="a.ifc")
-    second, _ = castor(tmp_path, TWO_STOREYS, "--set", "L=6", name="b.ifc")
+    first, _ = ifc_of(tmp_path, TWO_STOREYS, name="a.ifc")
+    second, _ = ifc_of(tmp_path, TWO_STOREYS, "--set", "L=6", name="b.ifc")
     ids = [{(e.is_a(), e.Name): e.GlobalId for e in m.by_type("IfcRoot") if e.Name}
            for m in (first, second)]
     assert ids[0] == ids[1]
     assert _quantities(_named(second)["mur"])["Qto_WallBaseQuantities"]["Length"] == \
         pytest.approx(6)
-    again, _ = castor(tmp_path, TWO_STOREYS, name="c.ifc")
+    again, _ = ifc_of(tmp_path, TWO_STOREYS, name="c.ifc")
     assert (tmp_path / "a.ifc").read_bytes() == (tmp_path / "c.ifc").read_bytes()
 
 
@@ -309,7 +300,7 @@ def test_global_ids_stay_when_a_parameter_changes(tmp_path):
 
 
 def test_a_door_cut_from_two_walls_opens_both_and_fills_one(tmp_path):
-    model, err = castor(tmp_path, """\
+    model, err = ifc_of(tmp_path, """\
 porte = @t(4.5, -0.1, 0) @h(1, 0.4, 2) !cu(0.2, 0.3, 0.8);  // [door]
 mur1 = @h(5, 0.2, 3) !cu(0.9, 0.9, 0.8);  // [wall]
 mur2 = @t(5, 0, 0) @h(5, 0.2, 3) !cu(0.9, 0.9, 0.8);  // [wall]
@@ -330,7 +321,7 @@ murs = $D($U(mur1, mur2), porte);
 
 
 def test_an_opening_in_an_unclassed_object_voids_a_proxy(tmp_path):
-    model, err = castor(tmp_path, """\
+    model, err = ifc_of(tmp_path, """\
 porte = @t(1, -0.1, 0) @h(1, 0.4, 2) !cu(0.2, 0.3, 0.8);  // [door]
 > $D(@h(5, 0.2, 3) !cu(0.9, 0.9, 0.8), porte);
 """)
@@ -345,7 +336,7 @@ porte = @t(1, -0.1, 0) @h(1, 0.4, 2) !cu(0.2, 0.3, 0.8);  // [door]
 
 
 def test_a_space_below_every_storey_is_on_the_lowest(tmp_path):
-    model, err = castor(tmp_path, """\
+    model, err = ifc_of(tmp_path, """\
 R0 = 0;  // [storey "Rez"]
 R1 = 3;  // [storey "Etage"]
 mur = @h(5, 0.2, 3) !cu(0.9, 0.9, 0.8);  // [wall]
@@ -362,7 +353,7 @@ cave = @t(0, 0, -3) @h(5, 4, 2.5) !cu(1, 1, 1);  // [space "Cave"]
 
 
 def test_two_storeys_at_one_level_are_one(tmp_path):
-    model, err = castor(tmp_path, """\
+    model, err = ifc_of(tmp_path, """\
 A = 0;  // [storey "Rez"]
 B = 0;  // [storey "Sol"]
 C = 3;  // [storey "Etage"]
@@ -378,7 +369,7 @@ mur = @h(5, 0.2, 3) !cu(0.9, 0.9, 0.8);  // [wall]
 
 
 def test_a_class_the_reference_view_lacks_is_written_as_the_class_it_has(tmp_path):
-    model, err = castor(tmp_path, "m = @h(4, 0.2, 2.5) !cu(1, 1, 1);\n> m;\n",
+    model, err = ifc_of(tmp_path, "m = @h(4, 0.2, 2.5) !cu(1, 1, 1);\n> m;\n",
                         "--ifc-class", "m=IfcWallStandardCase")
     assert "--ifc-class m=IfcWallStandardCase: buildingSMART's IFC4 Reference View has no " \
            "IfcWallStandardCase" in err and "'m' is written as an IfcWall" in err
@@ -402,7 +393,7 @@ def _web_ifc():
 def test_web_ifc_finds_the_storeys_elements_openings_and_colours(tmp_path):
     """The second reader (benchmarks/webifc_model.js) sees the pavilion as
     ifcopenshell does."""
-    model, _ = castor(tmp_path, (ROOT / "examples" / "pavilion.cas").read_text())
+    model, _ = ifc_of(tmp_path, (ROOT / "examples" / "pavilion.cas").read_text())
     result = subprocess.run(["node", str(ROOT / "benchmarks" / "webifc_model.js"),
                              str(tmp_path / "s.ifc")], capture_output=True, text=True,
                             cwd=_web_ifc(), timeout=300)

@@ -6,13 +6,12 @@ roofs' and stairs' IFC4 quantities, and GlobalIds that a new title keeps."""
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+
+from tests.support.ifc import ifc_of
 
 ROOT = Path(__file__).resolve().parents[2]
 IDS = Path(__file__).resolve().parent / "data" / "coordinator.ids"
@@ -113,16 +112,6 @@ def test_the_take_off_of_a_mirrored_copy_is_outward_and_closed():
         assert shell_count(solid) >= 1 and p.figures.volume > 0
 
 
-def _castor(tmp_path: Path, text: str, *options: str, name="s.ifc"):
-    ifcopenshell = pytest.importorskip("ifcopenshell")
-    (tmp_path / "s.cas").write_text(text)
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    run = subprocess.run([sys.executable, "-m", "castor", "s.cas", "-o", name, *options],
-                         cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300)
-    assert run.returncode == 0 and "Traceback" not in run.stderr, run.stderr
-    return ifcopenshell.open(str(tmp_path / name)), run.stderr
-
-
 def test_every_class_of_the_table_is_one_ifc_class_takes_and_back():
     from castor.diagnostics import Location
     from castor.formats.ifc import ELEMENT_CLASSES, element_class
@@ -147,13 +136,13 @@ WALL_STANDARD = "m = @h(4, 0.2, 2.5) !cu(1, 1, 1);  // [IfcWallStandardCase] old
 def test_wall_standard_case_is_an_ifc_wall_with_one_warning_in_both(tmp_path):
     note = ("buildingSMART's IFC4 Reference View has no IfcWallStandardCase (it implies "
             "material layers or a parametric shape)")
-    model, err = _castor(tmp_path, WALL_STANDARD)
+    model, err = ifc_of(tmp_path, WALL_STANDARD)
     assert f"s.cas:1:39: warning: annotation: {note}; the object is written as an IfcWall " \
            f"(wall)" in err
     assert err.count("warning") == 1
     (wall,) = model.by_type("IfcElement")
     assert wall.is_a() == "IfcWall" and wall.Description == "old habit (s.cas:1)"
-    model, err = _castor(tmp_path, WALL_STANDARD.replace("// [IfcWallStandardCase] old habit",
+    model, err = ifc_of(tmp_path, WALL_STANDARD.replace("// [IfcWallStandardCase] old habit",
                                                          ""),
                          "--ifc-class", "m=IfcWallStandardCase")
     assert f"--ifc-class m=IfcWallStandardCase: {note}; 'm' is written as an IfcWall" in err
@@ -184,7 +173,7 @@ pente = @t(10, 0, 1) @ry(30) @h(4, 0.5, 0.2) !cu(0.5, 0.2, 0.2);  // [roof shed_
 def test_roofs_and_stairs_have_their_ifc4_quantities_and_counts(tmp_path):
     import ifcopenshell.util.pset
 
-    model, err = _castor(tmp_path, STAIRS)
+    model, err = ifc_of(tmp_path, STAIRS)
     products = {e.Name: e for e in model.by_type("IfcProduct")}
     stair = _sets(products["escalier"])
     assert stair["Pset_StairCommon"].pop("Reference") == "escalier"
@@ -215,7 +204,7 @@ def test_roofs_and_stairs_have_their_ifc4_quantities_and_counts(tmp_path):
 
 
 def test_a_pitched_roof_has_its_slopes_and_their_plan(tmp_path):
-    model, _ = _castor(tmp_path, STAIRS)
+    model, _ = ifc_of(tmp_path, STAIRS)
     (roof,) = [e for e in model.by_type("IfcRoof") if e.Name == "pente"]
     quantities = _sets(roof)["Qto_RoofBaseQuantities"]
     # a board turned 30 degrees: its top (4 x 0.5) and its raised end (0.5 x 0.2)
@@ -228,7 +217,7 @@ def test_a_pitched_roof_has_its_slopes_and_their_plan(tmp_path):
 def test_the_pavilion_meets_the_ids_with_its_stair_counted(tmp_path):
     from ifctester import ids, reporter
 
-    model, _ = _castor(tmp_path, (ROOT / "examples" / "pavilion.cas").read_text())
+    model, _ = ifc_of(tmp_path, (ROOT / "examples" / "pavilion.cas").read_text())
     specification = ids.open(str(IDS))
     specification.validate(model)
     report = reporter.Json(specification).report()
@@ -254,10 +243,10 @@ def _ids(model) -> dict:
 
 
 def test_global_ids_stay_under_a_new_title_and_with_a_moved_door(tmp_path):
-    first, _ = _castor(tmp_path, "X = 1;\n" + DOOR, "--title", "Maison Dupont", name="a.ifc")
-    second, _ = _castor(tmp_path, "X = 1;\n" + DOOR, "--title", "Maison Dupont (B)",
+    first, _ = ifc_of(tmp_path, "X = 1;\n" + DOOR, "--title", "Maison Dupont", name="a.ifc")
+    second, _ = ifc_of(tmp_path, "X = 1;\n" + DOOR, "--title", "Maison Dupont (B)",
                         name="b.ifc")
-    moved, _ = _castor(tmp_path, "X = 4;\n" + DOOR, name="c.ifc")
+    moved, _ = ifc_of(tmp_path, "X = 4;\n" + DOOR, name="c.ifc")
     assert first.by_type("IfcProject")[0].Name == "Maison Dupont"
     assert second.by_type("IfcProject")[0].Name == "Maison Dupont (B)"
     assert _ids(first) == _ids(second)
@@ -270,7 +259,7 @@ def test_global_ids_stay_under_a_new_title_and_with_a_moved_door(tmp_path):
     points = door.Representation.Representations[0].Items[0].Coordinates.CoordList
     assert min(p[0] for p in points) == pytest.approx(4)  # it did move
     # another scene (another name) gets other ids
-    other, _ = _castor(tmp_path, "X = 1;\n" + DOOR.replace("> mur;", "maison = mur;\n> maison;"),
+    other, _ = ifc_of(tmp_path, "X = 1;\n" + DOOR.replace("> mur;", "maison = mur;\n> maison;"),
                        name="d.ifc")
     assert _ids(other)[("IfcDoor", "porte")] != named[("IfcDoor", "porte")]
 
@@ -296,8 +285,8 @@ def test_every_global_id_is_unique_and_kept_under_a_new_title(tmp_path, title):
     # the aggregation relations (no Name) were keyed by their parent's name, the
     # project's being the title: a title "Site" or "Building" gave two relations
     # one GlobalId, and a new title changed the project's relation's id
-    first, _ = _castor(tmp_path, "X = 1;\n" + DOOR, "--title", title, name="a.ifc")
-    second, _ = _castor(tmp_path, "X = 1;\n" + DOOR, "--title", "Maison (B)", name="b.ifc")
+    first, _ = ifc_of(tmp_path, "X = 1;\n" + DOOR, "--title", title, name="a.ifc")
+    second, _ = ifc_of(tmp_path, "X = 1;\n" + DOOR, "--title", "Maison (B)", name="b.ifc")
     ids = [e.GlobalId for e in first.by_type("IfcRoot")]
     assert len(ids) == len(set(ids))
     assert ids == [e.GlobalId for e in second.by_type("IfcRoot")]
