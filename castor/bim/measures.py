@@ -17,7 +17,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from castor.mesh.frame import FrameObject
+from castor.mesh.frame import FrameObject, faces_up
 
 
 class Quantity(NamedTuple):
@@ -134,19 +134,11 @@ class Property(NamedTuple):
 def treads(solid: FrameObject) -> list[tuple[float, np.ndarray]]:
     """A stair's treads: (height, plan points of the faces that look up there),
     from the lowest, above its bottom."""
-    from castor.mesh.arrays import fan_triangles
-
-    if solid.polygon_count == 0:
+    found = faces_up(solid, 1 - 1e-9, 9)
+    if not found:
         return []
-    tris, _ = fan_triangles(solid.offsets, solid.indices)
-    corners = solid.vertices[tris]
-    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    length = np.linalg.norm(normal, axis=1)
-    up = (length > 1e-12) & (normal[:, 2] > (1 - 1e-9) * np.maximum(length, 1e-300))
-    heights = np.round(corners[up, 0, 2], 9)
     bottom = float(solid.vertices[:, 2].min())
-    return [(float(h), corners[up][heights == h][:, :, :2].reshape(-1, 2))
-            for h in np.unique(heights) if h > bottom + 1e-9]
+    return [(h, points) for h, points in found if h > bottom + 1e-9]
 
 
 def _equal(values: np.ndarray, scale: float) -> float | None:

@@ -370,30 +370,14 @@ def _window(block, loops, symbols: Symbols) -> None:
     symbols.strokes.append(Stroke(np.array(ends), pen=0.13))
 
 
-def _treads(solid) -> list[tuple[float, np.ndarray]]:
-    """The stair's treads: (height, plan points of its top) from the lowest."""
-    from castor.mesh.arrays import fan_triangles
-
-    if solid.polygon_count == 0:
-        return []
-    tris, _ = fan_triangles(solid.offsets, solid.indices)
-    corners = solid.vertices[tris]
-    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    length = np.linalg.norm(normal, axis=1)
-    up = (length > 1e-12) & (normal[:, 2] > 0.999 * np.maximum(length, 1e-300))
-    heights = np.round(corners[up, 0, 2], 6)
-    out = []
-    for h in np.unique(heights):
-        out.append((float(h), corners[up][heights == h][:, :, :2].reshape(-1, 2)))
-    return out
-
-
 def _stair(placed, takeoff, z: float, view, symbols: Symbols, warn) -> None:
     """The flight cut by the plan: its treads' nosings (those beyond the cut
     dashed), the break line where the plan cuts it, the arrow up from its foot
     with the number of risers."""
     element = placed.element
-    treads = _treads(takeoff.solid(element))
+    from castor.mesh.frame import faces_up
+
+    treads = faces_up(takeoff.solid(element), 0.999, 6)  # (a step's top, tilted by up to 2.6°)
     bottom = placed.figures.bbox[0][2]
     treads = [(h, pts) for h, pts in treads if h > bottom + 1e-6]
     if len(treads) < 2:

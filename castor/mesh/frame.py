@@ -135,3 +135,22 @@ def compact(pieces, origin_table, name: str = "") -> FrameObject:
     origins = [origin_table[int(i)] for i in ids]
     return FrameObject(np.ascontiguousarray(vertices), offsets, indices.astype(np.int64),
                        origin_of.ravel().astype(np.int64), origins, name, surface_of)
+
+
+def faces_up(solid: FrameObject, cosine: float, decimals: int) -> list[tuple[float, np.ndarray]]:
+    """The faces of ``solid`` that look up (their normal's z at least ``cosine`` of
+    its length), by height rounded to ``decimals`` places, from the lowest:
+    (height, the plan points of their triangles). A stair's treads, for its IFC
+    properties (castor.bim.measures) and its plan symbol (castor.drawings.classes)."""
+    from castor.mesh.arrays import fan_triangles
+
+    if solid.polygon_count == 0:
+        return []
+    tris, _ = fan_triangles(solid.offsets, solid.indices)
+    corners = solid.vertices[tris]
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    length = np.linalg.norm(normal, axis=1)
+    up = (length > 1e-12) & (normal[:, 2] > cosine * np.maximum(length, 1e-300))
+    heights = np.round(corners[up, 0, 2], decimals)
+    return [(float(h), corners[up][heights == h][:, :, :2].reshape(-1, 2))
+            for h in np.unique(heights)]
