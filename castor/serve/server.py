@@ -40,6 +40,7 @@ from castor.serve.watch import Watcher
 
 POLL_SECONDS = 0.05  # how often the files are looked at
 SETTLE_SECONDS = 0.02  # after a change, for the editor to finish writing
+SETTLE_PATIENCE = 0.5  # at most, while the files change or one is empty
 HEARTBEAT_SECONDS = 5.0  # a comment on each event stream, to find browsers gone
 REQUEST_TIMEOUT = 10.0  # seconds a connection may stay silent
 MAX_REQUESTS = 48
@@ -166,19 +167,18 @@ class Preview:
                 changed = self._watcher.changed()
             if not changed:
                 continue
-            self.stop.wait(SETTLE_SECONDS)
-            with self._watcher_lock:
-                self._watcher.changed()
+            if self._watcher.settle(self.stop.wait, self._watcher_lock, SETTLE_SECONDS,
+                                    SETTLE_PATIENCE):
+                return
             with self.state:
                 self._wanted += 1
                 self.state.notify_all()
             self._stop_stale()
 
     def evaluate_scene(self) -> None:
-        """Evaluate whenever asked, until stopped; an evaluation overtaken by a
-        newer save or value stops at once (castor.analysis.worker.Stopper), inside
-        a statement too, and is thrown away. A new camera alone facets the
-        frames shown again, without evaluating."""
+        """Evaluate whenever asked, until stopped; an evaluation overtaken by a newer
+        save or value stops at once (castor.analysis.worker.Stopper), mid-statement
+        too, and is thrown away. A new camera alone facets the shown frames again."""
         done = looked = 0
         while True:
             with self.state:

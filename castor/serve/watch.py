@@ -9,6 +9,7 @@ modification time, the size or the inode.
 from __future__ import annotations
 
 import os
+import time
 
 Signature = tuple[int, int, int] | None  # mtime in ns, size, inode; None: absent
 
@@ -51,3 +52,19 @@ class Watcher:
                 self.seen[path] = now
                 changes.append(path)
         return changes
+
+    def settle(self, wait, lock, pause: float, patience: float) -> bool:
+        """After a change, wait for the editor to finish writing: until the files
+        have not changed for ``pause`` seconds, and none is empty (an editor that
+        writes in place empties the file first), for at most ``patience`` seconds
+        (a file left empty is then taken as it is). ``wait(seconds)`` is true
+        when the server stops; so is the answer."""
+        deadline = time.monotonic() + patience
+        while True:
+            if wait(pause):
+                return True
+            with lock:
+                moved = self.changed()
+                empty = any(seen is not None and seen[1] == 0 for seen in self.seen.values())
+            if not (moved or empty) or time.monotonic() >= deadline:
+                return False

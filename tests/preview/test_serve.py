@@ -144,6 +144,30 @@ def test_a_save_by_renaming_a_new_file_over_the_old_one(preview, scene):
     assert answer["frames"][0]["box"] == [[0, 0, 0], [6, 3, 4]]
 
 
+def test_a_save_in_place_is_read_when_written_not_when_emptied(preview, scene):
+    # an editor that writes in place empties the file first; one slow to write
+    # the text (a loaded machine) must not have its empty file shown as the scene
+    port = port_of(preview)
+    _, _, good = get(port, "/scene.json")
+    with open(scene, "w") as handle:
+        handle.flush()
+        time.sleep(0.3)
+        handle.write(BOX.format(x=5))
+    answer = wait_for(lambda: (a := get(port, "/scene.json")[2])["version"] > good["version"]
+                      and a)
+    assert answer["diagnostics"] == []
+    assert [frame["box"] for frame in answer["frames"]] == [[[0, 0, 0], [5, 3, 4]]]
+
+
+def test_a_file_emptied_on_purpose_is_shown_empty(preview, scene):
+    port = port_of(preview)
+    _, _, good = get(port, "/scene.json")
+    save(scene, "")
+    answer = wait_for(lambda: (a := get(port, "/scene.json")[2])["version"] > good["version"]
+                      and a)
+    assert answer["frames"] == [] and answer["diagnostics"] == []
+
+
 def test_an_error_keeps_the_last_good_frames_beside_it(preview, scene):
     port = port_of(preview)
     _, _, good = get(port, "/scene.json")
