@@ -1,6 +1,6 @@
 """Notice a save of the scene or of a file it includes, by polling.
 
-Polling a few files' status every fiftieth of a second costs nothing and
+Polling a few files' status twenty times a second costs nothing and
 works the same on every system, and with every editor: vi writes in place or
 writes a new file and renames it over the old one, and either changes the
 modification time, the size or the inode.
