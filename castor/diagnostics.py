@@ -27,6 +27,20 @@ def shown_name(name: str) -> str:
                    for c in name)
 
 
+def counted(word: str, numbers) -> str:
+    """The frames (or operands) a message concerns, as a reader counts them:
+    'frame 3', 'frames 1 and 2', 'frames 1 to 9', 'frames 1, 4 and 7',
+    '12 frames from 1 to 30'."""
+    numbers = list(numbers)
+    if len(numbers) == 1:
+        return f"{word} {numbers[0]}"
+    if len(numbers) > 2 and numbers == list(range(numbers[0], numbers[-1] + 1)):
+        return f"{word}s {numbers[0]} to {numbers[-1]}"
+    if len(numbers) > 6:
+        return f"{len(numbers)} {word}s from {numbers[0]} to {numbers[-1]}"
+    return f"{word}s " + ", ".join(map(str, numbers[:-1])) + f" and {numbers[-1]}"
+
+
 class Location(NamedTuple):
     """A place in an original source file (after mapping cpp line markers)."""
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 
-from castor.diagnostics import CastorError, LimitError
+from castor.diagnostics import CastorError, LimitError, counted
 
 
 class FrameFailure(LimitError):
@@ -18,7 +18,7 @@ class FrameFailure(LimitError):
 
     def __init__(self, numbers: tuple[int, ...], reason: str, location):
         self.numbers, self.reason = numbers, reason
-        super().__init__(f"{_frames(numbers)} could not be made: {reason}", location)
+        super().__init__(f"{counted('frame', numbers)} could not be made: {reason}", location)
 
     def alike(self, other) -> bool:
         return isinstance(other, FrameFailure) and \
@@ -51,22 +51,9 @@ class SameError:
             return self.error
         import copy
 
-        from castor.csg.evaluate import counted
-
         error = copy.copy(self.error)
         error.message = f"{error.message} (in {counted('frame', list(self.numbers))})"
         return error
-
-
-def _frames(numbers: tuple[int, ...]) -> str:
-    """'frame 3', 'frames 1 and 2', 'frames 1 to 9', 'frames 1, 4 and 7', '12 frames from 1 to 30'."""
-    if len(numbers) == 1:
-        return f"frame {numbers[0]}"
-    if len(numbers) > 2 and list(numbers) == list(range(numbers[0], numbers[-1] + 1)):
-        return f"frames {numbers[0]} to {numbers[-1]}"
-    if len(numbers) > 6:
-        return f"{len(numbers)} frames from {numbers[0]} to {numbers[-1]}"
-    return "frames " + ", ".join(map(str, numbers[:-1])) + f" and {numbers[-1]}"
 
 
 def failure_reason(exc: BaseException) -> str:

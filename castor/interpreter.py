@@ -15,7 +15,7 @@ import math
 from typing import Callable, Iterable
 
 from castor.diagnostics import (ArgumentCountError, CastorError, Reporter, TooManyErrors,
-                                UndefinedObject)
+                                UndefinedObject, counted)
 from castor.language.expressions import UndefinedParameter, evaluate
 from castor.language.parse import Parser, SkippedDefinition
 from castor.language.reader import Chunk
@@ -285,10 +285,20 @@ class Interpreter:
                 self._warn_if_empty(tree)
         for error, numbers in failures.values():
             if self._explained(error):
+                self._unwritten(error, numbers, statement.location)
                 continue
             if len(values) > 1:
-                error.message += f" (in {frames_text(numbers)})"
+                error.message += f" (in {counted('frame', numbers)})"
             self.reporter.error(error)
+
+    def _unwritten(self, error: CastorError, numbers: list[int], location) -> None:
+        """Frames left unmade by a parameter whose definition had errors: said in
+        a note at the '>' (its error was said at the definition; the frames are not
+        written, and the user is told which)."""
+        if isinstance(error, UndefinedParameter) and error.name in self.failed:
+            self.reporter.note(f"{location}: note: {counted('frame', numbers)} not made: "
+                               f"parameter '{error.name}' has no value (its definition "
+                               "had errors)")
 
     def _warn_if_empty(self, tree) -> None:
         """The warning a run gives a frame without polygons, where the tree shows
@@ -312,11 +322,4 @@ class Interpreter:
 NO_FRAME = "the scene has no '>' command, so nothing {} written; '> OBJECT;' writes an object's polygons"
 
 
-def frames_text(numbers: list[int]) -> str:
-    """'frame 3', 'frames 1 to 11', 'frames 1, 3, 7'."""
-    from castor.csg.evaluate import counted
-
-    return counted("frame", numbers)
-
-
-__all__ = ["Interpreter", "TooManyErrors", "frames_text"]
+__all__ = ["Interpreter", "TooManyErrors"]

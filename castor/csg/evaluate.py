@@ -17,7 +17,8 @@ from typing import MutableMapping
 
 from castor.csg import tree
 from castor.csg.paths import ROOT, Trail
-from castor.diagnostics import CastorError, EvaluationError, GeometryError, LimitError, Location
+from castor.diagnostics import (CastorError, EvaluationError, GeometryError, LimitError, Location,
+                               counted)
 from castor.language.expressions import evaluate, format_number
 from castor.language.scene import (BooleanNode, NamedNode, Number, PrimitiveNode, Repeat,
                                    SceneNode, TransformedNode)
@@ -356,15 +357,6 @@ def _merged(errors: list[CastorError], starts: list[int], offset: int, trail: Tr
             error.message += f" (the same in {counted('operand', operands)} of the repetition)"
         out.append(error)
     return out
-
-
-def counted(word: str, numbers: list[int]) -> str:
-    """'frame 3', 'frames 1 to 11', 'frames 1, 3, 7'."""
-    if len(numbers) == 1:
-        return f"{word} {numbers[0]}"
-    if numbers == list(range(numbers[0], numbers[-1] + 1)):
-        return f"{word}s {numbers[0]} to {numbers[-1]}"
-    return f"{word}s " + ", ".join(str(n) for n in numbers)
 
 
 def _check_reach(matrix: tree.Matrix, extent: float, node: PrimitiveNode, trail: Trail) -> None:

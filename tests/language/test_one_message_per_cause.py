@@ -37,6 +37,22 @@ def test_a_failed_parameter_is_said_once(tmp_path):
                            "h.cas:9:6: error: parameter 'Q' is not defined"], err
 
 
+def test_the_frames_a_failed_parameter_leaves_unmade_are_named_in_notes(tmp_path):
+    # once per cause, but never silently short of frames: each '>' that the
+    # parameter left unmade says so in a note (read by vi's :make), then the
+    # frames it did make are written
+    status, err = castor(tmp_path, "h.cas",
+                         "H = 3 / 0;\na = @h(H) !cu(1,1,1);\n> a;\n>[T = 0, 2] @h(H + T) a;\n"
+                         "> !cu(1,1,1);\nH = 2;\n> a;\n")
+    assert status == 1
+    notes = [line for line in err.splitlines() if ": note: " in line]
+    assert notes == [
+        "h.cas:3:1: note: frame 1 not made: parameter 'H' has no value (its definition had "
+        "errors)",
+        "h.cas:4:1: note: frames 2 to 4 not made: parameter 'H' has no value (its definition "
+        "had errors)"], err
+
+
 def test_a_parameter_with_a_syntax_error_is_said_once(tmp_path):
     status, err = castor(tmp_path, "k.cas", "K = 3 +;\n> @h(K) !cu(1,1,1);\n")
     assert status == 1
