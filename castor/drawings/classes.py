@@ -50,6 +50,7 @@ OTHER = ("ANSI34", "Other elements")
 UNCLASSED = (SOLID, "Unclassed")
 
 WALLS = ("IfcWall", "IfcWallStandardCase", "IfcCurtainWall")
+SLABS = ("IfcSlab", "IfcRoof")
 SEEN_PEN = 0.18  # mm: symbols are seen edges (OUTPUT.md)
 DOOR, WINDOW, STAIR = "IfcDoor", "IfcWindow", "IfcStair"
 
@@ -116,6 +117,9 @@ class Symbols:
     # a section's or elevation's vertical chains: side -> heights of its
     # openings' sills and heads
     sides: dict = field(default_factory=dict)
+    # a vertical section's cut slabs and roofs: the heights of their undersides
+    # and tops, on both vertical chains (the structure's thicknesses)
+    slabs: list = field(default_factory=list)
     # the page boxes ((x0, y0), (x1, y1)) the set's marks take (castor.drawings.marks),
     # beyond the chains: the sheet makes room for them
     marks: list = field(default_factory=list)
@@ -193,6 +197,9 @@ def _regions(drawing, takeoff, symbols: Symbols, plan: bool, doors=()) -> None:
             continue
         if p.element.ifc_class in WALLS:
             symbols.walls.extend(loops)
+        elif p.element.ifc_class in SLABS and drawing.view.basis()[1][2] > 0.99:
+            symbols.slabs.extend(y for loop in loops for y in (np.min(np.asarray(loop)[:, 1]),
+                                                               np.max(np.asarray(loop)[:, 1])))
         by_object.setdefault(p.element.object, []).append(
             Region(p.element.name, p.element.ifc_class, pattern, loops))
         if (pattern, words) not in symbols.legend:

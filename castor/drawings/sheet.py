@@ -279,7 +279,8 @@ def _chains(drawing, box: np.ndarray, vertical: bool) -> list:
     """The dimension chains of a drawing: along the cut regions of a plan or
     section; with classes, along the cut walls only (the others when none is
     cut), breaking at every opening cut, and on a section or an elevation
-    vertical chains of the storeys, the openings' sills and heads and the top."""
+    vertical chains of the storeys, the openings' sills and heads, the cut slabs'
+    undersides and tops, and the top."""
     symbols = drawing.symbols
     loops = [c for layer in drawing.layers for c in layer.cuts]
     if symbols is None:
@@ -292,8 +293,8 @@ def _chains(drawing, box: np.ndarray, vertical: bool) -> list:
         sides = {"left": box[0, 0], "right": box[1, 0]}
         made = {}
         for side, edge in sides.items():
-            chain = vertical_chain(side, edge, levels + symbols.sides.get(side, []),
-                                   float(box[1, 1]))
+            heights = levels + symbols.slabs + symbols.sides.get(side, [])
+            chain = vertical_chain(side, edge, heights, float(box[1, 1]))
             if chain is not None:
                 made[side] = chain
         if made:  # they stand for the cut regions' own chains on those sides

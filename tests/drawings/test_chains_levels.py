@@ -89,3 +89,23 @@ def test_a_plan_marks_its_floor_level(tmp_path):
     texts = ["".join(t.itertext()) for t in root.iter(SVG + "text")]
     assert "+3.00" in texts
     assert any(re.search(r"Etage \+3\.00", t) for t in texts)
+
+
+def test_a_section_measures_the_slabs_it_cuts(tmp_path):
+    # the pavilion cut across: ground slab 0.20 below ±0.00, storey 2.80 to the
+    # first floor's slab (0.20), 3.00 to the roof, roof 0.25 thick: the chain
+    # gives the structure's thicknesses, as a contractor builds it
+    from pathlib import Path
+
+    scene = (Path(__file__).resolve().parents[2] / "examples" / "pavilion.cas").read_text()
+    doc = dxf_of(tmp_path, scene, "--section", "x=3", "--scale", "1:50")
+    vertical = [d for d in doc.modelspace().query("DIMENSION") if d.dxf.angle == 90]
+    middle = sum(d.dxf.defpoint.x for d in vertical) / len(vertical)  # the page runs -y
+    for side in (lambda x: x < middle, lambda x: x > middle):
+        chain = sorted(((min(d.dxf.defpoint2.y, d.dxf.defpoint3.y), round(d.get_measurement(), 9))
+                        for d in vertical if side(d.dxf.defpoint.x)))
+        measured = [m for _, m in chain]
+        overall = max(measured)
+        measured.remove(overall)
+        assert measured == [0.2, 2.8, 0.2, 3.0, 0.25], chain
+        assert overall == pytest.approx(6.45)
