@@ -425,6 +425,11 @@ def _stair(placed, takeoff, z: float, view, symbols: Symbols, warn) -> None:
         g = min(0.12, width / 8)
         zig = [(a - 0.25, b0 - 0.1), (a - g / 2, mid - g), (a + g, mid - g / 3),
                (a - g, mid + g / 3), (a + g / 2, mid + g), (a + 0.25, b1 + 0.1)]
+        # past the flight on each side, but not into a wall it runs along
+        for end, inner, edge in ((0, 1, b0), (5, 4, b1)):
+            if _in_walls(point(*zig[end]), symbols.walls):
+                (u0, v0), (u1, v1) = zig[end], zig[inner]
+                zig[end] = (u0 + (u1 - u0) * (edge - v0) / (v1 - v0), edge)
         symbols.strokes.append(Stroke(np.array([point(u, v) for u, v in zig])))
         top = a - 0.1
     else:
@@ -442,6 +447,13 @@ def _stair(placed, takeoff, z: float, view, symbols: Symbols, warn) -> None:
     # beside the arrow, along the flight, a quarter of its width off the middle
     at = point((foot + top) / 2, mid - (b1 - b0) / 4)
     symbols.labels.append(Label((float(at[0]), float(at[1])), (f"{risers} R",), 2.5, angle))
+
+
+def _in_walls(at: np.ndarray, walls) -> bool:
+    """Whether a plan point lies inside one of the cut walls' loops."""
+    from castor.drawings.rooms import inside
+
+    return any(inside(np.array([at]), [np.asarray(loop, float)])[0] for loop in walls)
 
 
 def _overhead(solid, view, symbols: Symbols) -> None:

@@ -64,17 +64,17 @@ def _tag_box(at, lines, k: float) -> np.ndarray:
                      (at[0] + w * k, at[1] + (NAME * 0.5 + 0.5) * k)])
 
 
-def _inside(points: np.ndarray, loops) -> np.ndarray:
+def inside(points: np.ndarray, loops) -> np.ndarray:
     """Whether each point lies inside the loops (even-odd)."""
-    inside = np.zeros(len(points), bool)
+    within = np.zeros(len(points), bool)
     x, y = points[:, 0:1], points[:, 1:2]
     for loop in loops:
         p, q = loop, np.roll(loop, -1, axis=0)
         crosses = (p[:, 1] > y) != (q[:, 1] > y)
         with np.errstate(divide="ignore", invalid="ignore"):
             at = p[:, 0] + (y - p[:, 1]) / (q[:, 1] - p[:, 1]) * (q[:, 0] - p[:, 0])
-        inside ^= (np.sum(crosses & (x < at), axis=1) % 2).astype(bool)
-    return inside
+        within ^= (np.sum(crosses & (x < at), axis=1) % 2).astype(bool)
+    return within
 
 
 def _fits(box: np.ndarray, loops) -> bool:
@@ -84,7 +84,7 @@ def _fits(box: np.ndarray, loops) -> bool:
     t = np.linspace(0.0, 1.0, 9)
     edges = np.concatenate([np.column_stack([x0 + (x1 - x0) * t, np.full(9, y)]) for y in (y0, y1)]
                            + [np.column_stack([np.full(9, x), y0 + (y1 - y0) * t]) for x in (x0, x1)])
-    if not _inside(edges, loops).all():
+    if not inside(edges, loops).all():
         return False
     corners = np.concatenate(loops)
     return not np.any((corners[:, 0] > x0) & (corners[:, 0] < x1)

@@ -102,6 +102,19 @@ def test_a_stair_has_its_break_line_and_an_arrow_with_its_risers(tmp_path):
         [0.5 + 0.2 * k for k in range(6, 14)])
 
 
+def test_a_stair_against_a_wall_has_its_break_line_stop_at_the_wall(tmp_path):
+    # the flight moved against the east wall (x 4.8 to 5.8, the wall's inner
+    # face): the break line runs 0.1 m past the flight's free side, as drawn
+    # by hand, but not into the wall's hatch
+    scene = HOUSE.replace("marche = @t(4,", "marche = @t(4.8,")
+    doc = dxf_of(tmp_path, scene, "--section", "z=1.2")
+    slanted = [l for l in doc.modelspace().query("LINE")
+               if l.dxf.layer == "symbols" and l.dxf.linetype != "CASTOR_DASHED"
+               and abs(l.dxf.start.x - l.dxf.end.x) > 1e-6 and abs(l.dxf.start.y - l.dxf.end.y) > 1e-6]
+    xs = [x for l in slanted for x in (l.dxf.start.x, l.dxf.end.x)]
+    assert (min(xs), max(xs)) == pytest.approx((4.7, 5.8))
+
+
 def test_a_stair_of_one_riser_is_said_and_drawn_as_cut(tmp_path):
     scene = HOUSE.replace("$U[I = 0, 13](marche)", "$U[I = 0, 0](marche)")
     _, _, said = svg_of(tmp_path, scene, "--section", "z=0.1")
