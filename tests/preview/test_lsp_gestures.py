@@ -225,7 +225,8 @@ def wait_for_scene(url: str, wanted, seconds: float = 60) -> dict:
         if scene["evaluated"] and not scene["evaluating"] and wanted(scene):
             return scene
         if time.monotonic() > end:
-            raise AssertionError(f"the preview never showed it: {paths(scene)}")
+            raise AssertionError(f"the preview never showed it: {paths(scene)}, version "
+                                 f"{scene['version']}, {scene['diagnostics']}")
         time.sleep(0.05)
 
 
