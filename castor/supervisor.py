@@ -74,8 +74,8 @@ def _wait(child: int, reading: int) -> None:
     wake_reading, wake_writing = os.pipe()
     os.set_blocking(wake_writing, False)
     signal.set_wakeup_fd(wake_writing)  # a signal wakes the select below
-    for signum in _STOPS:
-        if signal.getsignal(signum) is not signal.SIG_IGN:  # started with Ctrl-C ignored: kept
+    for signum in _STOPS:  # (started with Ctrl-C ignored, as a background job: kept so)
+        if signum != signal.SIGINT or signal.getsignal(signum) is not signal.SIG_IGN:
             signal.signal(signum, lambda number, frame: came.append(number))
     _leave_standard_streams()
     signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOPS)
@@ -132,8 +132,8 @@ def _interrupted(signum: int, child: int, reading: int, told: bytearray,
             os.unlink(path)
         except OSError:
             pass
-    try:
-        os.write(2, b"castor: interrupted\n")
+    try:  # on a terminal, over the line of a frame's progress
+        os.write(2, (b"\r\033[K" if os.isatty(2) else b"") + b"castor: interrupted\n")
     except OSError:
         pass
     os._exit(128 + signum)
