@@ -32,9 +32,9 @@ def supervise() -> bool:
     for stream in (sys.stdout, sys.stderr):  # else both processes would write it
         try:
             stream.flush()
-        except (OSError, ValueError):
+        except (OSError, ValueError, AttributeError):  # (None: started closed)
             pass
-    reading, writing = os.pipe()
+    reading, writing = map(_above_standard, os.pipe())
     # a signal that comes before each process has its own handlers waits for them
     signal.pthread_sigmask(signal.SIG_BLOCK, _STOPS)
     parent = os.getpid()
@@ -71,7 +71,7 @@ def _wait(child: int, reading: int) -> None:
     import select
 
     came: list[int] = []
-    wake_reading, wake_writing = os.pipe()
+    wake_reading, wake_writing = map(_above_standard, os.pipe())
     os.set_blocking(wake_writing, False)
     signal.set_wakeup_fd(wake_writing)  # a signal wakes the select below
     for signum in _STOPS:  # (started with Ctrl-C ignored, as a background job: kept so)
@@ -137,6 +137,18 @@ def _interrupted(signum: int, child: int, reading: int, told: bytearray,
     except OSError:
         pass
     os._exit(128 + signum)
+
+
+def _above_standard(fd: int) -> int:
+    """``fd``, or a copy of it above 2 where castor was started with standard
+    input, output or error closed ('>&-'), which a new pipe then takes."""
+    if fd > 2:
+        return fd
+    import fcntl
+
+    copy = fcntl.fcntl(fd, fcntl.F_DUPFD_CLOEXEC, 3)
+    os.close(fd)
+    return copy
 
 
 def _leave_standard_streams() -> None:
