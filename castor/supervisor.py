@@ -4,12 +4,12 @@ The engine (manifold3d) keeps Python's interpreter lock for the whole of one
 boolean, which takes tens of seconds in a large scene: while it runs, no other
 thread of the process runs, not even Python's handler of Ctrl-C, which waits
 for the boolean to end. So a run that makes its frames in its own process
-forks first: the child makes the run, signals ignored, and this process waits,
-its interpreter free. On Ctrl-C or SIGTERM it kills the child at once (a
-frame's work cannot be stopped more gently), removes the files the child was
-writing (the child tells their names through a pipe before it makes each,
-castor.formats.output.tell_temporaries), says ``castor: interrupted`` and
-exits 130 or 143. Otherwise it ends as the child did: with its status, or
+forks first: the child makes the run, SIGINT and SIGTERM ignored, and this
+process waits, its interpreter free. On Ctrl-C or SIGTERM it kills the child
+at once (a frame's work cannot be stopped more gently), removes the files the
+child was writing (the child tells their names through a pipe before it makes
+each, castor.formats.output.tell_temporaries), says ``castor: interrupted``
+and exits 130 or 143. Otherwise it ends as the child did: with its status, or
 killed by the same signal (SIGPIPE, when the reader of standard output went).
 A child whose parent is killed outright ends too (castor.jobs.end_with_parent).
 """
@@ -176,5 +176,5 @@ def _end_as(status: int) -> None:
             pass
         signal.pthread_sigmask(signal.SIG_UNBLOCK, [signum])
         os.kill(os.getpid(), signum)
-        os._exit(128 + signum)  # a signal that does not end a process (SIGCHLD)
+        os._exit(128 + signum)  # were it still to come
     os._exit(os.waitstatus_to_exitcode(status))
