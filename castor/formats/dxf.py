@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import io
 import re
+from contextlib import contextmanager
 from typing import Iterator
 
 import numpy as np
@@ -188,7 +189,8 @@ def _tidy(value: float) -> float:
 def _document():
     import ezdxf
 
-    doc = ezdxf.new("R2010")
+    with _repeatable():
+        doc = ezdxf.new("R2010")
     doc.units = ezdxf.units.M
     doc.header["$MEASUREMENT"] = 1  # metric
     doc.header["$LWDISPLAY"] = 1  # show lineweights
@@ -271,6 +273,35 @@ def _model(doc, msp, to: _To, paper_items: bool) -> None:
         _sheet_items(msp, to, group.items, group.name)
 
 
+def _written(doc) -> bytes:
+    """The document's bytes, the same at every run for the same drawing (as the
+    PDF's): ezdxf's fixed dates and GUIDs in place of the time of writing and
+    random ones, and the CLASSES section in the order of their names (ezdxf
+    adds two of them in an order that varies from run to run)."""
+    from collections import OrderedDict
+
+    doc.classes.add_required_classes(doc.dxfversion)
+    doc.classes.classes = OrderedDict(sorted(doc.classes.classes.items()))
+    stream = io.StringIO()
+    with _repeatable():
+        doc.write(stream)
+    return stream.getvalue().encode("utf-8")
+
+
+@contextmanager
+def _repeatable():
+    """While in the block, ezdxf writes fixed metadata (its option made for
+    comparing files: dates of 2000-01-01, constant GUIDs) instead of the time."""
+    import ezdxf
+
+    before = ezdxf.options.write_fixed_meta_data_for_testing
+    ezdxf.options.write_fixed_meta_data_for_testing = True
+    try:
+        yield
+    finally:
+        ezdxf.options.write_fixed_meta_data_for_testing = before
+
+
 def export_drawing(sheet) -> bytes:
     """The sheet as a DXF (R2010) document's bytes: drawn in model space as it is
     printed at its scale."""
@@ -284,9 +315,7 @@ def export_drawing(sheet) -> bytes:
     (x0, y0), (x1, y1) = sheet.to_metres(np.array([[0.0, 0.0], [sheet.width, sheet.height]])).tolist()
     msp.reset_extents((_tidy(min(x0, x1)), _tidy(min(y0, y1)), 0.0),
                       (_tidy(max(x0, x1)), _tidy(max(y0, y1)), 0.0))
-    stream = io.StringIO()
-    doc.write(stream)
-    return stream.getvalue().encode("utf-8")
+    return _written(doc)
 
 
 SPACING = 20.0  # paper mm between the sheets' drawings side by side in model space
@@ -333,9 +362,7 @@ def export_set(drawing_set) -> bytes:
         shift += (x1 - x0 if x1 > x0 else x0 - x1) + SPACING / sheet.mm
     if "Layout1" in doc.layouts and len(drawing_set.sheets):
         doc.layouts.delete("Layout1")  # ezdxf's own empty layout
-    stream = io.StringIO()
-    doc.write(stream)
-    return stream.getvalue().encode("utf-8")
+    return _written(doc)
 
 
 def _layout_name(number: str, used: set) -> str:
