@@ -245,7 +245,7 @@ def _choose_format(p: _Parser, args) -> None:
     """-f, else the format -o's ending names (the stream by default): one that
     can be written here."""
     from castor.formats import FORMATS, format_for_suffix
-    from castor.formats.output import is_device, suffix_message
+    from castor.formats.output import has_pattern, is_device, suffix_message
 
     args.format_named = args.format is not None or args.output is not None  # (--check's warnings)
     if args.format is None:
@@ -259,7 +259,7 @@ def _choose_format(p: _Parser, args) -> None:
     if problem is not None:
         p.error(problem)
     if args.sheets is not None and args.format == "svg" and not (
-            args.output and "%" in args.output):
+            args.output and has_pattern(args.output)):
         p.error("an SVG holds one sheet: give --sheets a pattern such as -o sheet-%d.svg, or "
                 "write one .pdf or .dxf")
 
@@ -286,21 +286,41 @@ def _on_standard_output(output: str | None) -> bool:
 
 
 def _check_destinations(p: _Parser, args) -> None:
-    from castor.formats.output import destination_problem, same_file
+    from castor.formats.output import destination_problem
 
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
         if path == "-":  # standard output (_standard_output)
             continue
-        problem = destination_problem(path, option) if path is not None else None
+        problem = destination_problem(path, option, option == "-o") if path is not None else None
         if problem is not None:
             p.error(problem)
-        if path is not None and any(same_file(path, scene) for scene in args.files):
-            p.error(f"{option} {path}: is a scene castor reads; give the output another name")
+        if path is not None:
+            _check_not_read(p, args, path, option)
         if option == "--summary" and path is not None and path.lower().endswith(".cas") \
                 and os.path.isfile(path):
             # 'castor --summary house.cas' read standard input and wrote the figures over the scene
             p.error(f"--summary {path}: is a scene file; --summary takes the file the figures go "
                     f"to (castor --summary figures.json {path})")
+
+
+def _check_not_read(p: _Parser, args, path: str, option: str) -> None:
+    """An output that is a file the run reads, or the other output, is a usage
+    error: written, it would destroy that file (the same file through another
+    path or a symbolic link, or among an -o pattern's files, too)."""
+    from castor.formats.output import same_file
+
+    if any(same_file(path, scene) for scene in args.files if scene != "-"):
+        p.error(f"{option} {path}: is a scene castor reads; give the output another name")
+    for read, what in ((args.parameter_file, "the parameter file castor reads (-p)"),
+                       (args.sheets, "the drawing register castor reads (--sheets)")):
+        if read is not None and same_file(path, read):
+            p.error(f"{option} {path}: is {what}; give the output another name")
+    if option == "--summary" and args.output not in (None, "-") and (
+            same_file(args.output, path)):
+        stem = os.path.splitext(path)[0]
+        other = f"{stem}.json" if not path.lower().endswith(".json") else f"{stem}-summary.json"
+        p.error(f"--summary {path}: is where -o {args.output} writes the frames; give the "
+                f"figures a file of their own (--summary {other})")
 
 
 def _overrides(parser, sets: list[str]) -> dict[str, float]:

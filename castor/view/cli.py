@@ -132,7 +132,7 @@ def _pictures(args):
                          f"{args.file.rsplit('.', 1)[-1]} files\n")
         sys.exit(USAGE_ERROR)
     try:
-        handle = open(args.file, encoding="utf-8", errors="replace")
+        handle = open(args.file, encoding="utf-8", errors="surrogateescape")
     except OSError as exc:
         sys.stderr.write(f"castor-view: error: cannot read '{args.file}': "
                          f"{(exc.strerror or str(exc)).lower()}\n")
