@@ -343,14 +343,41 @@ def _overrides(parser, sets: list[str]) -> dict[str, float]:
             parser.error(f"--set {item!r}: one parameter for each --set; write "
                          + " ".join(f"--set '{part.strip()}'" for part in item.split(";")
                                     if part.strip()))
+        if not expr.strip():
+            parser.error(f"--set {item}: no value after '='; give a number or an expression, "
+                         f"such as --set {name}=3.2")
+        known = {"PI": math.pi, "TOLERANCE": DEFAULT_TOLERANCE, **values}
         try:
-            values[name] = assignment_value(name, expr, {"PI": math.pi,
-                                                         "TOLERANCE": DEFAULT_TOLERANCE, **values})
+            values[name] = assignment_value(name, expr, known)
         except CastorError as exc:
-            parser.error(f"--set {item}: {exc.message}")
+            parser.error(f"--set {item}: {_set_message(exc, name, known)}")
         except RecursionError:
             parser.error(f"--set {name}=...: the expression is nested too deeply")
     return values
+
+
+def _set_message(exc, parameter: str, known: dict) -> str:
+    """The parser's message for a --set value, in the words of a value on the
+    command line: the ';' that ends the statement it is read as is castor's, and
+    only PI, TOLERANCE and the parameters of the --set options before it have a
+    value there."""
+    from castor.language.expressions import UndefinedParameter
+
+    message = exc.message.replace("found ';'", "found the end of the value").replace(
+        "expected ';'", "expected an operator or the end of the value")
+    where = "a --set value knows PI, TOLERANCE and the earlier --set parameters, not the scene's"
+    if isinstance(exc, UndefinedParameter):
+        return f"{message}; {where}"
+    lower = re.match(r"'([a-z]\w*)' is not a parameter: ", message)
+    if lower:
+        word = lower[1]
+        for meant in (word[0].upper() + word[1:], word.upper()):
+            if meant in known:
+                return (f"'{word}' is not a parameter: parameter names start with an "
+                        f"uppercase letter ({meant})")
+        return (f"'{word}' is neither a number nor a parameter: --set takes a number, such as "
+                f"--set {parameter}=3.2, or an expression; {where}")
+    return message
 
 
 # Exit status of a process ended by SIGPIPE, as the shell reports it for cat.

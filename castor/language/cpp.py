@@ -11,6 +11,7 @@ their files.
 
 from __future__ import annotations
 
+import copy
 import io
 import os
 import re
@@ -22,6 +23,9 @@ from castor.diagnostics import Location, PreprocessError, Reporter
 from castor.language import macro_calls
 
 MAX_INCLUDE_DEPTH = 200
+
+# the directives that open a block, and whether theirs is a condition (or a macro name)
+_CONDITIONS = {"if": True, "elif": True, "ifdef": False, "ifndef": False}
 
 # directives that mean nothing without an argument, and what they need
 _NEEDS = {"define": "a macro name", "undef": "a macro name", "ifdef": "a macro name",
@@ -78,6 +82,40 @@ _PARAMETER = re.compile(r"[A-Za-z_]\w*(\s*\.\.\.)?|\.\.\.")
 _CONDITION = re.compile(r"Could not evaluate expression due to .* \(passed to evaluator: '(.*)'\)",
                         re.S)
 _ARGUMENT_COUNT = re.compile(r"Macro (\w+) requires (\d+) arguments but was passed (\d+)")
+_UNTERMINATED = re.compile(r"Unterminated\s*#\s*(\w+)(.*)", re.S)
+
+# pcpp's other messages in castor's words: lower-case, saying what to write
+_MESSAGES = {
+    "Misplaced #else": "'#else' without an '#if' before it; remove it, or add the #if it belongs to",
+    "Misplaced #elif": "'#elif' without an '#if' before it; remove it, or add the #if it belongs to",
+    "Misplaced #endif": "'#endif' without an '#if' before it; remove it, or add the #if it closes",
+    "Missing '(' in macro arguments": "the macro's arguments have no '('; write NAME(ARGUMENTS)",
+    "Missing ')' in macro arguments": "a ')' is missing at the end of the macro's arguments",
+    "Empty expression": "#if or #elif needs a condition",
+    "Malformed defined()": "malformed defined(); write defined(NAME)",
+    "Malformed #include <...>": "malformed #include <...> (no '>'); write #include \"file.cas\"",
+    "No more arguments may follow a variadic argument":
+        "#define: no parameter may follow '...'; write ... last",
+    "Invalid macro argument": "#define: a parameter is not a name; write #define NAME(X, Y)",
+    "Bad macro definition": "malformed #define; write #define NAME VALUE or #define NAME(X, Y) VALUE",
+}
+_AT_LEAST = re.compile(r"Macro (\w+) must have at least (\d+) arguments?")
+
+
+def castor_words(msg: str) -> str:
+    """One of pcpp's messages as castor says it (its own first: they need no change)."""
+    msg = msg.strip()
+    unterminated = _UNTERMINATED.fullmatch(msg)
+    if unterminated:
+        condition = re.sub(r"/\*.*?\*/|//.*", " ", unterminated[2], flags=re.S)
+        directive = f"#{unterminated[1]} {_spaced(condition)}".strip()
+        return f"'{directive}' has no matching '#endif'; add #endif where its block ends"
+    at_least = _AT_LEAST.fullmatch(msg)
+    if at_least:
+        count = int(at_least[2])
+        return (f"macro {at_least[1]} takes at least {count} argument{'s' if count != 1 else ''} "
+                f"before its '...'")
+    return _MESSAGES.get(msg, msg)
 
 
 def _where(token, default: str = "<stdin>") -> Location:
@@ -106,6 +144,9 @@ class Hooks:
         self.opened: list[tuple[str, str]] = []  # (path, text) of each file #included
         self.missing: list[str] = []  # paths looked for, not there (for the cache)
         self.quiet = False  # while a use is expanded again to map a position
+        self.defining = False  # while pcpp reads a #define
+        # for each file, its open #if blocks: the line of the block's #else (0: none yet)
+        self.conditionals: dict[str, list[int]] = {}
 
     def on_error(self, file, line, msg):
         self.return_code += 1
@@ -119,6 +160,11 @@ class Hooks:
         if condition:  # not Python's exception, in castor's words
             msg = (f"#if or #elif cannot evaluate '{condition[1]}'; write a condition of "
                    f"numbers, macros, defined(NAME) and C's operators")
+        if self.defining and msg.startswith("Missing ')'"):
+            msg = "#define: its parameters have no ')'; write #define NAME(X, Y) VALUE"
+        if _UNTERMINATED.fullmatch(msg.strip()) and self.conditionals.get(file):
+            self.conditionals[file].pop()  # the file's end closes it
+        msg = castor_words(msg)
         counted = _ARGUMENT_COUNT.fullmatch(msg)
         if counted and location is not None:
             location, msg = macro_calls.argument_count(self, location, *counted.groups())
@@ -230,8 +276,34 @@ class Hooks:
             # pcpp itself would fail on these with an IndexError
             self.reporter.error(PreprocessError(f"#{directive.value} needs {what}",
                                                 _where(directive)))
-            raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+            if directive.value not in _CONDITIONS:
+                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+            # the block stays a block, left out, so that its #else and #endif
+            # still match: a false condition, a name no macro has
+            stand_in = copy.copy(directive)
+            stand_in.type, stand_in.value = ((self.t_INTEGER, "0") if _CONDITIONS[directive.value]
+                                             else (self.t_ID, ""))
+            toks[:] = [stand_in]
+        self._nest(directive)
         return True
+
+    def _nest(self, directive) -> None:
+        """Follow the file's #if blocks, for what pcpp lets pass: an #elif or a
+        second #else after a block's #else (cpp's errors)."""
+        blocks = self.conditionals.setdefault(getattr(directive, "source", None) or "", [])
+        name = directive.value
+        if name in ("if", "ifdef", "ifndef"):
+            blocks.append(0)
+        elif name == "endif" and blocks:
+            blocks.pop()
+        elif name in ("elif", "else") and blocks:
+            if blocks[-1]:
+                what = "an '#elif'" if name == "elif" else "a second '#else'"
+                self.reporter.error(PreprocessError(
+                    f"{what} after this block's '#else' (line {blocks[-1]}); a block has one "
+                    f"#else, after its #elif", _where(directive)))
+            elif name == "else":
+                blocks[-1] = int(getattr(directive, "lineno", 0) or 0) or 1
 
     def on_directive_unknown(self, directive, toks, ifpassthru, precedingtoks):
         if directive.value == "line" or directive.value.isdigit():
@@ -274,11 +346,14 @@ class Hooks:
             tokens = self._checked_parameters(tokens)
             if tokens is None:
                 return
+        self.defining = True
         try:
             super().define(tokens)
         except LookupError:  # a definition pcpp did not expect: said, never a crash
             token = tokens[0] if tokens and not isinstance(tokens, str) else None
             self.reporter.error(PreprocessError("malformed #define", _where(token)))
+        finally:
+            self.defining = False
 
     def _checked_parameters(self, tokens: list):
         """The #define's tokens with its empty parameters left out, or None when
