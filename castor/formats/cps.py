@@ -176,7 +176,7 @@ def load(lines: Iterator[str], name: str = "<stdin>") -> Iterator[StreamFrame]:
                               np.array(path_of, np.int64), list(paths))
                 current = None
         except (ValueError, IndexError, TypeError):
-            raise StreamError(f"{name}:{number}: malformed '{shown(kind)}' record") from None
+            raise StreamError(f"{name}:{number}: malformed '{kind}' record") from None
 
 
 def shown(text: str, limit: int = 40) -> str:
