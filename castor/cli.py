@@ -17,7 +17,7 @@ from castor import __version__
 from castor.diagnostics import (USAGE_ERROR, CastorError, ClosedStdout, Reporter, UsageError,
                                 stdout_failed)
 from castor.options import (OUTPUT_OPTIONS, TITLE_FIELDS, negative_values, not_utf8, option_value,
-                            parse_count, warn_without_effect)
+                            output_clash, parse_count, set_value_message, warn_without_effect)
 from castor.settings import DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE
 
 
@@ -294,33 +294,14 @@ def _check_destinations(p: _Parser, args) -> None:
         problem = destination_problem(path, option, option == "-o") if path is not None else None
         if problem is not None:
             p.error(problem)
-        if path is not None:
-            _check_not_read(p, args, path, option)
+        clash = output_clash(args, path, option) if path is not None else None
+        if clash is not None:
+            p.error(clash)
         if option == "--summary" and path is not None and path.lower().endswith(".cas") \
                 and os.path.isfile(path):
             # 'castor --summary house.cas' read standard input and wrote the figures over the scene
             p.error(f"--summary {path}: is a scene file; --summary takes the file the figures go "
                     f"to (castor --summary figures.json {path})")
-
-
-def _check_not_read(p: _Parser, args, path: str, option: str) -> None:
-    """An output that is a file the run reads, or the other output, is a usage
-    error: written, it would destroy that file (the same file through another
-    path or a symbolic link, or among an -o pattern's files, too)."""
-    from castor.formats.output import same_file
-
-    if any(same_file(path, scene) for scene in args.files if scene != "-"):
-        p.error(f"{option} {path}: is a scene castor reads; give the output another name")
-    for read, what in ((args.parameter_file, "the parameter file castor reads (-p)"),
-                       (args.sheets, "the drawing register castor reads (--sheets)")):
-        if read is not None and same_file(path, read):
-            p.error(f"{option} {path}: is {what}; give the output another name")
-    if option == "--summary" and args.output not in (None, "-") and (
-            same_file(args.output, path)):
-        stem = os.path.splitext(path)[0]
-        other = f"{stem}.json" if not path.lower().endswith(".json") else f"{stem}-summary.json"
-        p.error(f"--summary {path}: is where -o {args.output} writes the frames; give the "
-                f"figures a file of their own (--summary {other})")
 
 
 def _overrides(parser, sets: list[str]) -> dict[str, float]:
@@ -350,34 +331,10 @@ def _overrides(parser, sets: list[str]) -> dict[str, float]:
         try:
             values[name] = assignment_value(name, expr, known)
         except CastorError as exc:
-            parser.error(f"--set {item}: {_set_message(exc, name, known)}")
+            parser.error(f"--set {item}: {set_value_message(exc, name, known)}")
         except RecursionError:
             parser.error(f"--set {name}=...: the expression is nested too deeply")
     return values
-
-
-def _set_message(exc, parameter: str, known: dict) -> str:
-    """The parser's message for a --set value, in the words of a value on the
-    command line: the ';' that ends the statement it is read as is castor's, and
-    only PI, TOLERANCE and the parameters of the --set options before it have a
-    value there."""
-    from castor.language.expressions import UndefinedParameter
-
-    message = exc.message.replace("found ';'", "found the end of the value").replace(
-        "expected ';'", "expected an operator or the end of the value")
-    where = "a --set value knows PI, TOLERANCE and the earlier --set parameters, not the scene's"
-    if isinstance(exc, UndefinedParameter):
-        return f"{message}; {where}"
-    lower = re.match(r"'([a-z]\w*)' is not a parameter: ", message)
-    if lower:
-        word = lower[1]
-        for meant in (word[0].upper() + word[1:], word.upper()):
-            if meant in known:
-                return (f"'{word}' is not a parameter: parameter names start with an "
-                        f"uppercase letter ({meant})")
-        return (f"'{word}' is neither a number nor a parameter: --set takes a number, such as "
-                f"--set {parameter}=3.2, or an expression; {where}")
-    return message
 
 
 # Exit status of a process ended by SIGPIPE, as the shell reports it for cat.

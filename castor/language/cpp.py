@@ -11,7 +11,6 @@ their files.
 
 from __future__ import annotations
 
-import copy
 import io
 import os
 import re
@@ -21,11 +20,9 @@ from dataclasses import dataclass
 
 from castor.diagnostics import Location, PreprocessError, Reporter
 from castor.language import macro_calls
+from castor.language.cpp_messages import Blocks, castor_words, printable
 
 MAX_INCLUDE_DEPTH = 200
-
-# the directives that open a block, and whether theirs is a condition (or a macro name)
-_CONDITIONS = {"if": True, "elif": True, "ifdef": False, "ifndef": False}
 
 # directives that mean nothing without an argument, and what they need
 _NEEDS = {"define": "a macro name", "undef": "a macro name", "ifdef": "a macro name",
@@ -33,15 +30,21 @@ _NEEDS = {"define": "a macro name", "undef": "a macro name", "ifdef": "a macro n
           "include": "a file name, as in #include \"walls.cas\""}
 
 
+def _false_condition(directive, toks: list) -> bool:
+    """An #if or #elif whose condition cannot be read (said already) read as
+    false, in place: its #else and #endif still match it."""
+    import copy
+
+    zero = copy.copy(directive)
+    zero.type, zero.value = "CPP_INTEGER", "0"
+    toks[:] = [zero]
+    return True
+
+
 def shown(name: str) -> str:
     """A file name as pcpp shows it: relative to the current directory when inside it."""
     here = os.path.abspath("") + os.sep
     return name[len(here):] if name.startswith(here) else name
-
-
-def _printable(name: str) -> str:
-    """A file name as a message shows it: control characters (a NUL byte) escaped."""
-    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in name)
 
 
 def escape(name: str) -> str:
@@ -79,43 +82,7 @@ def _spaced(text: str) -> str:
 
 
 _PARAMETER = re.compile(r"[A-Za-z_]\w*(\s*\.\.\.)?|\.\.\.")
-_CONDITION = re.compile(r"Could not evaluate expression due to .* \(passed to evaluator: '(.*)'\)",
-                        re.S)
 _ARGUMENT_COUNT = re.compile(r"Macro (\w+) requires (\d+) arguments but was passed (\d+)")
-_UNTERMINATED = re.compile(r"Unterminated\s*#\s*(\w+)(.*)", re.S)
-
-# pcpp's other messages in castor's words: lower-case, saying what to write
-_MESSAGES = {
-    "Misplaced #else": "'#else' without an '#if' before it; remove it, or add the #if it belongs to",
-    "Misplaced #elif": "'#elif' without an '#if' before it; remove it, or add the #if it belongs to",
-    "Misplaced #endif": "'#endif' without an '#if' before it; remove it, or add the #if it closes",
-    "Missing '(' in macro arguments": "the macro's arguments have no '('; write NAME(ARGUMENTS)",
-    "Missing ')' in macro arguments": "a ')' is missing at the end of the macro's arguments",
-    "Empty expression": "#if or #elif needs a condition",
-    "Malformed defined()": "malformed defined(); write defined(NAME)",
-    "Malformed #include <...>": "malformed #include <...> (no '>'); write #include \"file.cas\"",
-    "No more arguments may follow a variadic argument":
-        "#define: no parameter may follow '...'; write ... last",
-    "Invalid macro argument": "#define: a parameter is not a name; write #define NAME(X, Y)",
-    "Bad macro definition": "malformed #define; write #define NAME VALUE or #define NAME(X, Y) VALUE",
-}
-_AT_LEAST = re.compile(r"Macro (\w+) must have at least (\d+) arguments?")
-
-
-def castor_words(msg: str) -> str:
-    """One of pcpp's messages as castor says it (its own first: they need no change)."""
-    msg = msg.strip()
-    unterminated = _UNTERMINATED.fullmatch(msg)
-    if unterminated:
-        condition = re.sub(r"/\*.*?\*/|//.*", " ", unterminated[2], flags=re.S)
-        directive = f"#{unterminated[1]} {_spaced(condition)}".strip()
-        return f"'{directive}' has no matching '#endif'; add #endif where its block ends"
-    at_least = _AT_LEAST.fullmatch(msg)
-    if at_least:
-        count = int(at_least[2])
-        return (f"macro {at_least[1]} takes at least {count} argument{'s' if count != 1 else ''} "
-                f"before its '...'")
-    return _MESSAGES.get(msg, msg)
 
 
 def _where(token, default: str = "<stdin>") -> Location:
@@ -145,8 +112,7 @@ class Hooks:
         self.missing: list[str] = []  # paths looked for, not there (for the cache)
         self.quiet = False  # while a use is expanded again to map a position
         self.defining = False  # while pcpp reads a #define
-        # for each file, its open #if blocks: the line of the block's #else (0: none yet)
-        self.conditionals: dict[str, list[int]] = {}
+        self.blocks = Blocks()  # each file's open #if blocks
 
     def on_error(self, file, line, msg):
         self.return_code += 1
@@ -156,15 +122,8 @@ class Hooks:
             file, line = (getattr(self.lastdirective, "source", None),
                           getattr(self.lastdirective, "lineno", 0))
         location = Location(file, int(line or 0), 1) if file else None  # None: from -D
-        condition = _CONDITION.fullmatch(msg)
-        if condition:  # not Python's exception, in castor's words
-            msg = (f"#if or #elif cannot evaluate '{condition[1]}'; write a condition of "
-                   f"numbers, macros, defined(NAME) and C's operators")
-        if self.defining and msg.startswith("Missing ')'"):
-            msg = "#define: its parameters have no ')'; write #define NAME(X, Y) VALUE"
-        if _UNTERMINATED.fullmatch(msg.strip()) and self.conditionals.get(file):
-            self.conditionals[file].pop()  # the file's end closes it
-        msg = castor_words(msg)
+        self.blocks.ended(file, msg)
+        msg = castor_words(msg, self.defining)
         counted = _ARGUMENT_COUNT.fullmatch(msg)
         if counted and location is not None:
             location, msg = macro_calls.argument_count(self, location, *counted.groups())
@@ -187,7 +146,7 @@ class Hooks:
         import pcpp
 
         location = self._include_location(includepath)
-        name = _printable(includepath)
+        name = printable(includepath)
         if not is_malformed and not includepath.strip():
             message = "#include names no file; write #include \"file.cas\""
         elif "\0" in includepath:
@@ -267,43 +226,30 @@ class Hooks:
 
         self.lastdirective = directive
         self.unreadable = []  # why the files this directive names could not be read
+        self.blocks.follow(directive, _where(directive), self.reporter)
         if directive.value == "define" and toks:
             self._defining(directive, toks)
         if directive.value == "pragma" and not any(tok.value.strip() for tok in toks):
             raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)  # as cpp: nothing to do
         what = _NEEDS.get(directive.value)
-        if what and not any(tok.value.strip() for tok in toks):
+        words = [tok.value for tok in toks if tok.value.strip()]
+        if what and not words:
             # pcpp itself would fail on these with an IndexError
             self.reporter.error(PreprocessError(f"#{directive.value} needs {what}",
                                                 _where(directive)))
-            if directive.value not in _CONDITIONS:
-                raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
-            # the block stays a block, left out, so that its #else and #endif
-            # still match: a false condition, a name no macro has
-            stand_in = copy.copy(directive)
-            stand_in.type, stand_in.value = ((self.t_INTEGER, "0") if _CONDITIONS[directive.value]
-                                             else (self.t_ID, ""))
-            toks[:] = [stand_in]
-        self._nest(directive)
+            if directive.value in ("if", "elif", "ifdef", "ifndef"):  # left out, as cpp's
+                return _false_condition(directive, toks)  # its #endif still matches it
+            raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+        if directive.value == "if" and words[:1] == ["!"] and \
+                (len(words) == 1 or words[1] == "defined" and len(words) <= 2 + (words[2:3] == ["("])):
+            # a '!' with nothing after it (pcpp reads the first #if of a file
+            # for an include guard, and fails on it with an IndexError)
+            self.reporter.error(PreprocessError(
+                f"#if or #elif cannot evaluate '{''.join(t.value for t in toks).strip()}'; "
+                f"write a condition of "
+                f"numbers, macros, defined(NAME) and C's operators", _where(directive)))
+            return _false_condition(directive, toks)
         return True
-
-    def _nest(self, directive) -> None:
-        """Follow the file's #if blocks, for what pcpp lets pass: an #elif or a
-        second #else after a block's #else (cpp's errors)."""
-        blocks = self.conditionals.setdefault(getattr(directive, "source", None) or "", [])
-        name = directive.value
-        if name in ("if", "ifdef", "ifndef"):
-            blocks.append(0)
-        elif name == "endif" and blocks:
-            blocks.pop()
-        elif name in ("elif", "else") and blocks:
-            if blocks[-1]:
-                what = "an '#elif'" if name == "elif" else "a second '#else'"
-                self.reporter.error(PreprocessError(
-                    f"{what} after this block's '#else' (line {blocks[-1]}); a block has one "
-                    f"#else, after its #elif", _where(directive)))
-            elif name == "else":
-                blocks[-1] = int(getattr(directive, "lineno", 0) or 0) or 1
 
     def on_directive_unknown(self, directive, toks, ifpassthru, precedingtoks):
         if directive.value == "line" or directive.value.isdigit():
@@ -317,7 +263,7 @@ class Hooks:
             self.reporter.warning(f"#warning {text}", location)
         elif directive.value != "pragma":  # unknown pragmas are ignored, as cpp does
             self.reporter.error(PreprocessError(
-                f"unknown preprocessor directive '#{_printable(directive.value)}'", location))
+                f"unknown preprocessor directive '#{printable(directive.value)}'", location))
         return True
 
     def _defining(self, directive, toks):
