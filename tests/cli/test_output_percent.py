@@ -60,3 +60,22 @@ def test_the_summary_is_a_plain_name(tmp_path):
                            stdin=SCENE, cwd=tmp_path)
     assert status == 0, err
     assert os.listdir(tmp_path) == ["s-%s.json"]
+
+
+def test_castor_view_reads_percent_as_castor_does(tmp_path):
+    import subprocess
+    import sys
+
+    status, stream, err = run("--no-cpp", stdin=SCENE, cwd=tmp_path)
+    assert status == 0, err
+    for name in ("v%%.png", "w%s.png"):
+        result = subprocess.run([sys.executable, "-m", "castor.view.cli", "-o", name],
+                                input=stream, capture_output=True, text=True, cwd=tmp_path,
+                                timeout=120)
+        if name == "w%s.png":
+            assert result.returncode == 2
+            assert result.stderr.startswith("castor-view: error: -o w%s.png: '%s' is not a "
+                                            "frame-number pattern")
+        else:
+            assert result.returncode == 0, result.stderr
+    assert os.listdir(tmp_path) == ["v%.png"]
