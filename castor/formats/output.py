@@ -21,7 +21,7 @@ from castor.formats import WriteInfo, registry
 
 _PATTERN = re.compile(r"%0?\d*d")
 # what printf reads after a '%': '%%', the frame number ('%d', '%03d'), another
-# conversion ('%s', '%.2f'), or a '%' that begins none
+# conversion ('%s', '%-3d', '%x'), or a '%' that begins none (as in '50%.stl')
 _PERCENT = re.compile(r"%%|%0?\d*d|%[-+ #0]*\d*[hlLqjzt]*[A-Za-z]|%")
 
 
@@ -68,8 +68,8 @@ def destination_problem(path: str, option: str = "-o", patterns_allowed: bool = 
 
     Checked before any frame is made: a pattern is well formed (one %d, '%%'
     for a literal '%', as printf reads them; no other conversion), and the
-    directory exists and takes new files. ``patterns``: whether the path may
-    hold one (``patterns_allowed``: -o's; --summary's is a plain name).
+    directory exists and takes new files. ``patterns_allowed``: whether the
+    path may hold a pattern (-o's may; --summary's is a plain name).
     """
     if not path.strip():
         return f"{option} needs a file name, such as {option} house.stl"
