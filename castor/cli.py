@@ -17,7 +17,7 @@ from castor import __version__
 from castor.diagnostics import (USAGE_ERROR, CastorError, ClosedStdout, Reporter, UsageError,
                                 stdout_failed)
 from castor.options import (OUTPUT_OPTIONS, TITLE_FIELDS, negative_values, not_utf8, option_value,
-                            parse_count, warn_without_effect)
+                            output_clash, parse_count, set_value_message, warn_without_effect)
 from castor.settings import DEFAULT_FORMAT, DEFAULT_MAX_POLYGONS, DEFAULT_PORT, DEFAULT_TOLERANCE
 
 
@@ -245,7 +245,7 @@ def _choose_format(p: _Parser, args) -> None:
     """-f, else the format -o's ending names (the stream by default): one that
     can be written here."""
     from castor.formats import FORMATS, format_for_suffix
-    from castor.formats.output import is_device, suffix_message
+    from castor.formats.output import has_pattern, is_device, suffix_message
 
     args.format_named = args.format is not None or args.output is not None  # (--check's warnings)
     if args.format is None:
@@ -259,7 +259,7 @@ def _choose_format(p: _Parser, args) -> None:
     if problem is not None:
         p.error(problem)
     if args.sheets is not None and args.format == "svg" and not (
-            args.output and "%" in args.output):
+            args.output and has_pattern(args.output)):
         p.error("an SVG holds one sheet: give --sheets a pattern such as -o sheet-%d.svg, or "
                 "write one .pdf or .dxf")
 
@@ -286,16 +286,17 @@ def _on_standard_output(output: str | None) -> bool:
 
 
 def _check_destinations(p: _Parser, args) -> None:
-    from castor.formats.output import destination_problem, same_file
+    from castor.formats.output import destination_problem
 
     for path, option in ((args.output, "-o"), (args.summary, "--summary")):
         if path == "-":  # standard output (_standard_output)
             continue
-        problem = destination_problem(path, option) if path is not None else None
+        problem = destination_problem(path, option, option == "-o") if path is not None else None
         if problem is not None:
             p.error(problem)
-        if path is not None and any(same_file(path, scene) for scene in args.files):
-            p.error(f"{option} {path}: is a scene castor reads; give the output another name")
+        clash = output_clash(args, path, option) if path is not None else None
+        if clash is not None:
+            p.error(clash)
         if option == "--summary" and path is not None and path.lower().endswith(".cas") \
                 and os.path.isfile(path):
             # 'castor --summary house.cas' read standard input and wrote the figures over the scene
@@ -323,11 +324,14 @@ def _overrides(parser, sets: list[str]) -> dict[str, float]:
             parser.error(f"--set {item!r}: one parameter for each --set; write "
                          + " ".join(f"--set '{part.strip()}'" for part in item.split(";")
                                     if part.strip()))
+        if not expr.strip():
+            parser.error(f"--set {item}: no value after '='; give a number or an expression, "
+                         f"such as --set {name}=3.2")
+        known = {"PI": math.pi, "TOLERANCE": DEFAULT_TOLERANCE, **values}
         try:
-            values[name] = assignment_value(name, expr, {"PI": math.pi,
-                                                         "TOLERANCE": DEFAULT_TOLERANCE, **values})
+            values[name] = assignment_value(name, expr, known)
         except CastorError as exc:
-            parser.error(f"--set {item}: {exc.message}")
+            parser.error(f"--set {item}: {set_value_message(exc, name, known)}")
         except RecursionError:
             parser.error(f"--set {name}=...: the expression is nested too deeply")
     return values

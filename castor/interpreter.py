@@ -14,8 +14,8 @@ import itertools
 import math
 from typing import Callable, Iterable
 
-from castor.diagnostics import (ArgumentCountError, CastorError, Reporter, TooManyErrors,
-                                UndefinedObject, counted)
+from castor.diagnostics import (ArgumentCountError, CastorError, LimitError, Reporter,
+                                TooManyErrors, UndefinedObject, counted)
 from castor.language.expressions import UndefinedParameter, evaluate
 from castor.language.parse import Parser, SkippedDefinition
 from castor.language.reader import Chunk
@@ -277,6 +277,11 @@ class Interpreter:
                     failures.setdefault((error.message, error.location), (error, []))[1].append(number)
                 continue
             except CastorError as error:
+                failures.setdefault((error.message, error.location), (error, []))[1].append(number)
+                continue
+            except RecursionError:  # deeper than the evaluator's stack, below the parser's limit
+                error = LimitError("the frame's objects are nested too deeply to evaluate",
+                                   statement.location)
                 failures.setdefault((error.message, error.location), (error, []))[1].append(number)
                 continue
             if self.submit is not None:

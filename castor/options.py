@@ -146,6 +146,54 @@ def negative_values(argv: list[str], options: tuple[str, ...]) -> list[str]:
     return out
 
 
+def set_value_message(exc, parameter: str, known: dict) -> str:
+    """The parser's message for a --set value, in the words of a value on the
+    command line: the ';' that ends the statement it is read as is castor's, and
+    only PI, TOLERANCE and the parameters of the --set options before it (``known``)
+    have a value there."""
+    from castor.language.expressions import UndefinedParameter
+
+    message = exc.message.replace("found ';'", "found the end of the value").replace(
+        "expected ';'", "expected an operator or the end of the value")
+    where = "a --set value knows PI, TOLERANCE and the earlier --set parameters, not the scene's"
+    if isinstance(exc, UndefinedParameter):
+        return f"{message}; {where}"
+    lower = re.match(r"'([a-z]\w*)' is not a parameter: ", message)
+    if lower:
+        word = lower[1]
+        for meant in (word[0].upper() + word[1:], word.upper()):
+            if meant in known:
+                return (f"'{word}' is not a parameter: parameter names start with an "
+                        f"uppercase letter ({meant})")
+        return (f"'{word}' is neither a number nor a parameter: --set takes a number, such as "
+                f"--set {parameter}=3.2, or an expression; {where}")
+    return message
+
+
+def output_clash(args, path: str, option: str) -> str | None:
+    """The usage error of an output (``path``, given as ``option``) that is a file
+    the run reads, or the other output, or None: written, it would destroy that
+    file (the same file through another path or a symbolic link, or among an -o
+    pattern's files, too)."""
+    import os
+
+    from castor.formats.output import same_file
+
+    if any(same_file(path, scene) for scene in args.files if scene != "-"):
+        return f"{option} {path}: is a scene castor reads; give the output another name"
+    for read, what in ((args.parameter_file, "the parameter file castor reads (-p)"),
+                       (args.sheets, "the drawing register castor reads (--sheets)")):
+        if read is not None and same_file(path, read):
+            return f"{option} {path}: is {what}; give the output another name"
+    if option == "--summary" and args.output not in (None, "-") and (
+            same_file(args.output, path)):
+        stem = os.path.splitext(path)[0]
+        other = f"{stem}.json" if not path.lower().endswith(".json") else f"{stem}-summary.json"
+        return (f"--summary {path}: is where -o {args.output} writes the frames; give the "
+                f"figures a file of their own (--summary {other})")
+    return None
+
+
 def parse_samples(text: str) -> int:
     return parse_count(text, "--samples", 1, 256)
 

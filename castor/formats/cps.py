@@ -148,7 +148,7 @@ def load(lines: Iterator[str], name: str = "<stdin>") -> Iterator[StreamFrame]:
         if not header_seen:
             if not line.startswith("castor-polygons "):
                 raise StreamError(f"{name}:{number}: not a castor polygon stream (first line is "
-                                f"'{line[:40]}'); give a mesh file, or pipe castor's output")
+                                  f"'{shown(line)}'); give a mesh file, or pipe castor's output")
             header_seen = True
             continue
         fields = line.split(" ")
@@ -179,10 +179,29 @@ def load(lines: Iterator[str], name: str = "<stdin>") -> Iterator[StreamFrame]:
             raise StreamError(f"{name}:{number}: malformed '{kind}' record") from None
 
 
+def shown(text: str, limit: int = 40) -> str:
+    """Text read from a stream as a message shows it: printable ASCII, every other
+    character escaped (a byte that is not UTF-8 as \\xcd, as castor says it), at
+    most about ``limit`` characters, '...' after."""
+    out, length = [], 0
+    for c in text:
+        if length >= limit:
+            return "".join(out) + "..."
+        if " " <= c <= "~" and c != "\\":
+            piece = c
+        elif "\udc80" <= c <= "\udcff":  # a byte kept by 'surrogateescape'
+            piece = f"\\x{ord(c) - 0xdc00:02x}"
+        else:
+            piece = c.encode("unicode_escape").decode("ascii")
+        out.append(piece)
+        length += len(piece)
+    return "".join(out)
+
+
 def read(path: str) -> Iterator[StreamFrame]:
     """A polygon stream file's frames, each as soon as it is read."""
     try:
-        handle = open(path, encoding="utf-8", errors="replace")
+        handle = open(path, encoding="utf-8", errors="surrogateescape")
     except OSError as exc:
         raise StreamError(f"cannot read '{path}': {exc.strerror}") from None
     with handle:

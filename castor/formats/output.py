@@ -20,7 +20,9 @@ from castor.diagnostics import CastorError, Location
 from castor.formats import WriteInfo, registry
 
 _PATTERN = re.compile(r"%0?\d*d")
-_PERCENT = re.compile(r"%%|%0?\d*d|%")
+# what printf reads after a '%': '%%', the frame number ('%d', '%03d'), another
+# conversion ('%s', '%-3d', '%x'), or a '%' that begins none (as in '50%.stl')
+_PERCENT = re.compile(r"%%|%0?\d*d|%[-+ #0]*\d*[hlLqjzt]*[A-Za-z]|%")
 
 
 class OutputError(CastorError):
@@ -32,14 +34,19 @@ class Unwritable(Exception):
 
 
 def has_pattern(path: str) -> bool:
-    return bool(_PATTERN.search(path))
+    """Whether ``path`` holds a frame-number pattern ('%d', '%03d'; not '%%d')."""
+    return any(_PATTERN.fullmatch(m.group()) for m in _PERCENT.finditer(path))
 
 
 def frame_path(path: str, number: int) -> str:
-    """``path`` with its frame-number pattern replaced by ``number`` (and '%%' by '%')."""
+    """The file ``path`` names for frame ``number``: its frame-number pattern
+    replaced by ``number``, and '%%' by '%' (as printf does, with or without a
+    pattern)."""
     def replace(match):
         text = match.group()
-        return "%" if text == "%%" else text % number
+        if text == "%%":
+            return "%"
+        return text % number if _PATTERN.fullmatch(text) else text
     return _PERCENT.sub(replace, path)
 
 
@@ -56,24 +63,32 @@ def suffix_message(path: str) -> str:
             f"{' '.join(suffixes)}, or give the format with -f NAME")
 
 
-def destination_problem(path: str, option: str = "-o") -> str | None:
+def destination_problem(path: str, option: str = "-o", patterns_allowed: bool = True) -> str | None:
     """Why ``path`` cannot be written to, as a usage error says it, or None.
 
     Checked before any frame is made: a pattern is well formed (one %d, '%%'
-    for a literal '%'), and the directory exists and takes new files.
+    for a literal '%', as printf reads them; no other conversion), and the
+    directory exists and takes new files. ``patterns_allowed``: whether the
+    path may hold a pattern (-o's may; --summary's is a plain name).
     """
     if not path.strip():
         return f"{option} needs a file name, such as {option} house.stl"
     conversions = [m.group() for m in _PERCENT.finditer(path) if m.group() != "%%"]
-    patterns = [c for c in conversions if c != "%"]
-    if patterns and len(conversions) > len(patterns):
+    if not patterns_allowed:
+        conversions = []
+    patterns = [c for c in conversions if _PATTERN.fullmatch(c)]
+    other = next((c for c in conversions if not _PATTERN.fullmatch(c)), None)
+    if other == "%":
         return (f"{option} {path}: a '%' that is not the frame-number pattern; write '%%' "
                 f"for a '%' in the name")
+    if other is not None:
+        return (f"{option} {path}: '{other}' is not a frame-number pattern; write %d (or "
+                f"%03d for 001, 002, ...) for the frame number, '%%' for a '%' in the name")
     if len(patterns) > 1:
         suffix = os.path.splitext(path)[1] or ".stl"
         return (f"{option} {path}: {len(patterns)} frame-number patterns; a path takes one, such as "
                 f"house-%03d{suffix}")
-    target = frame_path(path, 1) if patterns else path
+    target = frame_path(path, 1) if patterns_allowed else path
     if target.endswith(os.sep) or os.path.isdir(target):
         return f"{option} {path}: is a directory; give a file name such as {os.path.join(path, 'scene.stl')}"
     directory = os.path.dirname(os.path.abspath(target))
@@ -86,13 +101,40 @@ def destination_problem(path: str, option: str = "-o") -> str | None:
     return None
 
 
-def same_file(output: str, scene: str) -> bool:
-    """Whether writing ``output`` would write over the scene file ``scene`` (as
-    cpp and compilers refuse to; a '-o' of a device such as /dev/null never does)."""
+def same_file(output: str, other: str) -> bool:
+    """Whether writing ``output`` (with a frame-number pattern, any of its frames'
+    files) would write the file ``other``: a scene read (as cpp and compilers
+    refuse to write over their input), or another output of the same run; through
+    any path or symbolic link, whether or not the file exists yet. A device such
+    as /dev/null is never the same file."""
     try:
-        return os.path.samefile(output, scene) and not is_device(output)
-    except (OSError, ValueError):  # either absent, unreadable, or a name with a NUL
+        if is_device(output) or is_device(other):
+            return False
+        if has_pattern(output):
+            directory, name = os.path.split(output)
+            if has_pattern(directory):
+                return False  # (a folder per frame: not worked out)
+            there, other_name = os.path.split(os.path.realpath(other))
+            return (os.path.realpath(directory or ".") == there
+                    and _files_of(name).fullmatch(other_name) is not None)
+        output = frame_path(output, 1)
+        if os.path.exists(output) and os.path.exists(other):
+            return os.path.samefile(output, other)
+        return os.path.realpath(output) == os.path.realpath(other)
+    except (OSError, ValueError):  # unreadable, or a name with a NUL
         return False
+
+
+def _files_of(name: str) -> re.Pattern:
+    """The names of the files a frame-number pattern ``name`` writes."""
+    parts, at = [], 0
+    for match in _PERCENT.finditer(name):
+        parts.append(re.escape(name[at:match.start()]))
+        text = match.group()
+        parts.append(r" *-?\d+" if _PATTERN.fullmatch(text) else re.escape(text.replace("%%", "%")))
+        at = match.end()
+    parts.append(re.escape(name[at:]))
+    return re.compile("".join(parts))
 
 
 def is_device(path: str) -> bool:
@@ -324,7 +366,7 @@ def encode_pieces(product, name: str, target: str | None = None, *, number: int 
     piece's."""
     chosen = registry()[name]
     patterned = target is not None and has_pattern(target)
-    if patterned:
+    if target is not None:  # the file's own name ('%%' a '%'), for its companions
         target = frame_path(target, getattr(product, "number", 1) if number is None else number)
     info = WriteInfo(target, options)
     written = chosen.write(product, info)  # its pieces (bytes, or nothing, taken as such)
@@ -417,7 +459,7 @@ class Output:
             # a single file: frames go into it as they come, renamed into place
             # at the end
             if self.stream is None:
-                self.stream = AtomicFile(self.path)
+                self.stream = AtomicFile(frame_path(self.path, number))
                 self.stream.write(self.header)
             try:
                 for piece in pieces_of(data):
@@ -437,12 +479,11 @@ class Output:
             return
         for companion, content in companions.items():
             write_atomically(companion, content)
-        write_atomically(frame_path(self.path, number) if patterned else self.path, data)
+        write_atomically(frame_path(self.path, number), data)
 
     def unmade(self, number: int, location: Location) -> OutputError:
         """The error of a frame its format's writer gave no bytes for: nothing is written."""
-        patterned = bool(self.path and has_pattern(self.path))
-        where = (frame_path(self.path, number) if patterned else self.path) or "standard output"
+        where = frame_path(self.path, number) if self.path else "standard output"
         return OutputError(f"{where} not written: the {self.format} writer gave no bytes for "
                            f"frame {number}", location)
 
@@ -450,7 +491,7 @@ class Output:
         """Why this output cannot take its ``count``-th frame (frame ``number``), or None."""
         if count <= 1 or not self.one_frame or (self.path and has_pattern(self.path)):
             return None
-        where = self.path or "standard output"
+        where = frame_path(self.path, number) if self.path else "standard output"
         stem, suffix = os.path.splitext(self.path or f"scene{self.suffix}")
         return OutputError(
             f"{self.format} output holds one frame, and this is frame {number} for {where}; "
@@ -465,9 +506,10 @@ class Output:
         if self.path is None or not self.streamed or has_pattern(self.path):
             return True
         if self.stream is None:
-            if had_errors and not is_device(self.path):
+            path = frame_path(self.path, 1)
+            if had_errors and not is_device(path):
                 return False  # a device (-o /dev/null) has no old file to keep: as stdout
-            write_atomically(self.path, self.header)
+            write_atomically(path, self.header)
             return True
         stream, self.stream = self.stream, None
         stream.commit()

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 from castor.diagnostics import Location, PreprocessError, Reporter
 from castor.language import macro_calls
+from castor.language.cpp_messages import Blocks, castor_words, printable
 
 MAX_INCLUDE_DEPTH = 200
 
@@ -44,11 +45,6 @@ def shown(name: str) -> str:
     """A file name as pcpp shows it: relative to the current directory when inside it."""
     here = os.path.abspath("") + os.sep
     return name[len(here):] if name.startswith(here) else name
-
-
-def _printable(name: str) -> str:
-    """A file name as a message shows it: control characters (a NUL byte) escaped."""
-    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in name)
 
 
 def escape(name: str) -> str:
@@ -86,8 +82,6 @@ def _spaced(text: str) -> str:
 
 
 _PARAMETER = re.compile(r"[A-Za-z_]\w*(\s*\.\.\.)?|\.\.\.")
-_CONDITION = re.compile(r"Could not evaluate expression due to .* \(passed to evaluator: '(.*)'\)",
-                        re.S)
 _ARGUMENT_COUNT = re.compile(r"Macro (\w+) requires (\d+) arguments but was passed (\d+)")
 
 
@@ -117,6 +111,8 @@ class Hooks:
         self.opened: list[tuple[str, str]] = []  # (path, text) of each file #included
         self.missing: list[str] = []  # paths looked for, not there (for the cache)
         self.quiet = False  # while a use is expanded again to map a position
+        self.defining = False  # while pcpp reads a #define
+        self.blocks = Blocks()  # each file's open #if blocks
 
     def on_error(self, file, line, msg):
         self.return_code += 1
@@ -126,10 +122,8 @@ class Hooks:
             file, line = (getattr(self.lastdirective, "source", None),
                           getattr(self.lastdirective, "lineno", 0))
         location = Location(file, int(line or 0), 1) if file else None  # None: from -D
-        condition = _CONDITION.fullmatch(msg)
-        if condition:  # not Python's exception, in castor's words
-            msg = (f"#if or #elif cannot evaluate '{condition[1]}'; write a condition of "
-                   f"numbers, macros, defined(NAME) and C's operators")
+        self.blocks.ended(file, msg)
+        msg = castor_words(msg, self.defining)
         counted = _ARGUMENT_COUNT.fullmatch(msg)
         if counted and location is not None:
             location, msg = macro_calls.argument_count(self, location, *counted.groups())
@@ -152,7 +146,7 @@ class Hooks:
         import pcpp
 
         location = self._include_location(includepath)
-        name = _printable(includepath)
+        name = printable(includepath)
         if not is_malformed and not includepath.strip():
             message = "#include names no file; write #include \"file.cas\""
         elif "\0" in includepath:
@@ -232,6 +226,7 @@ class Hooks:
 
         self.lastdirective = directive
         self.unreadable = []  # why the files this directive names could not be read
+        self.blocks.follow(directive, _where(directive), self.reporter)
         if directive.value == "define" and toks:
             self._defining(directive, toks)
         if directive.value == "pragma" and not any(tok.value.strip() for tok in toks):
@@ -242,7 +237,7 @@ class Hooks:
             # pcpp itself would fail on these with an IndexError
             self.reporter.error(PreprocessError(f"#{directive.value} needs {what}",
                                                 _where(directive)))
-            if directive.value in ("if", "elif"):
+            if directive.value in ("if", "elif", "ifdef", "ifndef"):  # left out, as cpp's
                 return _false_condition(directive, toks)  # its #endif still matches it
             raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
         if directive.value == "if" and words[:1] == ["!"] and \
@@ -268,7 +263,7 @@ class Hooks:
             self.reporter.warning(f"#warning {text}", location)
         elif directive.value != "pragma":  # unknown pragmas are ignored, as cpp does
             self.reporter.error(PreprocessError(
-                f"unknown preprocessor directive '#{_printable(directive.value)}'", location))
+                f"unknown preprocessor directive '#{printable(directive.value)}'", location))
         return True
 
     def _defining(self, directive, toks):
@@ -297,11 +292,14 @@ class Hooks:
             tokens = self._checked_parameters(tokens)
             if tokens is None:
                 return
+        self.defining = True
         try:
             super().define(tokens)
         except LookupError:  # a definition pcpp did not expect: said, never a crash
             token = tokens[0] if tokens and not isinstance(tokens, str) else None
             self.reporter.error(PreprocessError("malformed #define", _where(token)))
+        finally:
+            self.defining = False
 
     def _checked_parameters(self, tokens: list):
         """The #define's tokens with its empty parameters left out, or None when

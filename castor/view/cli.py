@@ -9,9 +9,6 @@ import sys
 
 from castor.diagnostics import USAGE_ERROR
 
-_PATTERN = re.compile(r"%0?\d*d")
-
-
 class _Parser(argparse.ArgumentParser):
     """A usage error is its one line and a hint, never the usage text (CLI.md)."""
 
@@ -132,7 +129,7 @@ def _pictures(args):
                          f"{args.file.rsplit('.', 1)[-1]} files\n")
         sys.exit(USAGE_ERROR)
     try:
-        handle = open(args.file, encoding="utf-8", errors="replace")
+        handle = open(args.file, encoding="utf-8", errors="surrogateescape")
     except OSError as exc:
         sys.stderr.write(f"castor-view: error: cannot read '{args.file}': "
                          f"{(exc.strerror or str(exc)).lower()}\n")
@@ -174,10 +171,10 @@ def _save(image, path, **options):
 
 
 def run(args) -> int:
-    from castor.formats.output import frame_path
+    from castor.formats.output import frame_path, has_pattern
     from castor.formats.cps import StreamError
 
-    pattern = bool(_PATTERN.search(args.output))
+    pattern = has_pattern(args.output)
     gif = args.output.lower().endswith(".gif")
     pictures = []
     seen = 0
@@ -212,11 +209,13 @@ def run(args) -> int:
     # one camera for the whole animation, so that it does not jump
     camera = _camera(args, np.concatenate([p.points for p in pictures]))
     images = [_image(args, p, camera) for p in pictures]
+    # one file: its name with '%%' a '%', as castor's -o (a .gif named with a pattern, as is)
+    name = args.output if pattern else frame_path(args.output, 1)
     if gif and len(images) > 1:
-        _save(images[0], args.output, save_all=True, append_images=images[1:],
+        _save(images[0], name, save_all=True, append_images=images[1:],
               duration=args.delay, loop=0)
     else:
-        _save(images[0], args.output)
+        _save(images[0], name)
     return 0
 
 

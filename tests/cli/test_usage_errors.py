@@ -10,7 +10,7 @@ CUBE = "> !cu(1, 1, 1);\n"
 
 @pytest.mark.parametrize("args, what", [
     (["-o", "nodir/x.glb"], "cannot write 'nodir/x.glb': the directory 'nodir' does not exist"),
-    (["--set", "H=abc"], "--set H=abc: 'abc' is not a parameter"),
+    (["--set", "H=abc"], "--set H=abc: 'abc' is neither a number nor a parameter"),
     (["-o", "x.xyz"], "cannot tell the format of 'x.xyz' from its extension"),
     (["--frob"], "unrecognized arguments: --frob"),
     (["--sumary", "q.json"], "unrecognized arguments: --sumary (did you mean --summary?)"),
