@@ -181,8 +181,9 @@ def output_clash(args, path: str, option: str) -> str | None:
 
     if any(same_file(path, scene) for scene in args.files if scene != "-"):
         return f"{option} {path}: is a scene castor reads; give the output another name"
+    register = getattr(args.sheets, "path", args.sheets)  # (read by now: its path)
     for read, what in ((args.parameter_file, "the parameter file castor reads (-p)"),
-                       (args.sheets, "the drawing register castor reads (--sheets)")):
+                       (register, "the drawing register castor reads (--sheets)")):
         if read is not None and same_file(path, read):
             return f"{option} {path}: is {what}; give the output another name"
     if option == "--summary" and args.output not in (None, "-") and (

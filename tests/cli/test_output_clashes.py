@@ -69,3 +69,18 @@ def test_different_files_and_devices_are_still_written(tmp_path):
     assert sorted(os.listdir(tmp_path)) == ["two.cas", "x-1.glb", "x-2.glb", "x.json"]
     status, out, err = run("--summary", "/dev/null", "-o", "/dev/null", "two.cas", cwd=tmp_path)
     assert status == 0, err
+
+
+def test_the_register_is_no_output_and_a_set_is_still_written(tmp_path):
+    # the register is read before the outputs are checked: its path, not the
+    # register read from it, is what an output may not be (an internal error once)
+    (tmp_path / "two.cas").write_text("a = !cu(1, 1, 1);\n> a;\n")  # one frame
+    (tmp_path / "set.toml").write_text('[project]\ntitle = "T"\nscale = "1:50"\n\n'
+                                       '[[sheet]]\nnumber = "A-1"\ndrawing = "plan z=0.5"\n')
+    status, _, err = run("--sheets", "set.toml", "-f", "pdf", "-o", "set.toml", "two.cas",
+                         cwd=tmp_path)
+    assert status == 2 and err.startswith(
+        "castor: error: -o set.toml: is the drawing register castor reads (--sheets)"), err
+    status, _, err = run("--sheets", "set.toml", "-o", "set.pdf", "two.cas", cwd=tmp_path)
+    assert status == 0, err
+    assert (tmp_path / "set.pdf").read_bytes().startswith(b"%PDF")
