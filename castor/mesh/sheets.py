@@ -12,6 +12,7 @@ import math
 import numpy as np
 
 from castor.mesh.arrays import cross, digest, largest_of_each, norm, plane_sign
+from castor.mesh.broadphase import meeting_boxes
 from castor.mesh.caches import PROCESS
 from castor.mesh.seams import keys_in, welded_seams, without_t_junctions
 
@@ -504,10 +505,7 @@ class _Cancels:
         if up and down:
             eps = resolver.eps
             box = np.array([self.boxes[k] for k in range(self.count)]).reshape(-1, 4)
-            bu, bd = box[up], box[down]
-            meet = ((bu[:, None, 0] < bd[None, :, 2] - eps) & (bd[None, :, 0] < bu[:, None, 2] - eps)
-                    & (bu[:, None, 1] < bd[None, :, 3] - eps) & (bd[None, :, 1] < bu[:, None, 3] - eps))
-            for a, b in zip(*np.nonzero(meet)):
+            for a, b in meeting_boxes(box[up], box[down], eps).tolist():
                 self._pair(up[a], down[b])
         heapq.heapify(self.heap)
 
