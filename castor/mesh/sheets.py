@@ -254,11 +254,14 @@ class _Resolver:
                 cancels.add([q, a[1], a[2]])
             for q in cut_b:
                 cancels.add([q, b[1], b[2]])
-        pieces = list(cancels.pieces.values())
+        # each changed triangle's pieces, in the order they were made (one
+        # pass over the pieces, not one per triangle), back to its own turn
+        kept: dict[int, list] = {i: [] for i in changed_triangles}
+        for piece, triangle, facing in cancels.pieces.values():
+            if triangle in kept:
+                kept[triangle].append([v for v, _ in (piece if facing else piece[::-1])])
         for i in changed_triangles:
-            kept = [(piece, facing) for piece, triangle, facing in pieces if triangle == i]
-            # back to the triangle's own turn
-            replaced[i] = [[v for v, _ in (piece if facing else piece[::-1])] for piece, facing in kept]
+            replaced[i] = kept[i]
 
     def _xy(self, v):
         """The point's coordinates in the plane's frame, computed once per plane."""
