@@ -4,6 +4,7 @@ at ``1e-9`` more than a minute).
 
     python benchmarks/fine_tolerance.py            # the car: polygons, s, peak MB
     python benchmarks/fine_tolerance.py --engine   # manifold3d alone
+    PYTHONPATH=/other/checkout python benchmarks/fine_tolerance.py   # another castor
 
 Each run is a whole process, one at a time, BENCH_RUNS times (2 by default):
 its polygons (``--stats``), wall and CPU seconds, and peak memory (the
@@ -35,7 +36,10 @@ def car(tolerance: str) -> tuple[int, float, float, float]:
     """Polygons, wall s, CPU s and peak MB of one ``castor --stats`` of the car."""
     command = [*castor_command(), "--stats", "-t", tolerance, CAR]
     started = time.perf_counter()
-    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    # run in the examples' folder, so that PYTHONPATH says which castor runs
+    # (``python -m`` puts the current folder first)
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                               cwd=os.path.dirname(CAR))
     stderr = process.stderr.read().decode()
     _, status, usage = os.wait4(process.pid, 0)  # this process's own CPU time and peak
     wall = time.perf_counter() - started
