@@ -369,7 +369,10 @@ def settings_of(args, overrides: dict[str, float]):
     return source, reading, evaluation, frame, how
 
 
-def main(argv=None) -> int:
+def main(argv=None, *, own_process: bool = False) -> int:
+    """castor's command line; ``own_process``: castor's console script, whose
+    process is its own (a run that makes its frames here is made in a child
+    that it waits for, castor.supervisor), not a caller's."""
     # numpy's OpenBLAS starts a thread per core when numpy is imported, and they
     # spin-wait: a run of 64 houses spent a sixth of its CPU time there. castor's
     # products of matrices are (N, 3) by (3, 3), too small to gain from threads,
@@ -380,7 +383,7 @@ def main(argv=None) -> int:
     parser, args = _arguments(sys.argv[1:] if argv is None else argv)
     reporter = Reporter(quiet=args.quiet)
     from castor.pipeline import RECURSION_LIMIT, STACK_BYTES
-    from castor.run import run
+    from castor.run import frames_here, run
 
     source, reading, evaluation, frame, how = settings_of(args, _overrides(parser, args.sets))
     # A scene graph is many long-lived objects and few cycles: collect rarely (the
@@ -420,12 +423,18 @@ def main(argv=None) -> int:
     if args.serve:
         return _serve(args, source, reading, evaluation)
     threading.stack_size(STACK_BYTES)
+    if own_process and frames_here(how):
+        from castor.supervisor import supervise
+
+        if supervise():  # in the child: its parent hears Ctrl-C and SIGTERM
+            return _status(_on_thread(work, signals=False))
     return _status(_on_thread(work))
 
 
-def _on_thread(work) -> object:
+def _on_thread(work, signals: bool = True) -> object:
     """What ``work`` (the run) gives, run on a thread of its own while this one
-    waits for Ctrl-C or SIGTERM, which end every process at once."""
+    waits for Ctrl-C or SIGTERM, which end every process at once (``signals``:
+    heard here)."""
     result: list = []
 
     def target():
@@ -438,7 +447,7 @@ def _on_thread(work) -> object:
             result.append(exc)
 
     thread = threading.Thread(target=target, name="castor", daemon=True)
-    stopped_by = _stop_on_signals()
+    stopped_by = _stop_on_signals() if signals else [0]
     thread.start()
     try:
         while thread.is_alive():
@@ -556,7 +565,7 @@ def entry() -> None:
     """
     if sys.stdout is None:  # started with standard output closed ('>&-')
         sys.stdout = ClosedStdout()
-    status = main()
+    status = main(own_process=True)
     from castor.run import release_processes
 
     release_processes()  # else the resource tracker may warn of leaked semaphores

@@ -145,9 +145,18 @@ def worker_started() -> None:
     ends when its parent, the forkserver, does (it ends with castor), even if
     castor was killed outright."""
     import signal
-    import sys
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    end_with_parent()
+
+
+def end_with_parent() -> None:
+    """This process is killed when its parent ends (Linux's PR_SET_PDEATHSIG):
+    a worker when the forkserver does, castor's run when the process that
+    waits for it does (castor.supervisor)."""
+    import signal
+    import sys
+
     if sys.platform.startswith("linux"):
         try:
             import ctypes

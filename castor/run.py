@@ -266,6 +266,14 @@ def _outcome(future) -> Result:
         return result
 
 
+def frames_here(how: RunSettings) -> bool:
+    """Whether the run makes its frames in this process (--jobs 1, no --scheduler):
+    the engine then holds the interpreter for as long as a boolean takes."""
+    if how.check or how.scheduler is not None:
+        return False
+    return (how.jobs or os.cpu_count() or 1) <= 1
+
+
 def executor_for(jobs: int, scheduler: str | None):
     """The executor for --jobs / --scheduler (None: make frames in this process)."""
     if scheduler is not None:

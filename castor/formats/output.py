@@ -145,12 +145,39 @@ def pieces_of(data: Data) -> Iterator[bytes]:
 # files being written beside their final names, and spooled frames not yet
 # written: what an interrupted run removes (castor.cli, on Ctrl-C)
 _temporaries: set[str] = set()
+# where their names are told as well (castor.supervisor: the process that waits
+# for this one removes them when it kills it); empty: nowhere
+_told: list[int] = []
+
+
+def tell_temporaries(fd: int) -> None:
+    """Tell the name of every temporary file, before it is made, through ``fd``
+    (``+NAME\\0``), and again when it is renamed into place or removed (``-NAME\\0``)."""
+    _told[:] = [fd]
+
+
+def _own(path: str) -> None:
+    _temporaries.add(path)
+    _tell(b"+", path)
+
+
+def _disown(path: str) -> None:
+    _temporaries.discard(path)
+    _tell(b"-", path)
+
+
+def _tell(sign: bytes, path: str) -> None:
+    for fd in _told:
+        try:
+            os.write(fd, sign + os.fsencode(path) + b"\0")  # the same working directory
+        except OSError:  # the process that waits has gone: this one goes with it
+            pass
 
 
 def track(data: Data | None) -> None:
     """Count a spooled file among the temporaries until it is written."""
     if isinstance(data, Spooled):
-        _temporaries.add(data.path)
+        _own(data.path)
 
 
 def remove_temporaries() -> None:
@@ -166,11 +193,11 @@ def remove_temporaries() -> None:
 def discard(data: Data | None) -> None:
     """Remove a spooled file that will not be written anywhere."""
     if isinstance(data, Spooled):
-        _temporaries.discard(data.path)
         try:
             os.unlink(data.path)
         except OSError:
             pass
+        _disown(data.path)
 
 
 def _temporary_in(directory: str) -> tuple[int, str]:
@@ -181,10 +208,15 @@ def _temporary_in(directory: str) -> tuple[int, str]:
         | getattr(os, "O_CLOEXEC", 0)
     for _ in range(100):
         path = os.path.join(directory, f".castor-{os.urandom(6).hex()}.tmp")
+        _own(path)  # counted before it exists: removed if the run is stopped meanwhile
         try:
             return os.open(path, flags, 0o600), path
         except FileExistsError:
+            _disown(path)  # another's
             continue
+        except OSError:
+            _disown(path)
+            raise
     raise FileExistsError(f"no new temporary file name in {directory}")
 
 
@@ -205,7 +237,6 @@ class AtomicFile:
                 return
             directory = os.path.dirname(os.path.abspath(path))
             fd, self.temporary = _temporary_in(directory)
-            _temporaries.add(self.temporary)
             self.handle = os.fdopen(fd, "wb")
         except OSError as exc:
             raise Unwritable(f"cannot write '{path}': {_reason(exc)}") from None
@@ -223,7 +254,7 @@ class AtomicFile:
             if self.temporary is not None:
                 os.chmod(self.temporary, _file_mode())  # mkstemp makes it private
                 os.replace(self.temporary, self.path)
-                _temporaries.discard(self.temporary)
+                _disown(self.temporary)
                 self.temporary = None
         except OSError as exc:
             self.discard()
@@ -236,11 +267,11 @@ class AtomicFile:
         except OSError:
             pass
         if self.temporary is not None:
-            _temporaries.discard(self.temporary)
             try:
                 os.unlink(self.temporary)
             except OSError:
                 pass
+            _disown(self.temporary)
             self.temporary = None
 
 
@@ -256,7 +287,7 @@ def write_atomically(path: str, data: Data) -> None:
         try:
             os.chmod(data.path, _file_mode())
             os.replace(data.path, path)
-            _temporaries.discard(data.path)
+            _disown(data.path)
             return
         except OSError:
             pass  # copied below

@@ -19,7 +19,7 @@ STAGES = {
     "castor.pipeline": 6, "castor.run": 6, "castor.failures": 6, "castor.editing": 6,
     # the command lines: castor.options parses their text into castor.settings' records
     "castor.cli": 7, "castor.options": 7, "castor.serve": 7, "castor.view": 7,
-    "castor.__main__": 7, "castor.lsp": 7,
+    "castor.__main__": 7, "castor.lsp": 7, "castor.supervisor": 7,
     "castor.analysis": 7,
 }
 
