@@ -91,3 +91,62 @@ def overlap_groups(boxes: np.ndarray) -> list[list[int]]:
     order = np.argsort(label, kind="stable")
     bounds = np.flatnonzero(np.diff(label[order])) + 1
     return [group.tolist() for group in np.split(order, bounds)]
+
+
+def meeting_boxes(first: np.ndarray, second: np.ndarray, eps: float,
+                  chunk: int = 1 << 21) -> np.ndarray:
+    """The pairs (i, j), in order, of 2D boxes (rows x0, y0, x1, y1) first[i]
+    and second[j] whose interiors overlap by more than eps along both axes:
+    ``a0 < b1 - eps``, ``b0 < a1 - eps`` along x and along y, exactly as a
+    test of every pair would find them.
+
+    The candidates are the pairs whose intervals meet along one axis (the
+    one where fewer do), found by sorting: the cost is about the number of
+    boxes and of candidates, not their product (a plane of 14,000 triangles
+    against 7,000, where none meets, was 98 million tests and 400 MB)."""
+    none = np.zeros((0, 2), np.int64)
+    if not len(first) or not len(second):
+        return none
+    best = None
+    for axis in (0, 1):
+        ranges = _meeting_along(first[:, axis], first[:, axis + 2] - eps,
+                                second[:, axis], second[:, axis + 2] - eps)
+        count = sum(int(np.maximum(end - start, 0).sum()) for _, start, end, _, _ in ranges)
+        if best is None or count < best[0]:
+            best = (count, ranges)
+    a, b = first, second
+    found = []
+    for owner, start, end, order, owner_is_first in best[1]:
+        sizes = np.maximum(end - start, 0)
+        ends = np.cumsum(sizes)
+        begin = 0
+        while begin < len(owner):  # at most about ``chunk`` candidates at a time
+            stop = max(int(np.searchsorted(ends, (ends[begin] - sizes[begin]) + chunk, "right")),
+                       begin + 1)
+            n = sizes[begin:stop]
+            rows = np.repeat(owner[begin:stop], n)
+            offsets = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+            others = order[np.repeat(start[begin:stop], n) + offsets]
+            i, j = (rows, others) if owner_is_first else (others, rows)
+            meet = ((a[i, 0] < b[j, 2] - eps) & (b[j, 0] < a[i, 2] - eps)
+                    & (a[i, 1] < b[j, 3] - eps) & (b[j, 1] < a[i, 3] - eps))
+            found.append(np.stack([i[meet], j[meet]], axis=1))
+            begin = stop
+    pairs = np.concatenate(found) if found else none
+    return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
+
+
+def _meeting_along(low_a, high_a, low_b, high_b) -> list:
+    """The pairs whose intervals meet along one axis (``low_a < high_b`` and
+    ``low_b < high_a``), as ranges of a sorted order: those where b starts
+    within a (low_a <= low_b < high_a), then those where a starts within b
+    (low_b < low_a < high_b). Each range: (owners, starts, ends, the sorted
+    order the range indexes, whether the owners are of the first boxes)."""
+    order_b = np.argsort(low_b, kind="stable")
+    sorted_b = low_b[order_b]
+    order_a = np.argsort(low_a, kind="stable")
+    sorted_a = low_a[order_a]
+    return [(np.arange(len(low_a)), np.searchsorted(sorted_b, low_a, "left"),
+             np.searchsorted(sorted_b, high_a, "left"), order_b, True),
+            (np.arange(len(low_b)), np.searchsorted(sorted_a, low_b, "right"),
+             np.searchsorted(sorted_a, high_b, "left"), order_a, False)]

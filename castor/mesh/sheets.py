@@ -12,6 +12,7 @@ import math
 import numpy as np
 
 from castor.mesh.arrays import cross, digest, largest_of_each, norm, plane_sign
+from castor.mesh.broadphase import meeting_boxes
 from castor.mesh.caches import PROCESS
 from castor.mesh.seams import keys_in, welded_seams, without_t_junctions
 
@@ -253,11 +254,14 @@ class _Resolver:
                 cancels.add([q, a[1], a[2]])
             for q in cut_b:
                 cancels.add([q, b[1], b[2]])
-        pieces = list(cancels.pieces.values())
+        # each changed triangle's pieces, in the order they were made (one
+        # pass over the pieces, not one per triangle), back to its own turn
+        kept: dict[int, list] = {i: [] for i in changed_triangles}
+        for piece, triangle, facing in cancels.pieces.values():
+            if triangle in kept:
+                kept[triangle].append([v for v, _ in (piece if facing else piece[::-1])])
         for i in changed_triangles:
-            kept = [(piece, facing) for piece, triangle, facing in pieces if triangle == i]
-            # back to the triangle's own turn
-            replaced[i] = [[v for v, _ in (piece if facing else piece[::-1])] for piece, facing in kept]
+            replaced[i] = kept[i]
 
     def _xy(self, v):
         """The point's coordinates in the plane's frame, computed once per plane."""
@@ -504,10 +508,7 @@ class _Cancels:
         if up and down:
             eps = resolver.eps
             box = np.array([self.boxes[k] for k in range(self.count)]).reshape(-1, 4)
-            bu, bd = box[up], box[down]
-            meet = ((bu[:, None, 0] < bd[None, :, 2] - eps) & (bd[None, :, 0] < bu[:, None, 2] - eps)
-                    & (bu[:, None, 1] < bd[None, :, 3] - eps) & (bd[None, :, 1] < bu[:, None, 3] - eps))
-            for a, b in zip(*np.nonzero(meet)):
+            for a, b in meeting_boxes(box[up], box[down], eps).tolist():
                 self._pair(up[a], down[b])
         heapq.heapify(self.heap)
 
