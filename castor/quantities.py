@@ -132,7 +132,7 @@ def summary_record(frame: Frame, frame_tree=None, facetizer=None,
     """One frame of the --summary document (OUTPUT.md, "Quantities"); with the
     frame's tree and the facetizer that made it, and classes in the scene, the
     totals per class and storey, the openings and the spaces too (``warn``
-    hears of a door or window that cuts nothing)."""
+    hears of a door or window that cuts nothing, of storeys made one)."""
     objects = []
     for f in frame_figures(frame):
         objects.append({
@@ -147,7 +147,7 @@ def summary_record(frame: Frame, frame_tree=None, facetizer=None,
         })
     record = {"number": frame.number, "where": frame.where, "objects": objects}
     if frame_tree is not None and facetizer is not None and frame_tree.classes is not None:
-        record.update(Takeoff(frame_tree, facetizer).record(warn))
+        record.update(Takeoff(frame_tree, facetizer, warn=warn).record(warn))
     return record
 
 
@@ -180,6 +180,33 @@ class Summary:
 # --- the take-off by class and storey (LANGUAGE.md §11)
 
 LEVEL_SLACK = 0.01  # levels this close are one; an element this far below a level is on it
+
+
+def one_per_level(storeys: list[tuple[str, float]]) -> tuple[list, list]:
+    """LANGUAGE.md §11's storeys at one level: ``storeys`` ((name, level)) from
+    the lowest (of those at the same level, in the order given), each within
+    LEVEL_SLACK of the storey kept below it made one with that storey, which
+    keeps its name and level. (the storeys kept, the (kept, dropped) pairs)."""
+    kept: list[tuple[str, float]] = []
+    merged: list[tuple[tuple[str, float], tuple[str, float]]] = []
+    for storey in sorted(storeys, key=lambda s: s[1]):
+        if kept and storey[1] - kept[-1][1] <= LEVEL_SLACK:
+            merged.append((kept[-1], storey))
+        else:
+            kept.append(storey)
+    return kept, merged
+
+
+def storeys_made_one(kept: tuple[str, float], dropped: tuple[str, float]) -> str:
+    """The warning for two declared storeys one_per_level made one: both
+    levels, unless they read the same."""
+    (name, level), (other, other_level) = kept, dropped
+    if _g(level) == _g(other_level):
+        where = f"'{name}' and '{other}' are both at level {_g(level)}"
+    else:
+        where = (f"'{name}' (level {_g(level)}) and '{other}' (level {_g(other_level)}) are "
+                 f"within {_g(LEVEL_SLACK)} of each other")
+    return f"storeys {where}: the model has one storey there, '{name}'"
 
 
 class Placed(NamedTuple):
@@ -225,10 +252,13 @@ class Takeoff:
     solids out are new work). What the take-off, the drawings and the IFC
     handover read of a frame's classes."""
 
-    def __init__(self, frame_tree, facetizer, polygons: bool = False):
+    def __init__(self, frame_tree, facetizer, polygons: bool = False,
+                 warn: Callable[[str], None] | None = None):
         from castor.csg.elements import Boxes, find
 
         self.boxes = Boxes()
+        # hears of what the take-off decides for the scene (storeys made one)
+        self.warn = warn or (lambda message: None)
         self.frame_tree = frame_tree
         self.facetizer = facetizer
         # the solids as polygons (the BIM model's bodies), else as triangles
@@ -362,7 +392,9 @@ class Takeoff:
         return self._made(("space", index), tree.Use(space.matrix, "", space.shared))
 
     def storeys(self) -> list[tuple[str, float]]:
-        """(name, floor level) from the lowest: LANGUAGE.md §11's rule."""
+        """(name, floor level) from the lowest: LANGUAGE.md §11's rule, storeys
+        within LEVEL_SLACK of one another made one (one_per_level). What the
+        take-off, the drawings and the IFC all read: none keeps its own."""
         if self._storeys is None:
             self._storeys = self._find_storeys()
         return self._storeys
@@ -372,17 +404,17 @@ class Takeoff:
         values = dict(self.frame_tree.parameters)
         found = [(m.name, float(values[m.parameter])) for m in declared if m.parameter in values]
         if found:
-            return sorted(found, key=lambda s: s[1])
+            kept, merged = one_per_level(found)
+            for below, above in merged:
+                self.warn(storeys_made_one(below, above))
+            return kept
         self._all_elements()
-        tops = sorted(f.bbox[1][2] for f in (self.figures(e) for e in self.elements
-                                             if _is_floor(e)) if f.bbox is not None)
-        levels: list[float] = []
-        for top in tops:
-            if not levels or top - levels[-1] > LEVEL_SLACK:
-                levels.append(top)
+        tops = [f.bbox[1][2] for f in (self.figures(e) for e in self.elements
+                                       if _is_floor(e)) if f.bbox is not None]
+        levels, _ = one_per_level([("", top) for top in tops])
         if not levels:
             return [("Level 0", 0.0)]
-        return [(f"Level {k}", level) for k, level in enumerate(levels)]
+        return [(f"Level {k}", level) for k, (_, level) in enumerate(levels)]
 
     def storey_at(self, height: float) -> str:
         """The highest storey whose level is at most ``height`` (+ the slack), or

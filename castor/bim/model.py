@@ -4,10 +4,11 @@ Made once per frame by the BIM output kind (castor.formats.kinds) from the
 evaluated tree, its polygons and the facetizer that made them: the elements
 and openings of LANGUAGE.md §11 (castor.csg.elements) measured by the
 take-off (castor.quantities.Takeoff), each element's own solid as polygons.
-Where the scene leaves the model a choice (two storeys at one level, a door
-cut from two walls, an opening in an unclassed object, a room below every
-storey, a class the Reference View leaves out), the model makes the sensible
-one and says so through ``warn``.
+Where the scene leaves the model a choice (a door cut from two walls, an
+opening in an unclassed object, a room below every storey, a class the
+Reference View leaves out), the model makes the sensible one and says so
+through ``warn``; two storeys at one level are made one by the take-off, for
+every output alike.
 """
 
 from __future__ import annotations
@@ -87,7 +88,7 @@ def build(tree, frame, facetizer, title: str | None = None, classes: dict | None
     ``classes`` the --ifc-class choices, {object name: IFC class}."""
     from castor.quantities import Takeoff
 
-    takeoff = Takeoff(tree, facetizer, polygons=True)
+    takeoff = Takeoff(tree, facetizer, polygons=True, warn=warn)
     maker = _Maker(tree, frame, takeoff, classes or {}, warn)
     storeys = maker.storeys()
     elements, placed = maker.elements()
@@ -133,19 +134,10 @@ class _Maker:
         return base if n == 1 else f"{base}\0{n}"
 
     def storeys(self) -> tuple[Storey, ...]:
-        """The take-off's storeys, those at one level (within its slack) made one:
-        the first declared names it."""
-        from castor.quantities import LEVEL_SLACK
-
-        merged: list[Storey] = []
-        for name, level in self.takeoff.storeys():
-            if merged and level - merged[-1].level <= LEVEL_SLACK:
-                self.warn(f"storeys '{merged[-1].name}' and '{name}' are both at level "
-                          f"{level:g}: the model has one storey there, '{merged[-1].name}'")
-            else:
-                merged.append(Storey(name, level))
-            self.storey_of[name] = len(merged) - 1
-        self.levels = tuple(merged)
+        """The take-off's storeys (those at one level made one already, and said)."""
+        found = self.takeoff.storeys()
+        self.storey_of = {name: k for k, (name, _) in enumerate(found)}
+        self.levels = tuple(Storey(name, level) for name, level in found)
         return self.levels
 
     def ifc_class(self, element, name: str) -> tuple[str, str | None]:

@@ -230,17 +230,17 @@ class Boxes:
             from castor.primitives import PRIMITIVES
 
             low, high = PRIMITIVES[node.kind].box(node.shape)
-            return _moved(node.matrix, (tuple(low), tuple(high)))
+            return tree.placed_box(node.matrix, low, high)
         if kind is tree.Use:
             key = node.shared.key
             if key not in self.memo:
                 child = node.shared.child
                 self.memo[key] = None if child is None else self.of(child)
             box = self.memo[key]
-            return None if box is None else _moved(node.matrix, box)
+            return None if box is None else tree.placed_box(node.matrix, *box)
         if kind is tree.Smooth:
             box = self.of(node.operand)
-            return None if box is None else _moved(node.matrix, box)
+            return None if box is None else tree.placed_box(node.matrix, *box)
         boxes = [self.of(o) for o in node.operands]
         if node.op == "D":
             return boxes[0]
@@ -260,22 +260,6 @@ class Boxes:
         box_a, box_b = self.of(a), self.of(b)
         return box_a is not None and box_b is not None and all(
             box_a[0][i] <= box_b[1][i] and box_b[0][i] <= box_a[1][i] for i in range(3))
-
-
-def _moved(matrix: tree.Matrix, box):
-    """The box that holds ``box`` moved by ``matrix``."""
-    if matrix == tree.IDENTITY:
-        return box
-    low, high = box
-    out_low, out_high = [], []
-    for row in range(3):
-        a, b, c, t = matrix[4 * row: 4 * row + 4]
-        centre = (a * (low[0] + high[0]) + b * (low[1] + high[1]) + c * (low[2] + high[2])) / 2 + t
-        reach = (abs(a) * (high[0] - low[0]) + abs(b) * (high[1] - low[1])
-                 + abs(c) * (high[2] - low[2])) / 2
-        out_low.append(centre - reach)
-        out_high.append(centre + reach)
-    return tuple(out_low), tuple(out_high)
 
 
 def _reach(node, address, target, boxes: Boxes):

@@ -144,13 +144,15 @@ class _Judge:
         if kind is tree.Primitive:
             declared = PRIMITIVES[node.kind]
             matrix = tree.compose(outer, node.matrix)
-            box = _placed(declared.box(node.shape), matrix)
+            box = tree.placed_box(matrix, *declared.box(node.shape))
             if declared.curved:
                 box = _widened(box, node.tolerance * _stretch(outer))
             return box
         if kind is tree.Use:
             local = self._shared_box(node.shared)
-            return None if local is None else _placed(local, tree.compose(outer, node.matrix))
+            if local is None:
+                return None
+            return tree.placed_box(tree.compose(outer, node.matrix), *local)
         if kind is tree.Smooth:  # inside the convex hull of its control mesh
             return self.box(node.operand, tree.compose(outer, node.matrix))
         if kind is not tree.Boolean:
@@ -223,12 +225,6 @@ def _apply(m: tree.Matrix, p) -> tuple[float, float, float]:
     x, y, z = p
     return (m[0] * x + m[1] * y + m[2] * z + m[3], m[4] * x + m[5] * y + m[6] * z + m[7],
             m[8] * x + m[9] * y + m[10] * z + m[11])
-
-
-def _placed(box: Box, m: tree.Matrix) -> Box:
-    points = [_apply(m, p) for p in _corners(box)]
-    return (tuple(min(p[i] for p in points) for i in range(3)),
-            tuple(max(p[i] for p in points) for i in range(3)))
 
 
 def _widened(box: Box, margin: float) -> Box:

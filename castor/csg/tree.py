@@ -232,6 +232,26 @@ def compose(a: Matrix, b: Matrix) -> Matrix:
             a8 * b2 + a9 * b6 + a10 * b10, a8 * b3 + a9 * b7 + a10 * b11 + a11)
 
 
+def placed_box(matrix: Matrix, low, high) -> tuple[tuple, tuple]:
+    """The smallest box holding the box (``low``, ``high``) moved by the affine
+    ``matrix``: per row, the translation plus each term's smaller or larger end."""
+    if matrix is IDENTITY or matrix == IDENTITY:
+        return tuple(low), tuple(high)
+    lows, highs = [], []
+    for row in range(0, 12, 4):
+        smallest = largest = matrix[row + 3]
+        for axis in range(3):
+            h = matrix[row + axis]
+            a, b = h * low[axis], h * high[axis]
+            if a > b:
+                a, b = b, a
+            smallest += a
+            largest += b
+        lows.append(smallest)
+        highs.append(largest)
+    return tuple(lows), tuple(highs)
+
+
 def _blake2b():
     """A 16-byte BLAKE2b: hashlib's own module, without hashlib's OpenSSL set-up
     (about 12 ms of a run whose scene names an object)."""

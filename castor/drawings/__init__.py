@@ -67,7 +67,7 @@ def sheet_of(tree, frame, settings, title: str | None = None, warn=None, facetiz
         from castor.drawings.classes import classify
         from castor.quantities import Takeoff
 
-        classify(result, Takeoff(tree, facetizer), warn)
+        classify(result, Takeoff(tree, facetizer, warn=warn), warn)
     try:
         return layout(result, settings.sheet, title_of(tree, title), tree.where, warn)
     except DoesNotFit as exc:
@@ -108,7 +108,7 @@ def set_of(tree, frame, settings, title: str | None = None, warn=None, facetizer
     if facetizer is not None and tree.classes is not None:
         from castor.quantities import Takeoff
 
-        takeoff = Takeoff(tree, facetizer)  # shared by the sheets: solids made once
+        takeoff = Takeoff(tree, facetizer, warn=warn)  # shared by the sheets: solids made once
     drawings = []
     for entry in register.sheets:
         drawing = draw(frame, entry.section, entry.view, entry.scale)

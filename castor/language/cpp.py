@@ -29,6 +29,17 @@ _NEEDS = {"define": "a macro name", "undef": "a macro name", "ifdef": "a macro n
           "include": "a file name, as in #include \"walls.cas\""}
 
 
+def _false_condition(directive, toks: list) -> bool:
+    """An #if or #elif whose condition cannot be read (said already) read as
+    false, in place: its #else and #endif still match it."""
+    import copy
+
+    zero = copy.copy(directive)
+    zero.type, zero.value = "CPP_INTEGER", "0"
+    toks[:] = [zero]
+    return True
+
+
 def shown(name: str) -> str:
     """A file name as pcpp shows it: relative to the current directory when inside it."""
     here = os.path.abspath("") + os.sep
@@ -226,11 +237,23 @@ class Hooks:
         if directive.value == "pragma" and not any(tok.value.strip() for tok in toks):
             raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)  # as cpp: nothing to do
         what = _NEEDS.get(directive.value)
-        if what and not any(tok.value.strip() for tok in toks):
+        words = [tok.value for tok in toks if tok.value.strip()]
+        if what and not words:
             # pcpp itself would fail on these with an IndexError
             self.reporter.error(PreprocessError(f"#{directive.value} needs {what}",
                                                 _where(directive)))
+            if directive.value in ("if", "elif"):
+                return _false_condition(directive, toks)  # its #endif still matches it
             raise pcpp.OutputDirective(pcpp.Action.IgnoreAndRemove)
+        if directive.value == "if" and words[:1] == ["!"] and \
+                (len(words) == 1 or words[1] == "defined" and len(words) <= 2 + (words[2:3] == ["("])):
+            # a '!' with nothing after it (pcpp reads the first #if of a file
+            # for an include guard, and fails on it with an IndexError)
+            self.reporter.error(PreprocessError(
+                f"#if or #elif cannot evaluate '{''.join(t.value for t in toks).strip()}'; "
+                f"write a condition of "
+                f"numbers, macros, defined(NAME) and C's operators", _where(directive)))
+            return _false_condition(directive, toks)
         return True
 
     def on_directive_unknown(self, directive, toks, ifpassthru, precedingtoks):

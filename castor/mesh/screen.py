@@ -78,7 +78,7 @@ def _box(node, matrix, known: dict):
     kind = type(node)
     if kind is tree.Primitive:
         low, high = PRIMITIVES[node.kind].box(node.shape)
-        return _placed_box(tree.compose(matrix, node.matrix), low, high)
+        return tree.placed_box(tree.compose(matrix, node.matrix), low, high)
     if kind is tree.Boolean:
         boxes = [_box(o, matrix, known) for o in node.operands]
         if node.op == "D":
@@ -93,24 +93,7 @@ def _box(node, matrix, known: dict):
         known[shared.key] = (None if shared.child is None
                              else _box(shared.child, tree.IDENTITY, known))
     own = known[shared.key]
-    return None if own is None else _placed_box(tree.compose(matrix, node.matrix), *own)
-
-
-def _placed_box(matrix, low, high) -> tuple[tuple, tuple]:
-    """The box of the box (low, high) moved by the affine ``matrix``."""
-    lows, highs = [], []
-    for row in range(0, 12, 4):
-        smallest = largest = matrix[row + 3]
-        for axis in range(3):
-            h = matrix[row + axis]
-            a, b = h * low[axis], h * high[axis]
-            if a > b:
-                a, b = b, a
-            smallest += a
-            largest += b
-        lows.append(smallest)
-        highs.append(largest)
-    return tuple(lows), tuple(highs)
+    return None if own is None else tree.placed_box(tree.compose(matrix, node.matrix), *own)
 
 
 def _union(boxes):
@@ -243,7 +226,7 @@ class Screen:
 
     def _smooth(self, node: tree.Smooth, matrix) -> tree.Smooth:
         placed = tree.compose(matrix, node.matrix)
-        boxes = [_placed_box(m, *PRIMITIVES[leaf.kind].box(leaf.shape))
+        boxes = [tree.placed_box(m, *PRIMITIVES[leaf.kind].box(leaf.shape))
                  for leaf, m, _ in tree.leaves(node.operand)]
         own = _union(boxes)
         if own is None:

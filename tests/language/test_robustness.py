@@ -23,6 +23,13 @@ from tests.support.cli import OUTSIDE, run_here
 sys.setrecursionlimit(RECURSION_LIMIT)
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def fuzzed(cases: int) -> int:
+    """How many cases a fuzz test runs: a few hundred in the suite (it must
+    stay within its eight minutes); CASTOR_FUZZ_EXAMPLES=100000 runs every one long."""
+    return int(os.environ.get("CASTOR_FUZZ_EXAMPLES", cases))
+
 SEED_SCENES = [
     "a = !cu(1, 0, 0);\nX = 2 * PI;\n> @t(X, 0, 0) @rz(45) a;\n",
     "roue = @h(0.3, 0.3, 0.1) !cy(0.1, 0.1, 0.1);\nv = $U(@h(4,1.6,1) !cu(1,0,0), @t(1,0,0) roue);\n> v;\n",
@@ -83,7 +90,7 @@ TOKENS = ["a", "b", "X", "T", "=", ";", ",", "(", ")", "[", "]", ">", "+", "-", 
           "$I", "$D", "1", "0", "2.5", "1e308", "1e-308", "PI", "sin", "\n", "/*", "*/", "//"]
 
 
-@settings(max_examples=400, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=fuzzed(200), deadline=None, suppress_health_check=list(HealthCheck))
 @given(st.text(ALPHABET, max_size=80))
 @example("> !cu(1,1,1")
 @example("/*")
@@ -105,13 +112,13 @@ def test_random_text_never_crashes(text):
     check(text, "--no-cpp")
 
 
-@settings(max_examples=400, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=fuzzed(200), deadline=None, suppress_health_check=list(HealthCheck))
 @given(mutated())
 def test_mutated_scenes_never_crash(text):
     check(text)
 
 
-@settings(max_examples=400, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=fuzzed(200), deadline=None, suppress_health_check=list(HealthCheck))
 @given(st.lists(st.sampled_from(TOKENS), max_size=40))
 def test_token_soup_never_crashes(tokens):
     check(" ".join(tokens), "--no-cpp")
@@ -135,7 +142,7 @@ def directive_lines(draw):
     return "\n".join(lines) + "\n> !cu(1, 0, 0);\n"
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=fuzzed(150), deadline=None, suppress_health_check=list(HealthCheck))
 @given(directive_lines())
 @example('#include "a\0b.cas"\n> !cu(1, 0, 0);\n')
 @example('#include <a\0b>\n> !cu(1, 0, 0);\n')
@@ -232,7 +239,7 @@ def _run_file(text: str, *args: str):
         os.unlink(name)
 
 
-@settings(max_examples=200, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=fuzzed(120), deadline=None, suppress_health_check=list(HealthCheck))
 @given(mutated())
 @example("a = !cu(1,1,1)\n> a;\n> b;\n> @t(1,0,0) a;\n")
 @example("> !cu(1,1,1); ? > !cu(1,1,1);\n> !cu(1,1,1);")
@@ -265,10 +272,7 @@ def test_a_frame_before_an_unterminated_comment_is_written(args):
 #
 # Issue 29, item 2: a macro with a trailing comma in its parameters and a
 # repetition bracket inside an expression were internal errors, found by a
-# fuzzer whose alphabet had the preprocessor's own syntax. The suite runs a few
-# hundred cases; CASTOR_FUZZ_EXAMPLES=100000 runs it long.
-
-FUZZ_EXAMPLES = int(os.environ.get("CASTOR_FUZZ_EXAMPLES", "150"))
+# fuzzer whose alphabet had the preprocessor's own syntax.
 CPP_WORDS = ["#define", "#undef", "#if", "#ifdef", "#ifndef", "#elif", "#else", "#endif",
              "#include", "#line", "#error", "#warning", "#pragma", "#", "##", "defined",
              "__VA_ARGS__", "...", "\\\n", "M", "M(", "N(", "X", "Y", "LX", "LY,", '"a.cas"',
@@ -300,11 +304,12 @@ def cpp_scenes(draw):
     return "\n".join(lines) + "\n"
 
 
-@settings(max_examples=FUZZ_EXAMPLES, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=fuzzed(150), deadline=None, suppress_health_check=list(HealthCheck))
 @given(cpp_scenes())
 @example("#define MUR(LX, LY,) @t(LX, LY, 0) !cu(1,1,1)\n> MUR(1, 2,);\n")
 @example("E = round(sqrt(16) + cos(60) * 1e-308 [I = 0, 3] 1);\n> !cu(1,1,1);\n")
 @example("#define M(X) @t(X,0,0) !cu(1,1,1)\na = $U(M(1), M(1, 2));\n> a;\n")
+@example("#if !\n")  # found by this fuzzer: pcpp's IndexError on a file's first #if
 def test_preprocessor_and_brackets_never_crash(text):
     check(text)
     # from a file: parsed in batches, and every message names the file, never <stdin>

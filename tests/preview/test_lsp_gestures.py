@@ -226,7 +226,8 @@ def wait_for_scene(url: str, wanted, seconds: float = 60) -> dict:
             return scene
         if time.monotonic() > end:
             raise AssertionError(f"the preview never showed it: {paths(scene)}, version "
-                                 f"{scene['version']}, {scene['diagnostics']}")
+                                 f"{scene['version']}, evaluating {scene['evaluating']}, "
+                                 f"{scene['diagnostics']}")
         time.sleep(0.05)
 
 
