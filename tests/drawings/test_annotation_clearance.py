@@ -12,8 +12,8 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from castor.drawings.paper import CHAIN_LINE, text_width
-from tests.support.symbols import HOUSE, SVG, castor, register
+from castor.drawings.paper import CHAIN_LINE, OVERALL_LINE, text_width
+from tests.support.symbols import HOUSE, SVG, castor, register, svg_of
 
 # the house's door 1 m wide at x = 2 .. 3, hinged on the right, opening out:
 # its leaf and swing reach 1 m (20 mm at 1:50) below the south wall
@@ -184,3 +184,15 @@ def test_a_door_swinging_in_leaves_the_chains_where_they_were(tmp_path):
     lines = [s for p in root.find(f"{SVG}g[@id='dimensions']").iter(f"{SVG}path")
              for s in _segments(p) if s[0][1] == s[1][1] and s[0][1] > oy]
     assert min(s[0][1] for s in lines) == pytest.approx(oy + CHAIN_LINE)
+
+
+def test_a_single_plan_moves_its_chain_out_past_the_swing_too(tmp_path):
+    """Without a register: `--section z=1.2` at 1:50. The door's leaf reaches
+    1 m (20 mm) below the wall, farther than the eaves (0.5 m): the south
+    chain's line stands CHAIN_LINE mm beyond it, 30 mm from the wall."""
+    root, _, _ = svg_of(tmp_path, OUT, "--section", "z=1.2", "--scale", "1:50")
+    drawing = root.find(f"{SVG}g[@id='drawing']")
+    oy = float(drawing.get("data-origin").split()[1])
+    lines = sorted(s[0][1] for p in root.find(f"{SVG}g[@id='dimensions']").iter(f"{SVG}path")
+                   for s in _segments(p) if s[0][1] == s[1][1] and s[0][1] > oy)
+    assert lines == pytest.approx([oy + 20 + CHAIN_LINE, oy + 20 + OVERALL_LINE])
