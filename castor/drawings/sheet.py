@@ -20,8 +20,8 @@ import numpy as np
 
 from castor.drawings.annotate import (Chain, dimension_chains, length_text, level_heights,
                                       level_text, vertical_chain)
-from castor.drawings.legend import (_legend, _legend_items, _legend_width, _project_rows,
-                                    _symbols, _title_size, PROJECT_ROWS)
+from castor.drawings.legend import (_cut_lines, _legend, _legend_items, _legend_width,
+                                    _project_rows, _symbols, _title_size, PROJECT_ROWS)
 # the sheet's items and pens (castor.drawings.paper), as the writers import them from here
 from castor.drawings.paper import (ALONE_LINE, CHAIN_LINE, CUT_CLEAR, CUT_PEN, DASH,  # noqa: F401
                                    DEPTH,
@@ -509,21 +509,6 @@ def _annotated(drawing, frame: _Frame, box_mm, origin, mm: float, level_x: float
         placed = [(level, origin[1] - level.height * mm) for level in frame.levels]
         _level_symbols(placed, box_mm, level_x, levels_group.items)
     return dimensions_group, levels_group, cad
-
-
-def _cut_lines(drawing, origin, mm: float) -> dict:
-    """Where the set's cut lines cross a plan (castor.drawings.marks), in
-    paper mm: "x" the paper x of those running up the page (crossing the
-    bottom and top chains), "y" the paper y of those running across it."""
-    cuts = {"x": [], "y": []}
-    for stroke in getattr(drawing.symbols, "strokes", ()):
-        if stroke.chain:
-            (x0, y0), (x1, y1) = np.asarray(stroke.points, float)[[0, -1]]
-            if abs(x1 - x0) < 1e-9:
-                cuts["x"].append(origin[0] + x0 * mm)
-            elif abs(y1 - y0) < 1e-9:
-                cuts["y"].append(origin[1] - y0 * mm)
-    return cuts
 
 
 def _sheet_band(drawing, paper, width: float, height: float, stacked: bool, mm: float,
