@@ -123,6 +123,10 @@ class Symbols:
     # the page boxes ((x0, y0), (x1, y1)) the set's marks take (castor.drawings.marks),
     # beyond the chains: the sheet makes room for them
     marks: list = field(default_factory=list)
+    # the page box of the plan's own strokes and arcs (a door swinging out: its
+    # leaf and swing; the eaves overhead), the set's marks left out: the
+    # dimension chains stand beyond it (castor.drawings.sheet)
+    reach: np.ndarray | None = None
 
 
 def classify(drawing, takeoff, warn=None) -> None:
@@ -174,6 +178,23 @@ def classify(drawing, takeoff, warn=None) -> None:
         symbols.labels.append(Label(at, lines, 3.0))
         if symbols.level_at is None:
             symbols.level_at = (at[0], at[1])
+    symbols.reach = _reach(symbols)
+
+
+def _reach(symbols: Symbols) -> np.ndarray | None:
+    """The page box ((x0, y0), (x1, y1)) of the symbols' strokes and arcs, or None."""
+    points = [np.asarray(stroke.points, float).reshape(-1, 2) for stroke in symbols.strokes]
+    for arc in symbols.arcs:
+        # its ends, and where it passes an axis: its extremes
+        sweep = (arc.end - arc.start) % 360.0
+        turns = [a for a in (0.0, 90.0, 180.0, 270.0) if (a - arc.start) % 360.0 < sweep]
+        t = np.radians([arc.start, arc.start + sweep] + turns)
+        points.append(np.column_stack([arc.centre[0] + arc.radius * np.cos(t),
+                                       arc.centre[1] + arc.radius * np.sin(t)]))
+    if not points:
+        return None
+    every = np.concatenate(points)
+    return np.array([every.min(axis=0), every.max(axis=0)])
 
 
 def _regions(drawing, takeoff, symbols: Symbols, plan: bool, doors=()) -> None:

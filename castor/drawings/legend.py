@@ -36,6 +36,22 @@ def _legend_width(drawing) -> float:
     return sum(LEGEND_SWATCH[0] + 6.0 + max(text_width(w, TEXT) for _, w in c) for c in columns)
 
 
+def _cut_lines(drawing, origin, mm: float) -> dict:
+    """Where the set's cut lines (castor.drawings.marks) cross a plan, in paper
+    mm (the page's ``origin`` there, ``mm`` a metre): "x" the paper x of those
+    running up the page (crossing the bottom and top chains), "y" the paper y
+    of those running across it. The chains' values keep clear of them."""
+    cuts = {"x": [], "y": []}
+    for stroke in getattr(drawing.symbols, "strokes", ()):
+        if stroke.chain:
+            (x0, y0), (x1, y1) = np.asarray(stroke.points, float)[[0, -1]]
+            if abs(x1 - x0) < 1e-9:
+                cuts["x"].append(origin[0] + x0 * mm)
+            elif abs(y1 - y0) < 1e-9:
+                cuts["y"].append(origin[1] - y0 * mm)
+    return cuts
+
+
 def _symbols(drawing, origin, mm: float) -> Group | None:
     """The classes' symbols (castor.drawings.classes) in paper mm: doors'
     leaves and swings, windows, stairs, what is overhead (dashed), room tags

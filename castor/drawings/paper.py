@@ -22,6 +22,7 @@ GROUND_OVERHANG = 5.0  # mm the ground line runs on beyond the drawing
 EXTENSION_GAP = 2.0  # extension lines start this far from the drawing
 OVERSHOOT = 1.5  # and run on past the dimension line
 CHAIN_LINE, OVERALL_LINE, ALONE_LINE = 10.0, 19.0, 10.0
+CUT_CLEAR = 1.0  # mm a dimension's value keeps from a section's cut line across it
 # text rows (from, to): the chain's own row, its staggered row, the overall's;
 # text stands on the side of its line that reads as "above": towards the
 # drawing at the bottom and right, away from it at the top and left

@@ -20,10 +20,11 @@ import numpy as np
 
 from castor.drawings.annotate import (Chain, dimension_chains, length_text, level_heights,
                                       level_text, vertical_chain)
-from castor.drawings.legend import (_legend, _legend_items, _legend_width, _project_rows,
-                                    _symbols, _title_size, PROJECT_ROWS)
+from castor.drawings.legend import (_cut_lines, _legend, _legend_items, _legend_width,
+                                    _project_rows, _symbols, _title_size, PROJECT_ROWS)
 # the sheet's items and pens (castor.drawings.paper), as the writers import them from here
-from castor.drawings.paper import (ALONE_LINE, CHAIN_LINE, CUT_PEN, DASH, DEPTH,  # noqa: F401
+from castor.drawings.paper import (ALONE_LINE, CHAIN_LINE, CUT_CLEAR, CUT_PEN, DASH,  # noqa: F401
+                                   DEPTH,
                                    EXTENSION_GAP, GAP, GROUND_OVERHANG, LEVEL_WIDTH, MARGIN,
                                    OVERALL_LINE, OVERSHOOT, POCHE, PROFILE_PEN, READS, ROWS,
                                    SEEN_PEN, STANDARD_SCALES, TEXT, THIN_PEN, TITLE_BLOCK, Arc,
@@ -79,13 +80,19 @@ def _side_frame(side: str, box_mm: np.ndarray):
 class _Side:
     """One side of the drawing's box, where a chain of dimensions stands: where
     its lines, ticks and texts go on paper (the segments and texts it gathers),
-    and its dimensions as CAD keeps them (added to ``dims``)."""
+    and its dimensions as CAD keeps them (added to ``dims``). ``push``: how
+    much farther out (mm) its lines and values stand, beyond what the symbols
+    draw past the box (a door swinging out); its extension lines still start
+    EXTENSION_GAP from the box. ``cuts``: where the set's cut lines cross the
+    side (paper, along it), which its values keep clear of."""
 
-    def __init__(self, chain: Chain, box_mm, mm: float, origin, dims: list):
+    def __init__(self, chain: Chain, box_mm, mm: float, origin, dims: list, push: float = 0.0,
+                 cuts=()):
         self.chain = chain
         self.edge, self.out, self.horizontal = _side_frame(chain.side, box_mm)
         self.rows = ROWS[READS[chain.side]]
         self.mm, self.origin, self.dims = mm, origin, dims
+        self.push, self.cuts = push, list(cuts)
         self.segments: list = []
         self.texts: list = []
 
@@ -101,10 +108,27 @@ class _Side:
         """The baseline point of a text centred at s in a row (mm out from the
         box): its reading top is the row's paper end nearer the paper's top
         (or left, for text turned to read from the right)."""
+        row = (row[0] + self.push, row[1] + self.push)
         top = min(self.edge + self.out * row[0], self.edge + self.out * row[1]) + 2.1
         return (s, top, 0.0) if self.horizontal else (top, s, 90.0)
 
+    def clear(self, c: float, w: float, lo: float, hi: float) -> float | None:
+        """Where a value ``w`` wide centred at ``c`` between ``lo`` and ``hi``
+        stands clear of the cut lines (CUT_CLEAR mm from each): ``c`` itself
+        when it is, else the nearest place along its dimension that is, 0.5 mm
+        within its ends; None when there is none."""
+
+        def free(m):
+            return all(abs(s - m) >= w / 2 + CUT_CLEAR - 1e-9 for s in self.cuts)
+
+        if free(c):
+            return c
+        places = [s + sign * (w / 2 + CUT_CLEAR) for s in self.cuts for sign in (-1, 1)]
+        places = [m for m in places if lo + 0.5 + w / 2 <= m <= hi - 0.5 - w / 2 and free(m)]
+        return min(places, key=lambda m: (abs(m - c), m)) if places else None
+
     def line(self, ends, d):
+        d += self.push
         a, b = min(ends), max(ends)
         self.segments.append([self.at(a - OVERSHOOT, d), self.at(b + OVERSHOOT, d)])
         for s in ends:
@@ -120,7 +144,7 @@ class _Side:
     def dimension(self, u1, u2, d, text_point, shown=True):
         """The CAD dimension from u1 to u2 (page metres along the side)."""
         chain, origin, mm = self.chain, self.origin, self.mm
-        line_at = self.page(self.edge + self.out * d)
+        line_at = self.page(self.edge + self.out * (d + self.push))
         if self.horizontal:
             p1, p2, base, angle = (u1, chain.edge), (u2, chain.edge), (u1, line_at), 0.0
         else:
@@ -132,10 +156,11 @@ class _Side:
         self.dims.append(Dimension(p1, p2, base, angle, where, offset, shown))
 
 
-def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
-    """Lines, ticks and texts of one side's chain and overall; returns how many
-    of the chain's values had no room."""
-    side = _Side(chain, box_mm, mm, origin, dims)
+def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims, push: float = 0.0, cuts=()):
+    """Lines, ticks and texts of one side's chain and overall, ``push`` mm
+    farther out, their values clear of the ``cuts`` (paper, along the side);
+    returns how many of the chain's values had no room."""
+    side = _Side(chain, box_mm, mm, origin, dims, push, cuts)
     left_out = 0
     overall = chain.overall
     o_lo, o_hi = sorted((side.along(overall[0]), side.along(overall[1])))
@@ -146,9 +171,12 @@ def _dimension_side(chain: Chain, box_mm, mm, origin, items, dims):
         d_overall, row = ALONE_LINE, side.rows["alone"]
     side.line([o_lo, o_hi], d_overall)
     text = length_text(overall[1] - overall[0])
-    x, y, angle = side.text_at((o_lo + o_hi) / 2, row)
+    middle = (o_lo + o_hi) / 2
+    at = side.clear(middle, text_width(text, TEXT), o_lo, o_hi)
+    x, y, angle = side.text_at(middle if at is None else at, row)
     side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
-    side.dimension(overall[0], overall[1], d_overall, None)
+    # moved along, clear of a cut line: CAD is told where
+    side.dimension(overall[0], overall[1], d_overall, None if at in (None, middle) else (x, y))
     items.append(Lines(np.array(side.segments, float).reshape(-1, 2, 2), THIN_PEN, "annotation"))
     items.extend(side.texts)
     return left_out
@@ -171,14 +199,19 @@ def _chain_values(side: _Side, o_lo: float, o_hi: float) -> int:
         text = length_text(u2 - u1)
         w = text_width(text, TEXT)
         c = (a + b) / 2
-        if w + 1.0 <= b - a and not _placed(main_row, c - w / 2, c + w / 2):
-            main_row.append((c - w / 2, c + w / 2))
-            x, y, angle = side.text_at(c, side.rows["chain"])
+        # along its dimension, clear of the set's cut lines
+        m = side.clear(c, w, a, b) if w + 1.0 <= b - a else None
+        # in the staggered row, clear of the overall's extension lines too
+        s = side.clear(sum(_inside(c, w, o_lo, o_hi)) / 2, w, o_lo, o_hi) \
+            if o_hi - o_lo >= w + 1.0 else None
+        if m is not None and not _placed(main_row, m - w / 2, m + w / 2):
+            main_row.append((m - w / 2, m + w / 2))
+            x, y, angle = side.text_at(m, side.rows["chain"])
             side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
-            side.dimension(u1, u2, CHAIN_LINE, None)
-        elif (o_hi - o_lo >= w + 1.0
-              and not _placed(stagger_row, *_inside(c, w, o_lo, o_hi))):
-            c = sum(_inside(c, w, o_lo, o_hi)) / 2  # clear of the overall's extension lines
+            side.dimension(u1, u2, CHAIN_LINE, None if m == c else (x, y))
+        elif s is not None and not _placed(stagger_row, *_inside(c if s == sum(
+                _inside(c, w, o_lo, o_hi)) / 2 else s, w, o_lo, o_hi)):
+            c = s
             stagger_row.append(_inside(c, w, o_lo, o_hi))
             x, y, angle = side.text_at(c, side.rows["stagger"])
             side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
@@ -220,6 +253,7 @@ class _Frame(NamedTuple):
     levels: list  # the level heights of an elevation or a vertical section
     level_x: float  # where the column of levels stands
     content: np.ndarray  # the box of the drawing and everything round it
+    push: dict  # side -> mm its dimensions stand farther out, past the symbols (_pushes)
 
 
 def _framed(drawing, mm: float) -> _Frame:
@@ -233,7 +267,8 @@ def _framed(drawing, mm: float) -> _Frame:
         box[0, 0] -= GROUND_OVERHANG
         box[1, 0] += GROUND_OVERHANG
     chains = _chains(drawing, np.array([[x0, y0], [x1, y1]]), vertical)
-    depth = _depths(chains)
+    push = _pushes(drawing, np.array([[x0, y0], [x1, y1]]), mm)
+    depth = _depths(chains, push)
     symbols = drawing.symbols
     levels = level_heights(drawing.layers, np.array([[x0, y0], [x1, y1]]),
                            symbols.storeys if symbols else (),
@@ -248,22 +283,40 @@ def _framed(drawing, mm: float) -> _Frame:
     reach = _symbols_box(symbols, mm)  # the set's marks stand beyond the chains
     if reach is not None:
         content = np.array([np.minimum(content[0], reach[0]), np.maximum(content[1], reach[1])])
-    return _Frame(box, ground, chains, levels, level_x, content)
+    return _Frame(box, ground, chains, levels, level_x, content, push)
 
 
-def _depths(chains) -> dict:
-    """How far out (mm) each side's dimensions reach from the drawing's box."""
+def _depths(chains, push: dict | None = None) -> dict:
+    """How far out (mm) each side's dimensions reach from the drawing's box
+    (``push``: side -> mm they stand farther out, _pushes)."""
     depth = {side: 0.0 for side in ("bottom", "top", "left", "right")}
     for chain in chains:
         depth[chain.side] = DEPTH[READS[chain.side]] - (0 if len(chain.breaks) else 9)
+        if push and push.get(chain.side):
+            depth[chain.side] += push[chain.side]
     return depth
+
+
+def _pushes(drawing, box: np.ndarray, mm: float) -> dict:
+    """Side -> how far (paper mm) the symbols draw past the drawing's ``box``
+    (page metres) on that side: a door swinging out, its leaf and swing; the
+    eaves overhead. The side's dimensions stand that much farther out, as a
+    draughtsman moves a chain out past a door's swing."""
+    reach = getattr(drawing.symbols, "reach", None)
+    if reach is None:
+        return {}
+    (x0, y0), (x1, y1) = box
+    (a0, b0), (a1, b1) = reach
+    past = {"bottom": y0 - b0, "top": b1 - y1, "left": x0 - a0, "right": a1 - x1}
+    return {side: float(d) * mm for side, d in past.items() if d > 1e-6}
 
 
 def annotation_depths(drawing) -> dict:
     """Side -> how far out (paper mm) a drawing's dimension chains reach from
     what is drawn: where the set's marks may stand (castor.drawings.marks)."""
     box = drawing.box()
-    return _depths(_chains(drawing, box, tuple(drawing.view.up) == (0, 0, 1)))
+    return _depths(_chains(drawing, box, tuple(drawing.view.up) == (0, 0, 1)),
+                   _pushes(drawing, box, 1000.0 / drawing.scale))
 
 
 def _symbols_box(symbols, mm: float):
@@ -441,8 +494,11 @@ def _annotated(drawing, frame: _Frame, box_mm, origin, mm: float, level_x: float
     dimensions_group, levels_group = Group("dimensions"), Group("levels")
     cad: list[Dimension] = []
     left_out = {}
+    cuts = _cut_lines(drawing, origin, mm)
     for chain in frame.chains:
-        missing = _dimension_side(chain, box_mm, mm, origin, dimensions_group.items, cad)
+        missing = _dimension_side(chain, box_mm, mm, origin, dimensions_group.items, cad,
+                                  frame.push.get(chain.side, 0.0),
+                                  cuts["x" if chain.side in ("bottom", "top") else "y"])
         if missing:
             left_out[chain.side] = missing
     if left_out and warn is not None:
