@@ -6,9 +6,9 @@ treads, as its common property set has them, where exact.
 A quantity that depends on what a wall or slab *is* (its length, its
 thickness) is written only when the solid is that shape: a wall's Length and
 Width when its plan's smallest rectangle times its height is its gross volume
-(a straight wall of one thickness), a slab's Width when every vertex is on its
-bottom or its top (a flat slab). A ring of four walls as one element gets its
-volumes and height, not a length that no one could check.
+(a straight wall of one thickness), a slab's Width when its faces are its top,
+its bottom and upright sides (a flat slab). A ring of four walls as one
+element gets its volumes and height, not a length that no one could check.
 """
 
 from __future__ import annotations
@@ -99,12 +99,31 @@ def wall(solid: FrameObject, figures, voids: float) -> tuple[Quantity, ...]:
 def slab(solid: FrameObject, figures, voids: float) -> tuple[Quantity, ...]:
     """NetArea (its upper faces), volumes; Width (its thickness) when flat."""
     (_, _, bottom), (_, _, top) = figures.bbox
-    z = solid.vertices[:, 2]
     found = [Quantity("NetArea", "area", facing_area(solid, (0.0, 0.0, 1.0))),
              *_volumes(figures.volume, voids)]
-    if np.all((np.abs(z - bottom) <= 1e-9) | (np.abs(z - top) <= 1e-9)):
+    if flat(solid, bottom, top):
         found.insert(0, Quantity("Width", "length", top - bottom))
     return tuple(found)
+
+
+def flat(solid: FrameObject, bottom: float, top: float) -> bool:
+    """Whether the solid is ``top - bottom`` thick wherever it is: its faces
+    that look up all on its top, those that look down all on its bottom, the
+    others upright (a vertical line through it then meets it at its bottom
+    and its top only). A face of no area to speak of (the sliver a difference
+    leaves where two planes are a rounding apart) has no direction to count."""
+    if solid.polygon_count == 0:
+        return False
+    areas, normals = polygon_areas(solid)
+    counted = areas > EXACT * areas.sum()
+    up, down = normals[:, 2] > 1 - 1e-9, normals[:, 2] < -1 + 1e-9
+    if np.any(counted & ~up & ~down & (np.abs(normals[:, 2]) > 1e-9)):
+        return False
+    z = solid.vertices[solid.indices, 2]
+    polygon = np.repeat(np.arange(solid.polygon_count), np.diff(solid.offsets))
+    off = (counted & up)[polygon] & (np.abs(z - top) > 1e-9)
+    off |= (counted & down)[polygon] & (np.abs(z - bottom) > 1e-9)
+    return not off.any()
 
 
 def roof(solid: FrameObject, voids: float) -> tuple[Quantity, ...]:

@@ -261,6 +261,85 @@ class Boxes:
         return box_a is not None and box_b is not None and all(
             box_a[0][i] <= box_b[1][i] and box_b[0][i] <= box_a[1][i] for i in range(3))
 
+    def share(self, a, b) -> bool:
+        """Whether the solids of ``a`` and ``b`` (in one space) may have a
+        volume in common: False only where their boxes show they have none,
+        seen down their trees (a union's operands each apart from the other
+        solid; a difference's first operand apart, or where it could meet the
+        other solid taken out by an axis-aligned cube). Solids that only touch
+        — a floor slab in a ring of walls, a stair in the floor's well — are
+        apart: cutting one with the other would change nothing but leave the
+        other's faces and their points on it."""
+        return not _Apart(self).apart((a, tree.IDENTITY), (b, tree.IDENTITY))
+
+
+class _Apart:
+    """The proof that two solids have no volume in common (Boxes.share), each
+    node with the matrix that places it, at most ``budget`` steps of it."""
+
+    def __init__(self, boxes: Boxes, budget: int = 400):
+        self.boxes, self.budget = boxes, budget
+
+    def box(self, placed):
+        node, matrix = placed
+        box = self.boxes.of(node)
+        return None if box is None else tree.placed_box(matrix, *box)
+
+    def apart(self, a, b) -> bool:
+        box_a, box_b = self.box(a), self.box(b)
+        if box_a is None or box_b is None or not all(
+                box_a[0][i] < box_b[1][i] and box_b[0][i] < box_a[1][i] for i in range(3)):
+            return True  # no common interior
+        self.budget -= 1
+        if self.budget < 0:
+            return False
+        return self.parts_apart(b, a) or self.parts_apart(a, b)
+
+    def parts_apart(self, placed, other) -> bool:
+        """Whether ``placed`` is seen apart from ``other`` by its parts."""
+        node, matrix = placed
+        kind = type(node)
+        if kind is tree.Use:
+            child = node.shared.child
+            return True if child is None else self.apart(
+                (child, tree.compose(matrix, node.matrix)), other)
+        if kind is not tree.Boolean:
+            return False
+        operands = [(o, matrix) for o in node.operands]
+        if node.op == "U":
+            return all(self.apart(o, other) for o in operands)
+        if node.op == "I":
+            return any(self.apart(o, other) for o in operands)
+        if self.apart(operands[0], other):
+            return True
+        box_first, box_other = self.box(operands[0]), self.box(other)
+        region = (tuple(map(max, box_first[0], box_other[0])),
+                  tuple(map(min, box_first[1], box_other[1])))
+        return self.covers(operands[1], region)
+
+    def covers(self, placed, region) -> bool:
+        """Whether ``placed``'s solid holds the box ``region`` (its cubes seen)."""
+        node, matrix = placed
+        kind = type(node)
+        if kind is tree.Use:
+            child = node.shared.child
+            return child is not None and self.covers((child, tree.compose(matrix, node.matrix)),
+                                                     region)
+        if kind is tree.Boolean:
+            if node.op == "U":
+                return any(self.covers((o, matrix), region) for o in node.operands)
+            if node.op == "I":
+                return all(self.covers((o, matrix), region) for o in node.operands)
+            return False
+        if kind is not tree.Primitive or node.kind != "cu":
+            return False
+        placed_matrix = tree.compose(matrix, node.matrix)
+        if any(sum(1 for axis in range(3) if placed_matrix[row + axis] != 0) != 1
+               for row in (0, 4, 8)):
+            return False  # turned: its box is more than the cube
+        low, high = tree.placed_box(placed_matrix, (0.0, 0.0, 0.0), (1.0, 1.0, 1.0))
+        return all(low[i] <= region[0][i] and region[1][i] <= high[i] for i in range(3))
+
 
 def _reach(node, address, target, boxes: Boxes):
     """The part of ``node``'s solid whose way down leads to the node at
@@ -273,8 +352,9 @@ def _reach(node, address, target, boxes: Boxes):
         return _wrap(node, _reach(node.shared.child, rest, target, boxes), "#part")
     inner = _reach(node.operands[k], rest, target, boxes)
     if node.op == "U":
-        # the operands before it have what they share with it: those it meets
-        before = tuple(o for o in node.operands[:k] if boxes.meet(o, node.operands[k]))
+        # the operands before it have what they share with it: those it may
+        # share a volume with (not those it only touches)
+        before = tuple(o for o in node.operands[:k] if boxes.share(o, node.operands[k]))
         if not before:
             return inner
         other = before[0] if len(before) == 1 else tree.Boolean("U", before, node.location)
