@@ -65,6 +65,9 @@ class Building(NamedTuple):
     elements: tuple[Part, ...]
     openings: tuple[Void, ...]
     spaces: tuple[Part, ...]
+    # each colour of the frame with the name OBJ and glTF give its material
+    # (the first, where two '>' objects name it alike): the IFC's style names
+    colour_names: tuple[tuple[tuple[float, float, float], str], ...] = ()
 
 
 def default_title(frame) -> str:
@@ -94,8 +97,20 @@ def build(tree, frame, facetizer, title: str | None = None, classes: dict | None
     elements, placed = maker.elements()
     openings = maker.openings(elements, placed)
     spaces = maker.spaces()
-    return Building(title or default_title(frame), default_title(frame), frame.number, frame.where, tree.parameters,
-                    storeys, tuple(elements), tuple(openings), tuple(spaces))
+    return Building(title or default_title(frame), default_title(frame), frame.number,
+                    frame.where, tree.parameters, storeys, tuple(elements), tuple(openings),
+                    tuple(spaces), colour_names(frame))
+
+
+def colour_names(frame) -> tuple[tuple[tuple[float, float, float], str], ...]:
+    """Each colour of the frame and the name of its material in the mesh
+    formats (castor.formats._mesh.materials), the first where it has two."""
+    from castor.formats._mesh import materials
+
+    found: dict = {}
+    for material in materials(frame)[0]:
+        found.setdefault(tuple(material.colour), material.name)
+    return tuple(found.items())
 
 
 def _description(classification, where: str) -> str:

@@ -14,21 +14,26 @@ import numpy as np
 
 class Styles:
     """One ``IfcSurfaceStyle`` per colour of the file, named as the mesh formats
-    name their materials (castor.formats._mesh.materials), both sides shaded so
-    that a section box shows cut faces coloured."""
+    name their materials (``names``: {colour: name}, castor.bim.model's
+    colour_names; a colour they lack by its values), both sides shaded so
+    that a section box shows cut faces coloured. ``table``: the materials the
+    elements' polygons are numbered into."""
 
-    def __init__(self, f, table, create):
+    def __init__(self, f, table, create, names: dict | None = None):
         self.f, self.table, self.made, self.create = f, table, {}, create
+        self.names = names or {}
         self.bodies: dict = {}  # (id of indices, of offsets) -> polygons (_polygons)
 
     def __call__(self, m: int):
-        if m not in self.made:
+        colour = tuple(float(c) for c in self.table[m].colour)
+        if colour not in self.made:
+            from castor.formats._mesh import colour_name
+
             create = self.create
-            r, g, b = self.table[m].colour
-            shading = create("IfcSurfaceStyleShading",
-                             create("IfcColourRgb", None, float(r), float(g), float(b)), 0.0)
-            self.made[m] = create("IfcSurfaceStyle", self.table[m].name, "BOTH", [shading])
-        return self.made[m]
+            shading = create("IfcSurfaceStyleShading", create("IfcColourRgb", None, *colour), 0.0)
+            name = self.names.get(colour) or colour_name(colour)
+            self.made[colour] = create("IfcSurfaceStyle", name, "BOTH", [shading])
+        return self.made[colour]
 
 
 def face_set(f, solid, shift: float, material: np.ndarray | None = None, styles=None):

@@ -145,14 +145,15 @@ def export(tree, frame, title: str | None = None, classes: dict[str, str] | None
     return model(building).to_string().encode("utf-8")
 
 
-def model(building):
+def model(building, file_name: str | None = None):
     """The building model (castor.bim.Building) as an ``ifcopenshell.file``: the
     header, the project and its spatial structure, the parameters, the elements
-    and their openings, the spaces (in this order: the entities' numbers follow it)."""
+    and their openings, the spaces (in this order: the entities' numbers follow
+    it). ``file_name``: the header's, the file's name (else the title's)."""
     import ifcopenshell
 
     f = ifcopenshell.file(schema="IFC4")
-    _header(f, building.title)
+    _header(f, file_name or f"{building.title}.ifc")
     writer = _Writer(f, building)
     project = writer.structure()
     writer.parameters(project)
@@ -163,12 +164,12 @@ def model(building):
     return f
 
 
-def _header(f, title: str) -> None:
+def _header(f, file_name: str) -> None:
     from castor import __version__
 
     header = f.header
     header.file_description.description = ("ViewDefinition [ReferenceView_V1.2]",)
-    header.file_name.name = f"{title}.ifc"
+    header.file_name.name = file_name
     header.file_name.time_stamp = TIME_STAMP
     header.file_name.preprocessor_version = f"castor {__version__}"
     header.file_name.originating_system = f"castor {__version__}"
@@ -206,7 +207,7 @@ class _Writer:
         self.axes = self.create("IfcAxis2Placement3D", origin, None, None)
         table, self.material_of = materials(Frame(building.number, building.where,
                                                   [p.solid for p in building.elements]))
-        self.styles = Styles(f, table, self.create)
+        self.styles = Styles(f, table, self.create, dict(building.colour_names))
         self.attributes: dict[str, set[str]] = {}
         self.placed: dict[int, tuple] = {}  # id of an element's entity -> (placement, level)
 
@@ -379,5 +380,10 @@ class _Writer:
 
 
 def write(building: BuildingModel, info: WriteInfo) -> Iterator[bytes]:
-    """The registry's writer (castor.formats): the building model as an IFC4 file."""
-    return iter([model(building.building).to_string().encode("utf-8")])
+    """The registry's writer (castor.formats): the building model as an IFC4 file,
+    its header naming the file written (its base name; the title's on standard
+    output)."""
+    import os
+
+    name = os.path.basename(info.path) if info.path else None
+    return iter([model(building.building, name).to_string().encode("utf-8")])

@@ -249,8 +249,9 @@ def test_several_objects_classes_parameters_and_frames(scene):
 
 
 def test_the_same_scene_gives_the_same_bytes_and_ids(tmp_path):
-    paths = [tmp_path / "a.ifc", tmp_path / "b.ifc"]
+    paths = [tmp_path / "a" / "house.ifc", tmp_path / "b" / "house.ifc"]  # (the header names it)
     for path in paths:
+        path.parent.mkdir()
         run("-o", str(path), str(HOUSE), check_status=0)
     assert paths[0].read_bytes() == paths[1].read_bytes()
     ids = [e.GlobalId for e in _open(paths[0]).by_type("IfcRoot")]
