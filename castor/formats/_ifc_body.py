@@ -42,9 +42,10 @@ def face_set(f, solid, shift: float, material: np.ndarray | None = None, styles=
     ``styles``' table) coloured per face and styled in the colour of the
     largest area."""
     create = styles.create if styles is not None else f.create_entity
-    vertices = solid.vertices - np.array([0.0, 0.0, shift])
-    coordinates = create("IfcCartesianPointList3D", vertices.tolist())
-    (rows, order), areas = _polygons(solid, styles)
+    (rows, order), areas, kept = _polygons(solid, styles)
+    vertices = solid.vertices if kept is None else solid.vertices[kept]
+    coordinates = create("IfcCartesianPointList3D",
+                         (vertices - np.array([0.0, 0.0, shift])).tolist())
     make = face_maker(f)
     faces = [None] * len(rows)
     for place in order:
@@ -61,12 +62,13 @@ def face_set(f, solid, shift: float, material: np.ndarray | None = None, styles=
     return item
 
 
-def _polygons(solid, styles) -> tuple[list, object]:
-    """Each polygon's vertex numbers from 1 (true corner first), and a function
-    giving each polygon's area: the same as the last solid's when this one
-    is it translated, sharing its polygons (castor.quantities moves one
-    solid to each copy of a shared subtree: 1,024 houses' walls are measured
-    once; ``styles`` keeps them for the file)."""
+def _polygons(solid, styles) -> tuple[list, object, np.ndarray | None]:
+    """Each polygon's vertex numbers from 1 (true corner first) among the
+    vertices kept (``without_straight_points``: the third, None for all), and
+    a function giving each polygon's area: the same as the last solid's when
+    this one is it translated, sharing its polygons (castor.quantities moves
+    one solid to each copy of a shared subtree: 1,024 houses' walls are
+    measured once; ``styles`` keeps them for the file)."""
     from castor.bim.measures import polygon_areas
     from castor.mesh.merge import _translated
 
@@ -74,9 +76,12 @@ def _polygons(solid, styles) -> tuple[list, object]:
     key = (id(solid.indices), id(solid.offsets))
     last = known.get(key)
     if last is not None and _translated(last[2], solid.vertices):
-        return last[3], last[4]
-    ones = true_corner_first(solid.vertices, solid.offsets, solid.indices) + 1  # from 1
-    rows = _rows(ones, solid.offsets)
+        return last[3], last[4], last[5]
+    offsets, indices, kept = without_straight_points(solid.vertices, solid.offsets,
+                                                     solid.indices)
+    vertices = solid.vertices if kept is None else solid.vertices[kept]
+    ones = true_corner_first(vertices, offsets, indices) + 1  # from 1
+    rows = _rows(ones, offsets)
     found: list = []
 
     def areas():
@@ -84,8 +89,41 @@ def _polygons(solid, styles) -> tuple[list, object]:
             found.append(polygon_areas(solid)[0])
         return found[0]
     if styles is not None:  # (the arrays kept: their ids stay theirs)
-        known[key] = (solid.indices, solid.offsets, solid.vertices, rows, areas)
-    return rows, areas
+        known[key] = (solid.indices, solid.offsets, solid.vertices, rows, areas, kept)
+    return rows, areas, kept
+
+
+def without_straight_points(vertices: np.ndarray, offsets: np.ndarray, indices: np.ndarray):
+    """The polygons without the points that are a corner of none of them: a
+    point in the middle of an edge in every polygon around it (where the
+    engine met a plane a rounding away, a point on a slab's upright edge
+    between its top and its bottom), taken out of each, which keeps every
+    edge used once each way; none that would leave a polygon fewer than
+    three corners. (offsets, indices, kept): the vertices still used, numbered
+    among themselves, ``kept`` None when none is taken out."""
+    if len(indices) == 0:
+        return offsets, indices, None
+    from castor.formats._mesh import corner_turns
+
+    _, turn, lengths = corner_turns(vertices, offsets, indices)
+    straight = turn <= 1e-9 * lengths
+    count = len(vertices)
+    gone = np.bincount(indices, weights=straight, minlength=count) == np.bincount(
+        indices, minlength=count)
+    if not gone[indices].any():
+        return offsets, indices, None
+    sizes = np.diff(offsets)
+    polygon = np.repeat(np.arange(len(sizes)), sizes)
+    left = sizes - np.bincount(polygon, weights=gone[indices], minlength=len(sizes))
+    if np.any(left < 3):  # (a polygon of no area: its points stay)
+        gone[indices[(left < 3)[polygon]]] = False
+        if not gone[indices].any():
+            return offsets, indices, None
+    keep = ~gone[indices]
+    new_offsets = np.zeros(len(offsets), offsets.dtype)
+    np.cumsum(np.bincount(polygon[keep], minlength=len(sizes)), out=new_offsets[1:])
+    number = np.cumsum(~gone) - 1
+    return new_offsets, number[indices[keep]].astype(indices.dtype), ~gone
 
 
 def true_corner_first(vertices: np.ndarray, offsets: np.ndarray,
