@@ -1,7 +1,8 @@
 """A file of the workspace that no file name could be read from (a NUL byte in
 one of its ``#include`` names) does not stop castor --lsp: the workspace's scan
 for the scenes that include an opened file skips it, the opened scene gets its
-diagnostics, and the bad file, opened, gets its own diagnostic saying why."""
+diagnostics, and the bad file, opened, gets its own diagnostic saying why. A
+document whose URI names no possible file (``%00``) is not of the workspace."""
 
 from __future__ import annotations
 
@@ -56,3 +57,18 @@ def test_a_scene_gets_its_diagnostics_beside_a_file_with_a_nul_include(client: C
     assert [(d["range"]["start"], d["message"]) for d in client.diagnostics(other, 1)] == [
         ({"line": 1, "character": 9},
          "include file name 'a\\x00b.cas' holds a NUL byte, which no file name can hold")]
+
+
+def test_a_uri_with_a_nul_byte_is_no_file_of_the_workspace(client: Client, workspace: Path):
+    uri = workspace.as_uri() + "/a%00b.cas"
+    client.notify("textDocument/didOpen", {"textDocument": {
+        "uri": uri, "languageId": "castor", "version": 1, "text": "> y;\n"}})
+    said = client.wait(lambda m: m.get("method") in ("window/showMessage",
+                                                     "textDocument/publishDiagnostics"), 30)
+    assert said["method"] == "textDocument/publishDiagnostics"
+    assert [d["message"] for d in said["params"]["diagnostics"]] == [
+        "castor analyses files of the workspace only; this document is not one (open it from "
+        "the folder of the scene)"]
+    main = client.open(workspace / "main.cas")
+    assert [d["message"] for d in client.diagnostics(main, 1)][:1] == [
+        "object 'shedd' is not defined"]
