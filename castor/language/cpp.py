@@ -60,11 +60,8 @@ class SourceLines:
     mapping positions out of macro expansions."""
 
     def __init__(self, sources: list[tuple[str, str]]):
-        # by the name given and as locations name it (shown): an editor's buffer
-        # of ./main.cas, given as its full path, is not the file on disk
-        self.files = {}
-        for name, text in sources:
-            self.files[name] = self.files[shown(name)] = text.split("\n")
+        # by its name and as locations name it (shown): an editor's buffer is not its file
+        self.files = {k: text.split("\n") for name, text in sources for k in {name, shown(name)}}
 
     def line(self, file: str, number: int) -> str | None:
         lines = self.files.get(file)
