@@ -70,9 +70,8 @@ def test_once_a_run_for_every_use_and_frame(tmp_path):
 
 
 def test_a_run_warns_and_writes_the_same(tmp_path):
-    """A run that makes the mesh says it once, before the frame; its file is
-    the same bytes as at a tolerance just as fine but warned of by none
-    (the cylinder alone: no boolean, so it is quick)."""
+    """A run that makes the mesh says it once for two frames; the file is the
+    one a quiet run writes (the cylinder alone: no boolean, so it is quick)."""
     scene = write(tmp_path, "cy.cas", ">[T = 1, 2] @h(0.35, 0.35, 0.25) !cy(0.5, 0.5, 0.5);\n")
     status, _, err = run_here("-t", "1e-8", "-o", str(tmp_path / "cy%d.stl"), str(scene))
     assert status == 0
