@@ -21,6 +21,9 @@ from castor.primitives.facets import linear_part, product
 
 SLOW_SEGMENTS = 6_000  # about 2 s for one boolean with a flat face (4,000: 1.0 s; 8,000: 5.1 s)
 SUGGESTED_SEGMENTS = 500
+# past this a boolean may take minutes rather than seconds (about 50 s at 25,000;
+# the car: 10 s at -t 1e-8, 14,033 segments; 77 s at 1e-9, 43,283)
+MINUTES_SEGMENTS = 25_000
 
 # A curved primitive's segments around stay below SLOW_SEGMENTS while its
 # tolerance over its size is above this (a circle: n ≈ π/√(2t/R); a sphere's
@@ -57,8 +60,9 @@ def slow_message(kind: str, segments: int, chosen: float | None) -> str:
     else:
         at = f"at tolerance {format_number(chosen)}"
         fix = f"a coarser -t (such as {format_number(_rounded(chosen * coarser))})"
+    takes = "minutes" if segments >= MINUTES_SEGMENTS else "several seconds"
     return (f"'!{kind}' gets {segments:,} segments around {at}: a boolean with it may take "
-            f"minutes (the time grows as the square of the segments); {fix} is still finer "
+            f"{takes} (the time grows as the square of the segments); {fix} is still finer "
             "than a printer or a screen shows")
 
 

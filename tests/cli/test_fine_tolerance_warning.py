@@ -27,7 +27,7 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 WHEEL = ("roue = @h(0.35, 0.35, 0.25) !cy(0.5, 0.5, 0.5);\n"
          "> $U(!cu(1, 1, 1), @t(0.5, 0, 0.5) @rx(90) roue);\n")
 SLOW = ("warning: '!cy' gets 14,033 segments around at tolerance 1e-08: a boolean with it "
-        "may take minutes (the time grows as the square of the segments); a coarser -t "
+        "may take several seconds (the time grows as the square of the segments); a coarser -t "
         "(such as 1e-05) is still finer than a printer or a screen shows")
 
 
@@ -81,12 +81,21 @@ def test_a_run_warns_and_writes_the_same(tmp_path):
     assert (tmp_path / "cy1.stl").read_bytes() == (tmp_path / "q1.stl").read_bytes()
 
 
+def test_minutes_past_25000_segments(tmp_path):
+    scene = write(tmp_path, "wheel.cas", WHEEL)
+    _, _, err = run_here("--check", "-t", "1e-9", str(scene))
+    assert warnings(err) == [
+        f"{scene}:1:29: warning: '!cy' gets 43,283 segments around at tolerance 1e-09: a boolean "
+        "with it may take minutes (the time grows as the square of the segments); a coarser -t "
+        "(such as 1e-05) is still finer than a printer or a screen shows"]
+
+
 def test_an_f_names_no_command_line_tolerance(tmp_path):
     scene = write(tmp_path, "f.cas", "> @f(1e-8) @h(0.35, 0.35, 0.25) !cy(0.5, 0.5, 0.5);\n")
     _, _, err = run_here("--check", str(scene))
     assert warnings(err) == [
         f"{scene}:1:33: warning: '!cy' gets 14,033 segments around at its tolerance: a boolean "
-        "with it may take minutes (the time grows as the square of the segments); a tolerance "
+        "with it may take several seconds (the time grows as the square of the segments); a tolerance "
         "1000 times coarser (-t or '@f') is still finer than a printer or a screen shows"]
 
 
