@@ -31,7 +31,7 @@ from castor.settings import (EvaluationSettings, FrameSettings, MeshSettings, Ou
 # its own (castor, castor --serve) gives it this much stack, and Python this
 # recursion limit.
 STACK_BYTES = 512 * 1024 * 1024
-RECURSION_LIMIT = 200_000
+RECURSION_LIMIT = 1_000_000
 
 __all__ = ["Checked", "Overtaken", "STACK_BYTES", "RECURSION_LIMIT", "Source", "check",
            "evaluate", "evaluated_frames", "frames"]
