@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 from castor.csg.tree import FrameTree
 from castor.diagnostics import CastorError, Location
-from castor.settings import FrameSettings, OutputSettings
+from castor.settings import RECURSION_LIMIT, STACK_BYTES, FrameSettings, OutputSettings
 
 
 @dataclass(frozen=True)
@@ -83,12 +83,10 @@ def make(job: Job) -> Result:
 
 def make_deep(job: Job) -> Result:
     """``make`` in a worker process (--jobs N, a Dask worker), on a thread with the
-    stack and recursion limit of castor's own (castor.pipeline.STACK_BYTES): a
+    stack and recursion limit of castor's own (castor.settings.STACK_BYTES): a
     worker's main thread has 8 MB and a limit of 1,000 calls, and a chain of
     2,000 named objects recursed past it (issue 29)."""
     import sys
-
-    from castor.pipeline import RECURSION_LIMIT, STACK_BYTES
 
     if sys.getrecursionlimit() < RECURSION_LIMIT:
         sys.setrecursionlimit(RECURSION_LIMIT)
