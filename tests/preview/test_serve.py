@@ -22,7 +22,7 @@ from castor.serve import server as server_module
 from castor.serve.evaluation import Overtaken, Watched, evaluate
 from castor.serve.server import PreviewServer
 from tests.support.cli import hear_ctrl_c
-from tests.support.serve import get, raw, triangles, volume, wait_for
+from tests.support.serve import get, newer, raw, triangles, volume, wait_for
 
 BOX = "boite = @h({x}, 3, 4) !cu(0.25, 0.45, 0.85);\n> boite;\n"
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -140,7 +140,7 @@ def test_a_save_by_renaming_a_new_file_over_the_old_one(preview, scene):
     fresh = scene.parent / "scene.cas~new"
     fresh.write_text(BOX.format(x=6))
     os.replace(fresh, scene)
-    answer = wait_for(lambda: (a := get(port, "/scene.json")[2])["version"] > 1 and a)
+    answer = newer(port, 1)
     assert answer["frames"][0]["box"] == [[0, 0, 0], [6, 3, 4]]
 
 
@@ -153,8 +153,7 @@ def test_a_save_in_place_is_read_when_written_not_when_emptied(preview, scene):
         handle.flush()
         time.sleep(0.3)
         handle.write(BOX.format(x=5))
-    answer = wait_for(lambda: (a := get(port, "/scene.json")[2])["version"] > good["version"]
-                      and a)
+    answer = newer(port, good["version"])
     assert answer["diagnostics"] == []
     assert [frame["box"] for frame in answer["frames"]] == [[[0, 0, 0], [5, 3, 4]]]
 
@@ -163,8 +162,7 @@ def test_a_file_emptied_on_purpose_is_shown_empty(preview, scene):
     port = port_of(preview)
     _, _, good = get(port, "/scene.json")
     save(scene, "")
-    answer = wait_for(lambda: (a := get(port, "/scene.json")[2])["version"] > good["version"]
-                      and a)
+    answer = newer(port, good["version"])
     assert answer["frames"] == [] and answer["diagnostics"] == []
 
 
@@ -172,8 +170,7 @@ def test_an_error_keeps_the_last_good_frames_beside_it(preview, scene):
     port = port_of(preview)
     _, _, good = get(port, "/scene.json")
     save(scene, "boite = @h(2, 3, 4) !cu(0.25, 0.45, 0.85);\n> boite + ;\n")
-    answer = wait_for(lambda: (a := get(port, "/scene.json")[2])["version"] > good["version"]
-                      and a)
+    answer = newer(port, good["version"])
     assert answer["stale"] is True
     assert answer["frames"] == good["frames"]  # the same frames, at the same address
     [error] = answer["diagnostics"]
@@ -183,8 +180,7 @@ def test_an_error_keeps_the_last_good_frames_beside_it(preview, scene):
     assert error["text"] == "> boite + ;"
     assert get(port, good["frames"][0]["url"])[0] == 200
     save(scene, BOX.format(x=3))
-    fixed = wait_for(lambda: (a := get(port, "/scene.json")[2])["version"] > answer["version"]
-                     and a)
+    fixed = newer(port, answer["version"])
     assert fixed["stale"] is False and fixed["diagnostics"] == []
     assert fixed["frames"][0]["box"] == [[0, 0, 0], [3, 3, 4]]
     assert get(port, good["frames"][0]["url"])[0] == 404  # old frames are gone
@@ -194,7 +190,7 @@ def test_warnings_are_listed_and_the_frames_shown(preview, scene):
     port = port_of(preview)
     save(scene, "boite = @h(2, 3, 4) !cu(0.25, 0.45, 0.85);\nboite = @h(1, 1, 1) !cu(1, 0, 0);\n"
          "> boite;\n")
-    answer = wait_for(lambda: (a := get(port, "/scene.json")[2])["version"] > 1 and a)
+    answer = newer(port, 1)
     assert [d["shown"] for d in answer["diagnostics"]] == [
         "scene.cas:2:1: warning: object 'boite' redefined; objects defined before keep the "
         "old definition"]
@@ -212,7 +208,7 @@ def test_an_included_file_is_watched(tmp_path, monkeypatch):
         assert first["files"] == ["main.cas", os.path.join(str(tmp_path), "part.cas")]
         assert first["frames"][0]["box"] == [[0, 0, 0], [2, 3, 4]]
         save(tmp_path / "part.cas", "boite = @h(7, 3, 4) !cu(0.25, 0.45, 0.85);\n")
-        answer = wait_for(lambda: (a := get(port, "/scene.json")[2])["version"] > 1 and a)
+        answer = newer(port, 1)
         assert answer["frames"][0]["box"] == [[0, 0, 0], [7, 3, 4]]
     finally:
         server.close()

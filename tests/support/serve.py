@@ -21,6 +21,12 @@ def wait_for(condition, seconds: float = 10.0):
     raise AssertionError("timed out")
 
 
+def newer(port: int, version: int) -> dict:
+    """The preview's scene once its version is past ``version`` (an evaluation
+    after a save, or a value changed)."""
+    return wait_for(lambda: (a := get(port, "/scene.json")[2])["version"] > version and a)
+
+
 def get(port: int, path: str, headers: dict | None = None):
     connection = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
     connection.request("GET", path, headers=headers or {})
