@@ -273,6 +273,7 @@ class Interpreter:
                 tree = self.evaluator.frame(statement.objects, env, number, where,
                                              statement.location)
             except FrameErrors as group:
+                self._say_slow()
                 for error in group.errors:
                     failures.setdefault((error.message, error.location), (error, []))[1].append(number)
                 continue
@@ -284,6 +285,7 @@ class Interpreter:
                                    statement.location)
                 failures.setdefault((error.message, error.location), (error, []))[1].append(number)
                 continue
+            self._say_slow()  # before the frame is made
             if self.submit is not None:
                 self.submit(tree)
             else:  # evaluated only (--check, an editor): its emptiness as the tree shows it
@@ -295,6 +297,13 @@ class Interpreter:
             if len(values) > 1:
                 error.message += f" (in {counted('frame', numbers)})"
             self.reporter.error(error)
+
+    def _say_slow(self) -> None:
+        """The evaluator's warnings of primitives faceted so finely that their
+        booleans will be slow (castor.csg.fineness)."""
+        for message, location in self.evaluator.warnings:
+            self.reporter.warning(message, location)
+        self.evaluator.warnings.clear()
 
     def _unwritten(self, error: CastorError, numbers: list[int], location) -> None:
         """Frames left unmade by a parameter whose definition had errors: said in

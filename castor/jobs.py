@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 from castor.csg.tree import FrameTree
 from castor.diagnostics import CastorError, Location
-from castor.settings import FrameSettings, OutputSettings
+from castor.settings import RECURSION_LIMIT, STACK_BYTES, FrameSettings, OutputSettings
 
 
 @dataclass(frozen=True)
@@ -64,6 +64,13 @@ def make(job: Job) -> Result:
     except CastorError as exc:
         result.errors.append(exc)
         result.data = None
+    except RecursionError:  # deeper than even castor's stack (STACK_BYTES) allows
+        from castor.diagnostics import LimitError
+
+        result.errors.append(LimitError("the frame's objects are nested too deeply to build; "
+                                        "flatten the chain of named objects or operations",
+                                        tree.location))
+        result.data = None
     except MemoryError:
         from castor.diagnostics import LimitError
 
@@ -72,6 +79,40 @@ def make(job: Job) -> Result:
                                         tree.location))
         result.data = None
     return result
+
+
+def make_deep(job: Job) -> Result:
+    """``make`` in a worker process (--jobs N, a Dask worker), on a thread with the
+    stack and recursion limit of castor's own (castor.settings.STACK_BYTES): a
+    worker's main thread has 8 MB and a limit of 1,000 calls, and a chain of
+    2,000 named objects recursed past it (issue 29)."""
+    import sys
+
+    if sys.getrecursionlimit() < RECURSION_LIMIT:
+        sys.setrecursionlimit(RECURSION_LIMIT)
+    outcome: list = []
+
+    def work() -> None:
+        try:
+            outcome.append(make(job))
+        except BaseException as exc:  # raised again on the caller's thread
+            outcome.append(exc)
+
+    with _STACK_LOCK:
+        previous = threading.stack_size()
+        threading.stack_size(STACK_BYTES)
+        try:
+            thread = threading.Thread(target=work, name="castor-frame", daemon=True)
+            thread.start()
+        finally:
+            threading.stack_size(previous)
+    thread.join()
+    if isinstance(outcome[0], BaseException):
+        raise outcome[0]
+    return outcome[0]
+
+
+_STACK_LOCK = threading.Lock()  # threading.stack_size is the process's
 
 
 def _make(tree: FrameTree, settings: FrameSettings, result: Result) -> None:

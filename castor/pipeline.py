@@ -24,14 +24,9 @@ from typing import Callable, Iterator
 from castor.diagnostics import (CollectingReporter, Diagnostic, Reporter, TooManyErrors,
                                 UsageError, shown_name)
 from castor.records import Record
-from castor.settings import (EvaluationSettings, FrameSettings, MeshSettings, OutputSettings,
-                             ReadSettings, Source)
+from castor.settings import (RECURSION_LIMIT, STACK_BYTES, EvaluationSettings, FrameSettings,
+                             MeshSettings, OutputSettings, ReadSettings, Source)
 
-# Deeply nested scenes recurse deeply: whoever runs the pipeline on a thread of
-# its own (castor, castor --serve) gives it this much stack, and Python this
-# recursion limit.
-STACK_BYTES = 512 * 1024 * 1024
-RECURSION_LIMIT = 200_000
 
 __all__ = ["Checked", "Overtaken", "STACK_BYTES", "RECURSION_LIMIT", "Source", "check",
            "evaluate", "evaluated_frames", "frames"]

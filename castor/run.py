@@ -19,7 +19,7 @@ from collections import deque
 from castor.diagnostics import (CastorError, LimitError, Reporter, TooManyErrors, UsageError,
                                 shown_name)
 from castor.failures import FrameFailure, SameError, failure_reason
-from castor.jobs import FrameThread, Job, Result, make
+from castor.jobs import FrameThread, Job, Result, make, make_deep
 from castor.pipeline import evaluate, evaluated_frames  # noqa: F401 - tests and tools use it here
 from castor.settings import EvaluationSettings, FrameSettings, ReadSettings, RunSettings, Source
 
@@ -96,7 +96,7 @@ class Sequencer:
                 self.ready.wait()
             self.in_flight += 1
             if isinstance(self.executor, _process_pools()) or self.scheduled:
-                future = self.executor.submit(make, job)
+                future = self.executor.submit(make_deep, job)
             else:  # this process's thread: a long frame shows its progress
                 future = self.executor.submit(_make_showing_progress, job, self.stderr)
             future.castor_tree = tree

@@ -18,6 +18,13 @@ from typing import NamedTuple
 
 from castor.records import Record
 
+# Deeply nested scenes recurse deeply: whoever runs the pipeline on a thread of
+# its own (castor, castor --serve, a worker of --jobs N: castor.jobs.make_deep)
+# gives it this much stack, and Python this recursion limit. A chain of names
+# recurses some 4 calls a level, and the parser allows some 95,000 levels.
+STACK_BYTES = 512 * 1024 * 1024
+RECURSION_LIMIT = 1_000_000
+
 # --- every default, and the records the options' values are made of (castor.options
 # parses the command line's text into them; the stages read them from here)
 

@@ -57,7 +57,7 @@ class Analysis:
             try:
                 with open(file, encoding="utf-8", errors="replace") as handle:
                     self.texts[file] = handle.read()
-            except OSError:
+            except (OSError, ValueError):
                 return None
         return self.texts[file]
 

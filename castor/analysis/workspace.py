@@ -6,7 +6,8 @@ the workspace's ``*.cas`` files (bounded: hidden folders skipped, at most
 ``MAX_FOLDERS`` folders looked through and ``MAX_FILES`` files of at most
 ``MAX_BYTES`` read) for the ``#include "..."``
 lines that name the file, directly or through other parts, and gives the
-scenes at the top: those no other file includes.
+scenes at the top: those no other file includes. A file that cannot be read,
+or an ``#include`` name no file can have (a NUL byte), is skipped.
 """
 
 from __future__ import annotations
@@ -47,10 +48,20 @@ def includes(path: str) -> list[str]:
             return []
         with open(path, encoding="utf-8", errors="replace") as handle:
             text = handle.read()
-    except OSError:
+    except (OSError, ValueError):
         return []
     here = os.path.dirname(path)
-    return [os.path.realpath(os.path.join(here, name)) for name in _INCLUDE.findall(text)]
+    found = (_real(os.path.join(here, name)) for name in _INCLUDE.findall(text))
+    return [name for name in found if name is not None]
+
+
+def _real(path: str) -> str | None:
+    """The real path, or None for a name no file can have (a NUL byte in an
+    ``#include`` of some file of the workspace: that file's own diagnostics say so)."""
+    try:
+        return os.path.realpath(path)
+    except (OSError, ValueError):
+        return None
 
 
 def scenes_including(path: str, roots: list[str]) -> list[str]:

@@ -16,6 +16,7 @@ from contextlib import contextmanager
 from typing import MutableMapping
 
 from castor.csg import tree
+from castor.csg.fineness import slow_message, slow_segments
 from castor.csg.paths import ROOT, Trail
 from castor.diagnostics import (CastorError, EvaluationError, GeometryError, LimitError, Location,
                                counted)
@@ -91,6 +92,11 @@ class Evaluator:
         self.errors: list[CastorError] = []
         self._seen_errors: set[tuple] = set()
         self.declared = None  # the scene's classes (castor.language.classes.Declared), if any
+        # (message, location) of the primitives too finely faceted (castor.csg.fineness),
+        # for the caller to say; each primitive's place once a run
+        self.warnings: list[tuple[str, Location]] = []
+        self._slow_said: set[Location] = set()
+        self._chosen: float | None = None  # the frame's tolerance; None once an '@f' set one
 
     def frame(self, objects: tuple[SceneNode, ...], env: MutableMapping[str, float], number: int,
               where: str, location: Location) -> tree.FrameTree:
@@ -102,6 +108,7 @@ class Evaluator:
         if not (tolerance > 0 and math.isfinite(tolerance)):
             raise EvaluationError(f"TOLERANCE must be a positive number, not "
                                   f"{format_number(tolerance)}", location)
+        self._chosen = tolerance
         if len(self.memo) > _MEMO_LIMIT:
             self.memo.clear()
         made = []
@@ -218,6 +225,7 @@ class Evaluator:
                 # in scene units; inside a named object used at a scale, in its units
                 tolerance = values[0]
                 stretch = None
+                self._chosen = None
                 continue
             if step.kind == "t":  # the commonest step, without numpy
                 x, y, z = values
@@ -311,6 +319,11 @@ class Evaluator:
                 _EXTENTS.clear()
             extent = _EXTENTS[kind, shape] = declared.extent(shape)
         _check_reach(matrix, extent, node, trail)
+        if declared.curved:
+            segments = slow_segments(declared, shape, matrix, stretch, tolerance, extent)
+            if segments is not None and node.location not in self._slow_said:
+                self._slow_said.add(node.location)
+                self.warnings.append((slow_message(kind, segments, self._chosen), node.location))
         # the path: rel.down(f"!{kind}").steps(), a segment after which no dot comes
         return tree.Primitive(kind, shape, colour, matrix, tolerance, stretch,
                               f"{rel.steps()}!{kind}", node.location)

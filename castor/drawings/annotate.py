@@ -139,7 +139,7 @@ def vertical_chain(side: str, edge: float, heights, top: float) -> Chain | None:
 
 class Level(NamedTuple):
     height: float  # metres, page y (z in an elevation or a vertical section)
-    kind: str  # "ground", "storey", "top" or "edge"
+    kind: str  # "ground", "storey", "top", "opening" (a sill or a head) or "edge"
 
 
 def _through(seg: np.ndarray, holes) -> np.ndarray:
@@ -152,16 +152,28 @@ def _through(seg: np.ndarray, holes) -> np.ndarray:
     return inside
 
 
+def _within(seg: np.ndarray, boxes) -> np.ndarray:
+    """Which segments (L, 2, 2) lie wholly in one of the page ``boxes``: a
+    stair's treads, cut or seen."""
+    inside = np.zeros(len(seg), bool)
+    for (x0, y0), (x1, y1) in boxes:
+        inside |= np.all((seg[:, :, 0] >= x0 - 1e-3) & (seg[:, :, 0] <= x1 + 1e-3)
+                         & (seg[:, :, 1] >= y0 - 1e-3) & (seg[:, :, 1] <= y1 + 1e-3), axis=1)
+    return inside
+
+
 def level_heights(layers, box: np.ndarray, storeys=(), holes=(), classed: bool = False,
-                  openings=()) -> list[Level]:
+                  openings=(), stairs=()) -> list[Level]:
     """The levels of an elevation or vertical section: the ground (z = 0), the
     storeys' floor levels, the top of what is drawn and every horizontal edge
     seen (profile or not: a sill or a head seen in front of the room behind it
     is not an outline) or of a cut region, each once (to the millimetre); an
     edge inside an opening seen face on (``holes``, page boxes) is seen
     through it, and never a level. With classes (``classed``), the seen edges
-    are the profile's only, and the sills and heads of the ``openings`` the
-    drawing cuts or shows in its nearest façade are levels."""
+    are the profile's only, the sills and heads of the ``openings`` the
+    drawing cuts or shows in its nearest façade are levels (kind "opening",
+    shown before the edges), and no edge wholly inside a stair's page box
+    (``stairs``: its treads, cut or seen) is a level."""
     heights = []
     for layer in layers:
         seg = layer.lines
@@ -169,11 +181,13 @@ def level_heights(layers, box: np.ndarray, storeys=(), holes=(), classed: bool =
             d = seg[:, 1] - seg[:, 0]
             flat = (np.abs(d[:, 1]) <= GRID) & (np.abs(d[:, 0]) > 1e-3)
             if classed:  # the outline only: the openings give their sills and heads
-                flat &= layer.profile & ~_through(seg, holes)
+                flat &= layer.profile & ~_through(seg, holes) & ~_within(seg, stairs)
             heights.append(seg[flat, 0, 1])
         for loop in layer.cuts:
             nxt = np.roll(loop, -1, axis=0)
             flat = (np.abs(nxt[:, 1] - loop[:, 1]) <= GRID) & (np.abs(nxt[:, 0] - loop[:, 0]) > 1e-3)
+            if stairs:
+                flat &= ~_within(np.stack([loop, nxt], axis=1), stairs)
             heights.append(loop[flat, 1])
     found = {}
     for h in np.concatenate(heights).tolist() if heights else []:
@@ -181,7 +195,8 @@ def level_heights(layers, box: np.ndarray, storeys=(), holes=(), classed: bool =
     top = round(float(box[1, 1]), 3)
     found[top] = "top"
     for h in openings:
-        found.setdefault(round(float(h), 3), "edge")
+        if found.get(round(float(h), 3), "edge") == "edge":
+            found[round(float(h), 3)] = "opening"
     for level in storeys:
         if box[0, 1] - 1e-3 <= level <= box[1, 1] + 1e-3:
             found[round(float(level), 3)] = "storey"

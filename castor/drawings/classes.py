@@ -123,6 +123,9 @@ class Symbols:
     # the page boxes ((x0, y0), (x1, y1)) the set's marks take (castor.drawings.marks),
     # beyond the chains: the sheet makes room for them
     marks: list = field(default_factory=list)
+    # a section's or elevation's stairs, cut or seen: their page boxes; their
+    # treads are no levels (castor.drawings.annotate.level_heights)
+    stairs: list = field(default_factory=list)
     # the page box of the plan's own strokes and arcs (a door swinging out: its
     # leaf and swing; the eaves overhead), the set's marks left out: the
     # dimension chains stand beyond it (castor.drawings.sheet)
@@ -146,6 +149,7 @@ def classify(drawing, takeoff, warn=None) -> None:
     symbols.storeys = [level for _, level in takeoff.storeys()]
     _openings(drawing, blocks, symbols, takeoff)
     if not plan:
+        symbols.stairs = _stairs(drawing, takeoff)
         return
     z = float(drawing.section.value)
     storeys = takeoff.storeys()
@@ -309,6 +313,20 @@ def _openings(drawing, blocks, symbols: Symbols, takeoff=None) -> None:
     for block, box in chosen:
         side = "left" if (box[0][0] + box[1][0]) / 2 < middle else "right"
         symbols.sides.setdefault(side, []).extend([box[0][1], box[1][1]])
+
+
+def _stairs(drawing, takeoff) -> list:
+    """The page boxes of the stairs a section or an elevation cuts or sees."""
+    basis = drawing.view.basis()
+    depth = drawing.view.plane_depth(drawing.section)
+    boxes = []
+    for p in takeoff.placed():
+        if p.element.ifc_class != STAIR:
+            continue
+        corners = _corners(p.figures.bbox) @ basis.T
+        if depth is None or corners[:, 2].min() < depth:
+            boxes.append((tuple(corners[:, :2].min(axis=0)), tuple(corners[:, :2].max(axis=0))))
+    return boxes
 
 
 def _corners(bbox) -> np.ndarray:

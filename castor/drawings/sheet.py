@@ -227,7 +227,7 @@ def _level_symbols(levels, box_mm, x, items):
     shown than its text's height and gap is merged into it; the ground and the
     top are shown first, then the others from the bottom up. Returns the
     levels shown."""
-    priority = {"ground": 0, "storey": 1, "top": 2, "edge": 3}
+    priority = {"ground": 0, "storey": 1, "top": 2, "opening": 3, "edge": 4}
     shown: list = []
     for level, y in sorted(levels, key=lambda item: (priority[item[0].kind], -item[1])):
         if all(abs(y - other) >= TEXT + 1.0 for _, other in shown):
@@ -274,8 +274,8 @@ def _framed(drawing, mm: float) -> _Frame:
                            symbols.storeys if symbols else (),
                            symbols.seen_openings + symbols.cut_openings if symbols else (),
                            symbols is not None,
-                           [h for hs in symbols.sides.values() for h in hs] if symbols else ()
-                           ) if vertical else []
+                           [h for hs in symbols.sides.values() for h in hs] if symbols else (),
+                           symbols.stairs if symbols else ()) if vertical else []
     level_x = box[1, 0] + depth["right"] + (4.0 if depth["right"] else 6.0)
     right = depth["right"] + (LEVEL_WIDTH + 6.0 if levels else 0.0)
     content = np.array([[box[0, 0] - depth["left"], box[0, 1] - depth["top"]],

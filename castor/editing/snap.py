@@ -58,7 +58,10 @@ class Prepared:
         """The source and path of leaf ``number``."""
         if number is None:
             return None, None
+        from castor.pictures.trace import above_text
+
         node, above = self.solids.traced.leaves[number].origin
+        above = above_text(above)
         path = join((above, node.path)) if hasattr(node, "path") else above
         return self.source_of(node.location), path
 

@@ -60,7 +60,8 @@ class SourceLines:
     mapping positions out of macro expansions."""
 
     def __init__(self, sources: list[tuple[str, str]]):
-        self.files = {name: text.split("\n") for name, text in sources}
+        # by its name and as locations name it (shown): an editor's buffer is not its file
+        self.files = {k: text.split("\n") for name, text in sources for k in {name, shown(name)}}
 
     def line(self, file: str, number: int) -> str | None:
         lines = self.files.get(file)
@@ -70,7 +71,7 @@ class SourceLines:
                 try:
                     with open(file, encoding="utf-8", errors="replace") as handle:
                         text = handle.read()
-                except OSError:
+                except (OSError, ValueError):
                     text = ""
             text = text.removeprefix("\ufeff")  # a byte-order mark: no column of line 1
             lines = self.files[file] = text.split("\n") if text else []

@@ -69,7 +69,10 @@ def uri_of(file: str) -> str:
 
 
 def path_of(uri: str) -> str | None:
-    return to_fs_path(uri) if uri.startswith("file:") else None
+    """The file of a URI; None when not a file, or not a name a file can have
+    (a NUL byte: ``%00``)."""
+    path = to_fs_path(uri) if uri.startswith("file:") else None
+    return path if path and "\x00" not in path else None
 
 
 def position(location: Location) -> types.Position:
@@ -134,9 +137,9 @@ class CastorServer(EditingFeatures, LanguageServer):
 
     # --- the session
     def initialize(self, params: types.InitializeParams) -> None:
-        roots = [to_fs_path(folder.uri) for folder in params.workspace_folders or []]
+        roots = [path_of(folder.uri) for folder in params.workspace_folders or []]
         if not any(roots) and params.root_uri:
-            roots = [to_fs_path(params.root_uri)]
+            roots = [path_of(params.root_uri)]
         self.documents.roots = [os.path.realpath(root) for root in roots if root]
         self.event_loop = asyncio.get_event_loop()
 
