@@ -139,5 +139,5 @@ def test_usage_error_status_and_stack_size_are_defined_once():
             for name in names:
                 if name.lstrip("_") in defined:
                     defined[name.lstrip("_")].append(str(path.relative_to(PACKAGE)))
-    assert defined == {"USAGE_ERROR": ["diagnostics.py"], "STACK_BYTES": ["pipeline.py"],
+    assert defined == {"USAGE_ERROR": ["diagnostics.py"], "STACK_BYTES": ["settings.py"],
                        "Job": ["jobs.py"]}
