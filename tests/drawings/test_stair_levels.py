@@ -5,36 +5,13 @@ underside) as room allows. Read back from the SVG's ``levels`` group."""
 
 from __future__ import annotations
 
+from tests.support.scenes import TRIAL_HOUSE as HOUSE
 from tests.support.symbols import SVG, svg_of
 
 # 10 x 6 m, storeys at 0 and 3.2; a stair of 17 risers (3.2 / 17 = 0.188 m)
 # at x = 8.7 .. 9.7 going north; in the south wall windows at x = 5 .. 6.5 and
 # 8 .. 9.5, sill 1.0, head 2.2; the upper floor 0.25 thick (its underside at
 # 2.95) with a well over the stair; a roof 0.3 on top at 6.4
-HOUSE = """\
-N0 = 0;     // [storey "Ground"]
-N1 = 3.2;   // [storey "Upper"]
-L = 10;
-P = 6;
-E = 0.3;
-ES = 0.25;
-shell = $D(@h(L, P, N1) !cu(1, 1, 1), @t(E, E, -0.1) @h(L - 2 * E, P - 2 * E, N1 + 0.2) !cu(1, 1, 1));
-door1 = @t(2, -0.1, 0) @h(1.0, E + 0.2, 2.2) !cu(0, 0, 1);   // [door hinge=right swing=in]
-win1 = $U[I = 0, 1](@t(5 + I * 3, -0.1, 1.0) @h(1.5, E + 0.2, 1.2) !cu(0, 0, 1));  // [window]
-walls0 = $D(shell, $U(door1, win1));  // [wall]
-base = @t(0, 0, -ES) @h(L, P, ES) !cu(0.6, 0.6, 0.6);  // [slab baseslab]
-NR = 17;
-G = 0.25;
-step = @t(L - E - 1, E + 0.5 + I * G, 0) @h(1, G, (I + 1) * N1 / NR) !cu(0.5, 0.3, 0.2);
-stair = $U[I = 0, NR - 1](step);  // [stair straight_run_stair]
-well = @t(L - E - 1.1, E + 0.5, N1 - ES - 0.1) @h(1.1, NR * G, ES + 0.2) !cu(0.6, 0.6, 0.6);
-floor1 = $D(@t(E, E, N1 - ES) @h(L - 2 * E, P - 2 * E, ES) !cu(0.6, 0.6, 0.6), well);  // [slab floor]
-win2 = $U[I = 0, 2](@t(1.5 + I * 3, -0.1, N1 + 0.9) @h(1.2, E + 0.2, 1.4) !cu(0, 0, 1));  // [window]
-walls1 = $D(@t(0, 0, N1) shell, win2);  // [wall]
-roof = @t(0, 0, 2 * N1) @h(L, P, 0.3) !cu(0.6, 0.6, 0.6);  // [slab roof]
-house = $U(base, walls0, stair, floor1, walls1, roof);
-> house;
-"""
 
 TREADS = {f"+{k * 3.2 / 17:.2f}" for k in range(1, 17)}
 
