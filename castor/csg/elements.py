@@ -256,11 +256,6 @@ class Boxes:
         high = tuple(min(b[1][i] for b in boxes) for i in range(3))
         return (low, high) if all(a <= b for a, b in zip(low, high)) else None
 
-    def meet(self, a, b) -> bool:
-        box_a, box_b = self.of(a), self.of(b)
-        return box_a is not None and box_b is not None and all(
-            box_a[0][i] <= box_b[1][i] and box_b[0][i] <= box_a[1][i] for i in range(3))
-
     def share(self, a, b) -> bool:
         """Whether the solids of ``a`` and ``b`` (in one space) may have a
         volume in common: False only where their boxes show they have none,
