@@ -273,19 +273,20 @@ class Interpreter:
                 tree = self.evaluator.frame(statement.objects, env, number, where,
                                              statement.location)
             except FrameErrors as group:
-                self._say_slow()
-                for error in group.errors:
+                errors = group.errors
+            except CastorError as error:
+                errors = [error]
+            except RecursionError:  # deeper than the evaluator's stack, below the parser's limit
+                errors = [LimitError("the frame's objects are nested too deeply to evaluate",
+                                     statement.location)]
+            else:
+                errors = []
+            finally:
+                self._say_slow()  # before the frame is made, or its errors said
+            if errors:
+                for error in errors:
                     failures.setdefault((error.message, error.location), (error, []))[1].append(number)
                 continue
-            except CastorError as error:
-                failures.setdefault((error.message, error.location), (error, []))[1].append(number)
-                continue
-            except RecursionError:  # deeper than the evaluator's stack, below the parser's limit
-                error = LimitError("the frame's objects are nested too deeply to evaluate",
-                                   statement.location)
-                failures.setdefault((error.message, error.location), (error, []))[1].append(number)
-                continue
-            self._say_slow()  # before the frame is made
             if self.submit is not None:
                 self.submit(tree)
             else:  # evaluated only (--check, an editor): its emptiness as the tree shows it
