@@ -21,7 +21,8 @@ from dataclasses import dataclass, field
 
 from castor.csg.tree import FrameTree
 from castor.diagnostics import CastorError, Location
-from castor.settings import RECURSION_LIMIT, STACK_BYTES, FrameSettings, OutputSettings
+from castor.settings import (RECURSION_LIMIT, STACK_BYTES, FrameSettings, OutputSettings,
+                             started_thread)
 
 
 @dataclass(frozen=True)
@@ -98,21 +99,10 @@ def make_deep(job: Job) -> Result:
         except BaseException as exc:  # raised again on the caller's thread
             outcome.append(exc)
 
-    with _STACK_LOCK:
-        previous = threading.stack_size()
-        threading.stack_size(STACK_BYTES)
-        try:
-            thread = threading.Thread(target=work, name="castor-frame", daemon=True)
-            thread.start()
-        finally:
-            threading.stack_size(previous)
-    thread.join()
+    started_thread(work, "castor-frame", STACK_BYTES).join()
     if isinstance(outcome[0], BaseException):
         raise outcome[0]
     return outcome[0]
-
-
-_STACK_LOCK = threading.Lock()  # threading.stack_size is the process's
 
 
 def _make(tree: FrameTree, settings: FrameSettings, result: Result) -> None:

@@ -14,6 +14,7 @@ copy with some fields changed, as ``dataclasses.replace`` did.
 
 from __future__ import annotations
 
+import threading
 from typing import NamedTuple
 
 from castor.records import Record
@@ -21,9 +22,28 @@ from castor.records import Record
 # Deeply nested scenes recurse deeply: whoever runs the pipeline on a thread of
 # its own (castor, castor --serve, a worker of --jobs N: castor.jobs.make_deep)
 # gives it this much stack, and Python this recursion limit. A chain of names
-# recurses some 4 calls a level, and the parser allows some 95,000 levels.
+# recurses some 4 calls a level, and the parser allows up to 100,000 levels.
 STACK_BYTES = 512 * 1024 * 1024
 RECURSION_LIMIT = 1_000_000
+
+
+def started_thread(target, name: str, stack_bytes: int = STACK_BYTES):
+    """A daemon thread running ``target``, started with ``stack_bytes`` of stack
+    (0: the default): the stack size is the process's setting, so it is set for
+    this start only, one start at a time."""
+    with _STACK_LOCK:
+        previous = threading.stack_size()
+        if stack_bytes:
+            threading.stack_size(stack_bytes)
+        try:
+            thread = threading.Thread(target=target, name=name, daemon=True)
+            thread.start()
+        finally:
+            threading.stack_size(previous)
+    return thread
+
+
+_STACK_LOCK = threading.Lock()
 
 # --- every default, and the records the options' values are made of (castor.options
 # parses the command line's text into them; the stages read them from here)

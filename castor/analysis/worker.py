@@ -95,14 +95,10 @@ class Worker:
         self.stopper = Stopper()
         # ("started" | "stopped" | "finished", key, number) of the latest submissions
         self.log: collections.deque = collections.deque(maxlen=1000)
-        size = threading.stack_size()
-        if stack_bytes:
-            threading.stack_size(stack_bytes)  # deep scenes recurse deeply, as in castor
-        try:
-            self.thread = threading.Thread(target=self._loop, name="castor-analysis", daemon=True)
-        finally:
-            threading.stack_size(size)
-        self.thread.start()
+        from castor.settings import started_thread
+
+        # deep scenes recurse deeply, as in castor
+        self.thread = started_thread(self._loop, "castor-analysis", stack_bytes)
 
     def submit(self, submission: Submission) -> None:
         """Analyse ``submission`` soon; an older one of its key, pending or running, is dropped."""

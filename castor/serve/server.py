@@ -522,15 +522,10 @@ class PreviewServer:
         return f"http://[{host}]:{port}/" if ":" in host else f"http://{host}:{port}/"
 
     def start(self, stack_bytes: int = 0) -> "PreviewServer":
-        previous = threading.stack_size()
-        if stack_bytes:  # deeply nested scenes recurse deeply
-            threading.stack_size(stack_bytes)
-        try:
-            evaluator = threading.Thread(target=self.preview.evaluate_scene,
-                                         name="castor-evaluate", daemon=True)
-            evaluator.start()
-        finally:
-            threading.stack_size(previous)
+        from castor.settings import started_thread
+
+        # deeply nested scenes recurse deeply
+        evaluator = started_thread(self.preview.evaluate_scene, "castor-evaluate", stack_bytes)
         self.threads = [evaluator,
                         threading.Thread(target=self.preview.watch_files, name="castor-watch",
                                          daemon=True),
