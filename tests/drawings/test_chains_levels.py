@@ -11,7 +11,7 @@ import re
 
 import pytest
 
-from tests.support.symbols import HOUSE, SVG, castor, dxf_of, svg_of
+from tests.support.symbols import HOUSE, SVG, dxf_of, levels, svg_of
 
 # the house with a porch in front of its south wall: two columns and a canopy
 PORCH = HOUSE.replace("> maison;", "") + """\
@@ -48,11 +48,6 @@ def test_the_overall_is_the_extent_of_its_chain(tmp_path):
         values = sorted((round(d.get_measurement(), 9) for d in dims if side(d)), reverse=True)
         if len(values) > 1:
             assert values[0] == pytest.approx(sum(values[1:]))
-
-
-def levels(root) -> list[str]:
-    group = root.find(f"{SVG}g[@id='levels']")
-    return ["".join(t.itertext()) for t in group.iter(SVG + "text")]
 
 
 def test_a_section_marks_the_floor_levels_first(tmp_path):

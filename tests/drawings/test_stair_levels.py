@@ -6,7 +6,7 @@ underside) as room allows. Read back from the SVG's ``levels`` group."""
 from __future__ import annotations
 
 from tests.support.scenes import TRIAL_HOUSE as HOUSE
-from tests.support.symbols import SVG, svg_of
+from tests.support.symbols import levels, svg_of
 
 # 10 x 6 m, storeys at 0 and 3.2; a stair of 17 risers (3.2 / 17 = 0.188 m)
 # at x = 8.7 .. 9.7 going north; in the south wall windows at x = 5 .. 6.5 and
@@ -14,11 +14,6 @@ from tests.support.symbols import SVG, svg_of
 # 2.95) with a well over the stair; a roof 0.3 on top at 6.4
 
 TREADS = {f"+{k * 3.2 / 17:.2f}" for k in range(1, 17)}
-
-
-def levels(root) -> list[str]:
-    group = root.find(f"{SVG}g[@id='levels']")
-    return ["".join(t.itertext()) for t in group.iter(SVG + "text")]
 
 
 def test_a_section_through_a_stair_marks_no_tread(tmp_path):

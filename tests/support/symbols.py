@@ -74,3 +74,9 @@ def dxf_of(tmp_path: Path, scene: str = HOUSE, *options):
 
 def numbers(d: str) -> list[float]:
     return [float(v) for v in re.findall(r"-?\d+(?:\.\d+)?", d)]
+
+
+def levels(root) -> list[str]:
+    """The texts of an SVG drawing's level marks (its ``levels`` group)."""
+    group = root.find(f"{SVG}g[@id='levels']")
+    return ["".join(t.itertext()) for t in group.iter(SVG + "text")]
