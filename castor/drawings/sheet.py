@@ -209,11 +209,9 @@ def _chain_values(side: _Side, o_lo: float, o_hi: float) -> int:
             x, y, angle = side.text_at(m, side.rows["chain"])
             side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
             side.dimension(u1, u2, CHAIN_LINE, None if m == c else (x, y))
-        elif s is not None and not _placed(stagger_row, *_inside(c if s == sum(
-                _inside(c, w, o_lo, o_hi)) / 2 else s, w, o_lo, o_hi)):
-            c = s
-            stagger_row.append(_inside(c, w, o_lo, o_hi))
-            x, y, angle = side.text_at(c, side.rows["stagger"])
+        elif s is not None and not _placed(stagger_row, *_inside(s, w, o_lo, o_hi)):
+            stagger_row.append(_inside(s, w, o_lo, o_hi))
+            x, y, angle = side.text_at(s, side.rows["stagger"])
             side.texts.append(Text(x, y, text, TEXT, angle, "middle"))
             side.dimension(u1, u2, CHAIN_LINE, (x, y))
         else:
